@@ -1,0 +1,65 @@
+#pragma once
+// The shader contract and the lift of any BRDF to a shader.
+//
+// A shader is a small class with a member type `scalar_type` and a const member
+//   shade(at, v, light) -> rgb<scalar_type>
+// returning the radiance reflected toward v at the surface point `at` from one light sample
+// (shade::light_sample), ambient term included. Stylised models (toon, Gooch) are shaders
+// only; every BRDF becomes one through shade::lit.
+
+#include <concepts>
+
+#include <shade/brdf/brdf.hpp>
+#include <shade/core/math.hpp>
+#include <shade/core/surface_point.hpp>
+#include <shade/light/light_sample.hpp>
+
+namespace shade {
+
+/// S is a shader: `s.shade(at, v, sample)` returns reflected radiance as linear RGB.
+template <class S>
+concept shader = has_scalar_type<S> &&
+    requires(const S& s, const surface_point<typename S::scalar_type>& at,
+             const vec3<typename S::scalar_type>& v,
+             const light_sample<typename S::scalar_type>& sample) {
+        { s.shade(at, v, sample) } -> std::same_as<rgb<typename S::scalar_type>>;
+    };
+
+/// A BRDF lit by one light sample: the shader of a BRDF.
+///
+///   shade = k_a * I_a + pi * (f_d * I_d + f_s * I_s) * max(n.l, 0)
+///
+/// where f_d and f_s are the BRDF's diffuse and specular parts (shade::split_brdf), or
+/// f_d = f and f_s = 0 for a BRDF that does not split. The factor pi converts the light's
+/// classic colour to irradiance (shade::light_sample), so a Lambert BRDF k_d/pi reproduces
+/// the classic term k_d I_d (n.l) exactly. `ambient` is the ambient reflectance k_a
+/// (0 by default: physically based renders have no ambient term).
+template <brdf B>
+struct lit {
+    using scalar_type = scalar_of<B>;
+    using T = scalar_type;
+
+    B brdf;                  ///< the reflection model
+    rgb<T> ambient{0, 0, 0}; ///< ambient reflectance k_a, per channel, >= 0
+
+    [[nodiscard]] rgb<T> shade(const surface_point<T>& at, const vec3<T>& v,
+                               const light_sample<T>& s) const {
+        rgb<T> out = ambient * s.ambient;
+        const T n_dot_l = clamped_dot(at.n(), s.l);
+        if (n_dot_l <= T(0)) return out;
+        if constexpr (split_brdf<B>) {
+            out += pi<T> * n_dot_l *
+                   (brdf.f_diffuse(s.l, v, at) * s.diffuse + brdf.f_specular(s.l, v, at) * s.specular);
+        } else {
+            out += pi<T> * n_dot_l * brdf.f(s.l, v, at) * s.diffuse;
+        }
+        return out;
+    }
+};
+
+template <brdf B>
+lit(B) -> lit<B>;
+template <brdf B>
+lit(B, rgb<scalar_of<B>>) -> lit<B>;
+
+} // namespace shade
