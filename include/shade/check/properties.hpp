@@ -1,0 +1,13 @@
+#pragma once
+// All BRDF property checks: positivity, Helmholtz reciprocity and energy conservation,
+// for any type satisfying shade::brdf. Framework-neutral: each returns a
+// shade::check::result that converts to bool and prints as a sentence.
+//
+//   auto r = shade::check::reciprocity(my_brdf, at, {.model = "my BRDF"});
+//   if (!r) std::cerr << r << '\n';
+
+#include <shade/check/directions.hpp>
+#include <shade/check/energy.hpp>
+#include <shade/check/positivity.hpp>
+#include <shade/check/reciprocity.hpp>
+#include <shade/check/result.hpp>
