@@ -1,0 +1,89 @@
+#pragma once
+// Hit records returned (inside std::optional) by the intersection routines of
+// shade/geometry, and the face-culling switch they accept.
+//
+// Normal convention: a hit's normal n is the surface's own geometric, outward unit normal,
+// independent of the ray. front_face says which side the ray struck: true when the ray
+// arrived from the side n points into (dot(direction, n) < 0 for plane and triangle; the
+// entering root for a sphere). facing_normal() gives n flipped toward the ray's origin,
+// which is what shading with the "away from the surface" convention of
+// shade/core/frame.hpp wants.
+
+#include <algorithm>
+#include <cmath>
+#include <concepts>
+
+#include <glm/geometric.hpp>
+
+#include <shade/core/config.hpp>
+#include <shade/core/math.hpp>
+#include <shade/core/types.hpp>
+
+namespace shade {
+
+/// Which faces an intersection routine may report.
+///   none:       double-sided (the default): front and back faces are hit.
+///   back_faces: back-face culling: only hits with front_face == true are reported.
+enum class culling { none, back_faces };
+
+/// Where a ray met a surface.
+template <std::floating_point T>
+struct hit {
+    using scalar_type = T;
+
+    T t = T(0);            ///< ray parameter of the hit, in units of the ray's direction
+    vec3<T> p{0, 0, 0};    ///< world-space hit point
+    vec3<T> n{0, 0, 1};    ///< geometric outward unit normal of the surface at p
+    bool front_face = true; ///< true when the ray struck the side n points into
+
+    /// n if the ray struck the front face, -n otherwise: the unit normal on the side of
+    /// the ray's origin.
+    [[nodiscard]] SHADE_HOST_DEVICE constexpr vec3<T> facing_normal() const noexcept {
+        return front_face ? n : -n;
+    }
+};
+
+/// A hit on a triangle (v0, v1, v2): a hit plus barycentric coordinates.
+///
+/// barycentric = (b0, b1, b2) are the weights of v0, v1, v2: b0 + b1 + b2 = 1, all >= 0,
+/// and p = b0 v0 + b1 v1 + b2 v2. The common (u, v) pair is u = b1, v = b2, so that
+/// p = v0 + u (v1 - v0) + v (v2 - v0).
+template <std::floating_point T>
+struct triangle_hit : hit<T> {
+    vec3<T> barycentric{1, 0, 0}; ///< (b0, b1, b2): weights of v0, v1, v2
+
+    /// Weight of v1 (b1).
+    [[nodiscard]] constexpr T u() const noexcept { return barycentric.y; }
+    /// Weight of v2 (b2).
+    [[nodiscard]] constexpr T v() const noexcept { return barycentric.z; }
+};
+
+namespace detail {
+
+/// v / |v| without underflow or overflow: v is first divided by its largest absolute
+/// component (so the squares below lie in [0, 3]), then normalised. Returns the zero
+/// vector when v is zero or not finite; callers treat that as "no valid normal".
+template <std::floating_point T>
+[[nodiscard]] inline vec3<T> normalize_or_zero(const vec3<T>& v) noexcept {
+    const T m = std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
+    if (!(m > T(0)) || !std::isfinite(m)) return vec3<T>(0, 0, 0);
+    const vec3<T> w = v / m;
+    return w / glm::length(w);
+}
+
+/// True when the zero-or-unit vector from normalize_or_zero is a usable unit normal.
+template <std::floating_point T>
+[[nodiscard]] inline bool is_unit_normal(const vec3<T>& n) noexcept {
+    return is_finite(n) && (n.x != T(0) || n.y != T(0) || n.z != T(0));
+}
+
+/// True when t is finite and in the ray's closed interval [t_min, t_max]. NaN fails, and
+/// so does an infinite t even when t_max is +infinity (a hit must be a point).
+template <std::floating_point T>
+[[nodiscard]] inline bool in_interval(T t, T t_min, T t_max) noexcept {
+    return std::isfinite(t) && t >= t_min && t <= t_max;
+}
+
+} // namespace detail
+
+} // namespace shade

@@ -1,0 +1,64 @@
+#pragma once
+// shade::plane and ray/plane intersection.
+
+#include <concepts>
+#include <optional>
+
+#include <glm/geometric.hpp>
+
+#include <shade/core/error.hpp>
+#include <shade/core/types.hpp>
+#include <shade/geometry/hit.hpp>
+#include <shade/geometry/ray.hpp>
+
+namespace shade {
+
+/// An infinite plane through `point` with unit normal `normal`; its front side is the one
+/// the normal points into.
+template <std::floating_point T>
+class plane {
+public:
+    using scalar_type = T;
+
+    /// Throws shade::invalid_parameter naming "point" if point is not finite, or "normal"
+    /// if normal is zero or not finite. normal may have any length; it is normalised.
+    plane(const vec3<T>& point, const vec3<T>& normal)
+        : point_(require_finite("point", point)), normal_(require_direction("normal", normal)) {}
+
+    /// A point on the plane.
+    [[nodiscard]] const vec3<T>& point() const noexcept { return point_; }
+    /// The plane's unit normal (front side).
+    [[nodiscard]] const vec3<T>& normal() const noexcept { return normal_; }
+
+private:
+    vec3<T> point_;
+    vec3<T> normal_;
+};
+
+/// The hit of ray r with plane pl, or nothing.
+///
+/// Ray/plane intersection (Haines 1989, "Essential Ray Tracing Algorithms", in Glassner
+/// (ed.), An Introduction to Ray Tracing, section on ray/plane intersection): with n the
+/// unit normal and q a point of the plane, n·(o + t d - q) = 0 gives
+///     t = n·(q - o) / n·d.
+/// Returns the hit with that t, p = o + t d, the plane's normal and front_face = (n·d < 0).
+/// No hit when r is not valid(), when n·d == 0 exactly (ray parallel to the plane, also
+/// when it lies in it; no epsilon, so nearly parallel rays hit far away as they should),
+/// when t is outside [t_min, t_max] or not finite, or, with culling::back_faces, when the
+/// ray arrives from the back (n·d > 0).
+template <std::floating_point T>
+[[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, const plane<T>& pl,
+                                              culling cull = culling::none) noexcept {
+    if (!r.valid()) return std::nullopt;
+    const vec3<T>& n = pl.normal();
+    const T n_dot_d = glm::dot(n, r.direction);
+    if (n_dot_d == T(0)) return std::nullopt;
+    if (cull == culling::back_faces && !(n_dot_d < T(0))) return std::nullopt;
+    const T t = glm::dot(n, pl.point() - r.origin) / n_dot_d;
+    if (!detail::in_interval(t, r.t_min, r.t_max)) return std::nullopt;
+    const vec3<T> p = r.at(t);
+    if (!is_finite(p)) return std::nullopt;
+    return hit<T>{t, p, n, n_dot_d < T(0)};
+}
+
+} // namespace shade
