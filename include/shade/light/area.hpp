@@ -1,0 +1,167 @@
+#pragma once
+// shade::area_light: a rectangular (parallelogram) emitter sampled by area for soft
+// shadows, and shade::stratified_u, the n x n stratified sample pairs to sample it with.
+
+#include <cmath>
+#include <concepts>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include <glm/geometric.hpp>
+
+#include <shade/core/error.hpp>
+#include <shade/core/math.hpp>
+#include <shade/core/types.hpp>
+#include <shade/light/emission.hpp>
+#include <shade/light/light_sample.hpp>
+
+namespace shade {
+
+/// Which side of an area light emits: the side its normal cross(edge_u, edge_v) points
+/// to, or both.
+enum class sidedness { one_sided, two_sided };
+
+/// The jitter of a deterministic grid: every stratum is sampled at its centre (0.5, 0.5).
+/// Noise-free but can band; pass a random jitter in [0,1)^2 for jittered stratification.
+template <std::floating_point T>
+struct cell_centre {
+    [[nodiscard]] constexpr vec2<T> operator()(int i, int j) const noexcept {
+        (void)i;
+        (void)j;
+        return vec2<T>(T(0.5), T(0.5));
+    }
+};
+
+/// The sample pair of stratum (i, j) of an n x n grid over [0,1)^2, placed at `jitter`
+/// (in [0,1)^2) inside the stratum: ((i + jitter.x) / n, (j + jitter.y) / n).
+/// Preconditions: 0 <= i, j < n.
+template <std::floating_point T>
+[[nodiscard]] constexpr vec2<T> stratified_u(int i, int j, int n, const vec2<T>& jitter) noexcept {
+    return vec2<T>((T(i) + jitter.x) / T(n), (T(j) + jitter.y) / T(n));
+}
+
+namespace detail {
+
+/// Throws invalid_parameter naming "samples_per_side" unless n >= 1.
+inline int require_samples_per_side(int n) {
+    if (n < 1)
+        throw invalid_parameter("samples_per_side", "must be >= 1", std::to_string(n));
+    return n;
+}
+
+} // namespace detail
+
+/// An area light: the parallelogram {corner + s edge_u + t edge_v : s, t in [0,1]}
+/// (usually a rectangle), emitting toward the side of n = normalize(cross(edge_u, edge_v)),
+/// or toward both sides. Each unit of area emits like a point light of the light's
+/// intensity and colours with inverse-square falloff, times the cosine at the light; in
+/// physical terms the emitted radiance is L_e = pi x intensity x colour (light_sample
+/// units: the classic colour is irradiance / pi).
+///
+/// Estimator (Shirley, Wang, Zimmerman 1996, "Monte Carlo Techniques for Direct Lighting
+/// Calculations", ACM TOG 15(1), sampling a luminaire uniformly by area): the direct light
+/// at p is the integral over the light of the point-light contribution of each dA,
+///   integral_A  shade(l(x)) * cos_light(x) / |x - p|^2  dA(x),
+/// where cos_light = dot(n, -l) (|.| when two-sided, 0 on the back side). sample(p, u)
+/// picks x = corner + u.x edge_u + u.y edge_v, uniform in area (pdf = 1/A), and returns
+/// the light sample toward x whose diffuse and specular colours are scaled by
+///   intensity * cos_light * A / |x - p|^2     (= integrand / pdf).
+/// For any shader linear in the light's colours (every lit BRDF), the average of shade()
+/// over N samples therefore converges to the area light's contribution, and stratifying u
+/// (stratified_u, for_each_sample) reduces the variance. The ambient colour is not a
+/// directional quantity: every sample carries intensity x ambient, so the average is too.
+///
+/// Degenerate samples carry the ambient colour only, no Inf/NaN: p on the light (l is then
+/// a placeholder and distance +inf), the back side of a one-sided light, and overflow of
+/// 1/|x - p|^2 (l and distance still set).
+template <std::floating_point T>
+class area_light {
+public:
+    using scalar_type = T;
+
+    /// A parallelogram light with the given corner and edges. Throws
+    /// shade::invalid_parameter naming "corner" (non-finite), "edge_u" / "edge_v" (zero or
+    /// non-finite), "edge_v" (parallel to edge_u), "sides" or the bad emission member.
+    area_light(const vec3<T>& corner, const vec3<T>& edge_u, const vec3<T>& edge_v,
+               const emission<T>& e = {}, sidedness sides = sidedness::one_sided)
+        : corner_(require_finite("corner", corner)), edge_u_(edge_u), edge_v_(edge_v),
+          emission_(validated(e)), sides_(sides) {
+        const vec3<T> u_hat = require_direction("edge_u", edge_u);
+        const vec3<T> v_hat = require_direction("edge_v", edge_v);
+        const vec3<T> cross_hat = glm::cross(u_hat, v_hat); // length = sin(angle)
+        // Edges closer than ~sqrt(epsilon) radians to parallel span a sliver whose normal
+        // is dominated by the rounding of the cross product; reject rather than guess.
+        if (!(glm::length(cross_hat) > std::sqrt(std::numeric_limits<T>::epsilon())))
+            throw invalid_parameter("edge_v", "must not be parallel to edge_u",
+                                    detail::to_text(edge_v));
+        normal_ = glm::normalize(cross_hat);
+        area_ = glm::length(edge_u) * glm::length(edge_v) * glm::length(cross_hat);
+        if (!std::isfinite(area_) || !(area_ > T(0)))
+            throw invalid_parameter("edge_u", "and edge_v must span a finite, non-zero area",
+                                    detail::to_text(area_));
+        if (sides != sidedness::one_sided && sides != sidedness::two_sided)
+            throw invalid_parameter("sides", "must be one_sided or two_sided",
+                                    std::to_string(static_cast<int>(sides)));
+    }
+
+    /// The corner the edges start from.
+    [[nodiscard]] const vec3<T>& corner() const noexcept { return corner_; }
+    /// The first edge vector.
+    [[nodiscard]] const vec3<T>& edge_u() const noexcept { return edge_u_; }
+    /// The second edge vector.
+    [[nodiscard]] const vec3<T>& edge_v() const noexcept { return edge_v_; }
+    /// The unit normal normalize(cross(edge_u, edge_v)): the emitting side if one-sided.
+    [[nodiscard]] const vec3<T>& normal() const noexcept { return normal_; }
+    /// The area |cross(edge_u, edge_v)|.
+    [[nodiscard]] T area() const noexcept { return area_; }
+    /// The emitted intensity and colours (per unit area, see the class comment).
+    [[nodiscard]] const emission<T>& emitted() const noexcept { return emission_; }
+    /// Whether one or both sides emit.
+    [[nodiscard]] sidedness sides() const noexcept { return sides_; }
+
+    /// Always false: an area light needs many samples (sample(p, u) for several u).
+    [[nodiscard]] static constexpr bool is_delta() noexcept { return false; }
+
+    /// The point of the light at sample pair u in [0,1]^2.
+    [[nodiscard]] vec3<T> point_at(const vec2<T>& u) const noexcept {
+        return corner_ + u.x * edge_u_ + u.y * edge_v_;
+    }
+
+    /// One Monte Carlo light sample toward point_at(u), weighted for estimation (see the
+    /// class comment): its colours are intensity * cos_light * area / r^2 times the
+    /// light's colours. Precondition: u in [0,1]^2.
+    [[nodiscard]] light_sample<T> sample(const vec3<T>& p, const vec2<T>& u) const noexcept {
+        const auto [l, r] = detail::split_direction(vec3<T>(point_at(u) - p));
+        if (!(r > T(0))) return detail::ambient_only_sample(emission_);
+        T cos_light = -glm::dot(normal_, l);
+        if (sides_ == sidedness::two_sided) cos_light = std::fabs(cos_light);
+        if (!(cos_light > T(0))) cos_light = T(0); // back side of a one-sided light: dark
+        return detail::make_sample(emission_, l, r, cos_light * area_ / (r * r));
+    }
+
+    /// Calls fn(sample) for the n x n stratified samples sample(p, stratified_u(i, j, n,
+    /// jitter(i, j))), i, j in [0, n). Each is an unbiased estimate on its own; the
+    /// average of the n^2 results of a linear shader is the stratified estimate. `jitter`
+    /// returns a point in [0,1)^2 per stratum (cell_centre: a deterministic grid). Throws
+    /// shade::invalid_parameter naming "samples_per_side" if n < 1.
+    template <class F, class Jitter = cell_centre<T>>
+    void for_each_sample(const vec3<T>& p, int samples_per_side, F&& fn,
+                         Jitter&& jitter = {}) const {
+        const int n = detail::require_samples_per_side(samples_per_side);
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i)
+                fn(sample(p, stratified_u<T>(i, j, n, jitter(i, j))));
+    }
+
+private:
+    vec3<T> corner_;
+    vec3<T> edge_u_;
+    vec3<T> edge_v_;
+    vec3<T> normal_{0, 0, 1};
+    T area_ = T(0);
+    emission<T> emission_;
+    sidedness sides_;
+};
+
+} // namespace shade

@@ -1,0 +1,103 @@
+#pragma once
+// shade::emission: the intensity and the three classic colours every light carries, and
+// the one place where they are validated and turned into a light_sample.
+
+#include <cmath>
+#include <concepts>
+
+#include <shade/core/error.hpp>
+#include <shade/core/math.hpp>
+#include <shade/core/types.hpp>
+#include <shade/light/light_sample.hpp>
+
+namespace shade {
+
+/// What a light emits, in the units of shade::light_sample: a scalar intensity and separate
+/// ambient, diffuse and specular colours (linear RGB). A light sample's colours are these
+/// colours times the intensity (ambient) or times intensity x falloff x cone factor
+/// (diffuse, specular). All values must be finite and >= 0; lights check this on
+/// construction with shade::validated.
+template <std::floating_point T>
+struct emission {
+    using scalar_type = T;
+
+    T intensity = T(1);          ///< scalar multiplier of all three colours, >= 0
+    rgb<T> ambient{0, 0, 0};     ///< ambient colour I_a, per channel >= 0
+    rgb<T> diffuse{1, 1, 1};     ///< diffuse colour I_d, per channel >= 0
+    rgb<T> specular{1, 1, 1};    ///< specular colour I_s, per channel >= 0
+};
+
+/// Returns e unchanged after checking it; throws shade::invalid_parameter naming
+/// "intensity", "ambient", "diffuse" or "specular" if that member is negative or not
+/// finite, or "intensity" if intensity x ambient overflows.
+template <std::floating_point T>
+[[nodiscard]] emission<T> validated(const emission<T>& e) {
+    (void)require_non_negative("intensity", e.intensity);
+    (void)require_non_negative("ambient", e.ambient);
+    (void)require_non_negative("diffuse", e.diffuse);
+    (void)require_non_negative("specular", e.specular);
+    // The ambient colour is scaled by the intensity alone, so that product must stay
+    // finite; diffuse and specular products are checked per sample (make_sample).
+    if (!is_finite(e.intensity * e.ambient))
+        throw invalid_parameter("intensity", "times the ambient colour must be finite",
+                                detail::to_text(e.intensity));
+    return e;
+}
+
+namespace detail {
+
+/// A sample that brings no directional light: only the ambient colour (which no falloff,
+/// cone or occluder affects), l = +z as a placeholder unit vector, distance +inf.
+/// Lights return it where the direction is undefined (shaded point at the light).
+template <std::floating_point T>
+[[nodiscard]] light_sample<T> ambient_only_sample(const emission<T>& e) noexcept {
+    light_sample<T> s;
+    s.ambient = e.intensity * e.ambient;
+    return s;
+}
+
+/// The light sample toward unit direction l at the given distance whose diffuse and
+/// specular colours are scaled by intensity x attenuation (attenuation: falloff, cone,
+/// geometry factor, all >= 0). When that product is zero, NaN (0 x inf) or overflows to a
+/// non-finite colour, the diffuse and specular colours are left at zero (no light rather
+/// than Inf/NaN downstream); l and distance are set whenever l is finite.
+template <std::floating_point T>
+[[nodiscard]] light_sample<T> make_sample(const emission<T>& e, const vec3<T>& l, T distance,
+                                          T attenuation) noexcept {
+    light_sample<T> s = ambient_only_sample(e);
+    if (!is_finite(l)) return s;
+    s.l = l;
+    s.distance = distance;
+    const T scale = e.intensity * attenuation;
+    const rgb<T> diffuse = scale * e.diffuse;
+    const rgb<T> specular = scale * e.specular;
+    if (!(scale > T(0)) || !is_finite(diffuse) || !is_finite(specular)) return s;
+    s.diffuse = diffuse;
+    s.specular = specular;
+    return s;
+}
+
+/// The unit direction and length of d, or length 0 when d is zero. d is first divided by
+/// its largest component so that squaring neither underflows (tiny d, where glm::length
+/// would return 0 or a denormal-rounded value) nor overflows (huge d).
+template <std::floating_point T>
+struct direction_and_length {
+    vec3<T> direction{0, 0, 1}; ///< unit d / |d| (placeholder +z when length == 0)
+    T length = T(0);            ///< |d|, 0 for d = 0
+};
+
+template <std::floating_point T>
+[[nodiscard]] direction_and_length<T> split_direction(const vec3<T>& d) noexcept {
+    const T m = std::fmax(std::fabs(d.x), std::fmax(std::fabs(d.y), std::fabs(d.z)));
+    direction_and_length<T> out;
+    if (!(m > T(0)) || !std::isfinite(m)) return out;
+    const vec3<T> w = d / m;
+    const T w_length = std::sqrt(w.x * w.x + w.y * w.y + w.z * w.z); // in [1, sqrt(3)]
+    out.direction = w / w_length;
+    out.length = m * w_length;
+    return out;
+}
+
+} // namespace detail
+
+} // namespace shade

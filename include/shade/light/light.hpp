@@ -1,0 +1,68 @@
+#pragma once
+// The light contract (shade::light) and shade::any_light, one value that holds any of
+// shade's lights, for heterogeneous light lists.
+
+#include <concepts>
+#include <utility>
+#include <variant>
+
+#include <shade/brdf/brdf.hpp>
+#include <shade/core/types.hpp>
+#include <shade/light/area.hpp>
+#include <shade/light/directional.hpp>
+#include <shade/light/light_sample.hpp>
+#include <shade/light/point.hpp>
+#include <shade/light/spot.hpp>
+
+namespace shade {
+
+/// L is a light: it names its scalar type, and
+///   * `l.sample(p, u)` returns the light_sample it contributes at the shaded point p,
+///     for a sample pair u in [0,1)^2 (ignored by delta lights: point, spot,
+///     directional); the average over u of a shader's response is the light's
+///     contribution (a Monte Carlo estimate for area lights, exact for delta lights);
+///   * `l.is_delta()` is true when one sample is exact (u ignored), false when the light
+///     should be sampled several times (area lights).
+template <class L>
+concept light = has_scalar_type<L> &&
+    requires(const L& l, const vec3<typename L::scalar_type>& p,
+             const vec2<typename L::scalar_type>& u) {
+        { l.sample(p, u) } -> std::same_as<light_sample<typename L::scalar_type>>;
+        { l.is_delta() } -> std::convertible_to<bool>;
+    };
+
+/// Any of shade's lights, held by value in a std::variant, so that a scene's lights fit in
+/// one std::vector<any_light<T>>. It is itself a shade::light; sample and is_delta
+/// dispatch to the held light with std::visit. Implicitly constructible from each light.
+template <std::floating_point T>
+class any_light {
+public:
+    using scalar_type = T;
+    /// The variant of all light types.
+    using variant_type =
+        std::variant<directional_light<T>, point_light<T>, spot_light<T>, area_light<T>>;
+
+    any_light(const directional_light<T>& l) : light_(l) {} // NOLINT: implicit by design
+    any_light(const point_light<T>& l) : light_(l) {}       // NOLINT
+    any_light(const spot_light<T>& l) : light_(l) {}        // NOLINT
+    any_light(const area_light<T>& l) : light_(l) {}        // NOLINT
+
+    /// The held light's sample at p for sample pair u (see shade::light).
+    [[nodiscard]] light_sample<T> sample(const vec3<T>& p, const vec2<T>& u) const {
+        return std::visit([&](const auto& l) { return l.sample(p, u); }, light_);
+    }
+
+    /// Whether the held light is a delta light.
+    [[nodiscard]] bool is_delta() const {
+        return std::visit([](const auto& l) { return l.is_delta(); }, light_);
+    }
+
+    /// The underlying variant, for std::visit with the concrete light type (e.g. to
+    /// sample an area light with its own stratification).
+    [[nodiscard]] const variant_type& get() const noexcept { return light_; }
+
+private:
+    variant_type light_;
+};
+
+} // namespace shade

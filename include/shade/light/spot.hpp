@@ -1,0 +1,115 @@
+#pragma once
+// shade::spot_light: a point light restricted to a cone with a smooth edge.
+
+#include <cmath>
+#include <concepts>
+
+#include <glm/geometric.hpp>
+
+#include <shade/core/error.hpp>
+#include <shade/core/math.hpp>
+#include <shade/core/types.hpp>
+#include <shade/light/emission.hpp>
+#include <shade/light/light_sample.hpp>
+#include <shade/light/point.hpp>
+
+namespace shade {
+
+/// The smooth cone factor of a spotlight, in [0, 1], given cos_s = cos of the angle between
+/// the spot axis and the direction from the light to the shaded point, and the cosines of
+/// the inner (full light) and outer (no light) half-angles, cos_inner >= cos_outer:
+///
+///   t = clamp((cos_s - cos_outer) / (cos_inner - cos_outer), 0, 1)
+///   factor = smoothstep(t) = t^2 (3 - 2 t)
+///
+/// Akenine-Moeller, Haines, Hoffman, Pesce, Iwanicki, Hillaire 2018, "Real-Time Rendering",
+/// 4th ed., Section 5.2.2 (spotlights): the smoothstep-of-cosines variant (the book's
+/// three.js form; Filament squares t instead). It is 1 inside the inner cone, 0 outside the
+/// outer cone, and C1-smooth between them in cos_s. With cos_inner == cos_outer (equal
+/// angles) the edge is hard: 1 for cos_s >= cos_outer, else 0.
+template <std::floating_point T>
+[[nodiscard]] inline T spot_cone_factor(T cos_s, T cos_inner, T cos_outer) noexcept {
+    const T width = cos_inner - cos_outer;
+    if (!(width > T(0))) return cos_s >= cos_outer ? T(1) : T(0);
+    T t = (cos_s - cos_outer) / width;
+    t = t < T(0) ? T(0) : (t > T(1) ? T(1) : t);
+    return t * t * (T(3) - T(2) * t);
+}
+
+/// A spotlight: a point light at `position` shining along the unit `axis`, with full
+/// light inside the inner half-angle, none outside the outer half-angle and a smoothstep
+/// edge between (shade::spot_cone_factor). Its sample at p has l = (position - p) / r,
+/// distance r, ambient = intensity x ambient colour and diffuse/specular = intensity x
+/// falloff_factor(f, r) x cone factor x colour. At r = 0 or where the falloff overflows the
+/// sample carries the ambient colour only (as for shade::point_light).
+template <std::floating_point T>
+class spot_light {
+public:
+    using scalar_type = T;
+
+    /// A spotlight at `position` pointing along `axis` (from the light INTO the scene; any
+    /// finite non-zero length), with half-angles inner_angle <= outer_angle in radians,
+    /// measured from the axis, 0 <= inner_angle <= outer_angle, 0 < outer_angle <= pi.
+    /// Throws shade::invalid_parameter naming "position", "axis", "outer_angle",
+    /// "inner_angle", "falloff" or the bad emission member.
+    spot_light(const vec3<T>& position, const vec3<T>& axis, T inner_angle, T outer_angle,
+               const emission<T>& e = {}, falloff f = falloff::inverse_square)
+        : position_(require_finite("position", position)),
+          axis_(require_direction("axis", axis)),
+          inner_angle_(inner_angle), outer_angle_(outer_angle), emission_(validated(e)),
+          falloff_(detail::require_falloff(f)) {
+        (void)require_in_range("outer_angle", outer_angle, T(0), pi<T>);
+        if (!(outer_angle > T(0)))
+            throw invalid_parameter("outer_angle", "must be > 0", detail::to_text(outer_angle));
+        (void)require_in_range("inner_angle", inner_angle, T(0), pi<T>);
+        if (!(inner_angle <= outer_angle))
+            throw invalid_parameter("inner_angle",
+                                    "must be <= outer_angle (" + detail::to_text(outer_angle) + ")",
+                                    detail::to_text(inner_angle));
+        cos_inner_ = std::cos(inner_angle);
+        cos_outer_ = std::cos(outer_angle);
+    }
+
+    /// The light's position.
+    [[nodiscard]] const vec3<T>& position() const noexcept { return position_; }
+    /// The unit axis the spot points along (from the light into the scene).
+    [[nodiscard]] const vec3<T>& axis() const noexcept { return axis_; }
+    /// The inner half-angle in radians (full light inside).
+    [[nodiscard]] T inner_angle() const noexcept { return inner_angle_; }
+    /// The outer half-angle in radians (no light outside).
+    [[nodiscard]] T outer_angle() const noexcept { return outer_angle_; }
+    /// The emitted intensity and colours.
+    [[nodiscard]] const emission<T>& emitted() const noexcept { return emission_; }
+    /// The distance law.
+    [[nodiscard]] falloff distance_falloff() const noexcept { return falloff_; }
+
+    /// Always true: a spotlight is a delta light, one sample is exact.
+    [[nodiscard]] static constexpr bool is_delta() noexcept { return true; }
+
+    /// The light's sample at point p (see the class comment).
+    [[nodiscard]] light_sample<T> sample(const vec3<T>& p) const noexcept {
+        const auto [l, r] = detail::split_direction(vec3<T>(position_ - p));
+        if (!(r > T(0))) return detail::ambient_only_sample(emission_);
+        // -l points from the light to p; its cosine with the axis is cos_s.
+        const T cone = spot_cone_factor(-glm::dot(axis_, l), cos_inner_, cos_outer_);
+        return detail::make_sample(emission_, l, r, falloff_factor(falloff_, r) * cone);
+    }
+
+    /// As sample(p); u is ignored (shade::light interface, shared with area lights).
+    [[nodiscard]] light_sample<T> sample(const vec3<T>& p, const vec2<T>& u) const noexcept {
+        (void)u;
+        return sample(p);
+    }
+
+private:
+    vec3<T> position_;
+    vec3<T> axis_;
+    T inner_angle_;
+    T outer_angle_;
+    emission<T> emission_;
+    falloff falloff_;
+    T cos_inner_ = T(1);
+    T cos_outer_ = T(-1);
+};
+
+} // namespace shade
