@@ -104,8 +104,8 @@ using mat3d = std::array<double, 9>;
 
 [[nodiscard]] constexpr mat3d multiply(const mat3d& p, const mat3d& q) noexcept {
     mat3d r{};
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
+    for (std::size_t i = 0; i < 3; ++i)
+        for (std::size_t j = 0; j < 3; ++j)
             r[i * 3 + j] = p[i * 3 + 0] * q[0 * 3 + j] + p[i * 3 + 1] * q[1 * 3 + j] +
                            p[i * 3 + 2] * q[2 * 3 + j];
     return r;
