@@ -1,0 +1,224 @@
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <doctest/doctest.h>
+#include <glm/geometric.hpp>
+
+#include <shade/geometry/sphere.hpp>
+
+namespace {
+
+template <class T>
+using v3 = shade::vec3<T>;
+
+template <class T>
+constexpr T eps = std::numeric_limits<T>::epsilon();
+
+template <class T>
+bool near_rel(T a, T b, T rel) {
+    return std::abs(a - b) <= rel * std::max(std::abs(a), std::abs(b));
+}
+
+template <class T>
+bool near_vec(const v3<T>& a, const v3<T>& b, T tol) {
+    return std::abs(a.x - b.x) <= tol && std::abs(a.y - b.y) <= tol && std::abs(a.z - b.z) <= tol;
+}
+
+} // namespace
+
+TEST_CASE_TEMPLATE("sphere: known entering hits, centred and off-centre", T, float, double) {
+    const shade::sphere<T> s({0, 0, -5}, 2);
+    const T tol = 8 * eps<T>;
+    // Centred: from the origin along -z the ray enters at z = -5 + 2 = -3: t = 3,
+    // p = (0,0,-3), outward normal (0,0,1), front face.
+    const auto h = shade::intersect(shade::ray<T>{{0, 0, 0}, {0, 0, -1}}, s);
+    REQUIRE(h.has_value());
+    CHECK(near_rel(h->t, T(3), tol));
+    CHECK(near_vec(h->p, v3<T>(0, 0, -3), tol * 3));
+    CHECK(near_vec(h->n, v3<T>(0, 0, 1), tol));
+    CHECK(h->front_face);
+    // Off-centre: from (1,0,0) along -z the ray passes the centre at distance 1; it enters
+    // sqrt(2^2 - 1^2) = sqrt(3) before z = -5: t = 5 - sqrt(3), p = (1, 0, -5 + sqrt(3)),
+    // n = (p - c) / 2 = (1, 0, sqrt(3)) / 2.
+    const auto g = shade::intersect(shade::ray<T>{{1, 0, 0}, {0, 0, -1}}, s);
+    REQUIRE(g.has_value());
+    const T r3 = std::sqrt(T(3));
+    CHECK(near_rel(g->t, T(5) - r3, tol));
+    CHECK(near_vec(g->p, v3<T>(1, 0, T(-5) + r3), tol * 5));
+    CHECK(near_vec(g->n, v3<T>(1, 0, r3) / T(2), tol * 5));
+    CHECK(std::abs(glm::length(g->n) - T(1)) <= tol);
+    CHECK(g->front_face);
+}
+
+TEST_CASE_TEMPLATE("sphere: an origin inside gives the exit hit", T, float, double) {
+    const shade::sphere<T> s({0, 0, -5}, 2);
+    const T tol = 8 * eps<T>;
+    // From the centre along +x: exit at (2, 0, -5), t = 2, outward normal (1,0,0); the ray
+    // strikes the inside (back) of the surface.
+    const auto h = shade::intersect(shade::ray<T>{{0, 0, -5}, {1, 0, 0}}, s);
+    REQUIRE(h.has_value());
+    CHECK(near_rel(h->t, T(2), tol));
+    CHECK(near_vec(h->p, v3<T>(2, 0, -5), tol * 5));
+    CHECK(near_vec(h->n, v3<T>(1, 0, 0), tol));
+    CHECK_FALSE(h->front_face);
+    CHECK(near_vec(h->facing_normal(), v3<T>(-1, 0, 0), tol));
+    // From (0,1,-5) along +x: x^2 + 1 = 4 at x = sqrt(3): t = sqrt(3), n = (sqrt(3), 1, 0)/2.
+    const auto g = shade::intersect(shade::ray<T>{{0, 1, -5}, {1, 0, 0}}, s);
+    REQUIRE(g.has_value());
+    const T r3 = std::sqrt(T(3));
+    CHECK(near_rel(g->t, r3, tol));
+    CHECK(near_vec(g->n, v3<T>(r3, 1, 0) / T(2), tol * 2));
+    CHECK_FALSE(g->front_face);
+}
+
+TEST_CASE_TEMPLATE("sphere: t is in units of the direction, for tiny and huge directions too", T, float, double) {
+    // The centred hit of the first test is 3 length units away, so with direction
+    // (0,0,-len) t = 3 / len. a = d·d would underflow (len = 1e-30: 1e-60) or overflow
+    // (len = 1e30: 1e60) in float without the exact power-of-two rescaling.
+    const shade::sphere<T> s({0, 0, -5}, 2);
+    for (const T len : {T(4), T(0.25), T(1e-30), T(1e30)}) {
+        CAPTURE(len);
+        const auto h = shade::intersect(shade::ray<T>{{0, 0, 0}, {0, 0, -len}}, s);
+        REQUIRE(h.has_value());
+        CHECK(near_rel(h->t * len, T(3), 8 * eps<T>));
+        CHECK(near_vec(h->p, v3<T>(0, 0, -3), 32 * eps<T>));
+    }
+}
+
+TEST_CASE_TEMPLATE("sphere: tangent ray touches once; a hair outside misses", T, float, double) {
+    // Centre (0,0,-5), radius 2. The ray from (-5, 2, -5) along +x passes the centre at
+    // distance exactly 2: f = o - c = (-5,2,0), l = f - (f·d/d·d) d = (0,2,0), so the
+    // discriminant R^2 - |l|^2 = 4 - 4 = 0 exactly. Single root t = 5 at p = (0,2,-5),
+    // n = (0,1,0); reported as an entering (front-face) hit.
+    const shade::sphere<T> s({0, 0, -5}, 2);
+    const auto h = shade::intersect(shade::ray<T>{{-5, 2, -5}, {1, 0, 0}}, s);
+    REQUIRE(h.has_value());
+    CHECK(h->t == T(5));
+    CHECK(h->p == v3<T>(0, 2, -5));
+    CHECK(h->n == v3<T>(0, 1, 0));
+    CHECK(h->front_face);
+    // One ulp farther out: |l| > R, no hit. One ulp inside: a (short) chord, entered
+    // before x = 0.
+    const T out = std::nextafter(T(2), T(3));
+    const T in = std::nextafter(T(2), T(0));
+    CHECK_FALSE(shade::intersect(shade::ray<T>{{-5, out, -5}, {1, 0, 0}}, s).has_value());
+    const auto g = shade::intersect(shade::ray<T>{{-5, in, -5}, {1, 0, 0}}, s);
+    REQUIRE(g.has_value());
+    CHECK(g->t < T(5));
+    CHECK(g->front_face);
+}
+
+TEST_CASE_TEMPLATE("sphere: far away, t stays accurate (no catastrophic cancellation)", T, float, double) {
+    // Axis-aligned: unit sphere at (0,0,D), ray from (h,0,0) along +z with h = 0.6. The ray
+    // passes the centre at distance h, so it enters sqrt(1 - h^2) = 0.8 before z = D:
+    // t = D - 0.8. The textbook discriminant b^2 - a c subtracts two numbers ~D^2 = 1e12
+    // whose float spacing is 65536, to get 0.64: all digits lost. Tolerance: a few
+    // roundings of t (relative).
+    std::vector<T> distances{T(1e6)};
+    if constexpr (std::is_same_v<T, double>) distances.push_back(T(1e12));
+    const T h = T(0.6);
+    for (const T D : distances) {
+        CAPTURE(D);
+        const auto hit = shade::intersect(shade::ray<T>{{h, 0, 0}, {0, 0, 1}},
+                                          shade::sphere<T>({0, 0, D}, 1));
+        REQUIRE(hit.has_value());
+        CHECK(near_rel(hit->t, D - std::sqrt(1 - h * h), 4 * eps<T>));
+        CHECK(hit->front_face);
+        // The normal points back toward the ray: (h, 0, -0.8). The hit point, like t, is
+        // only known to about one spacing of the numbers near D (eps D absolute), so
+        // n = (p - c) / R carries an error of that size (R = 1).
+        CHECK(near_vec(hit->n, v3<T>(h, 0, -std::sqrt(1 - h * h)), 4 * eps<T> * D));
+    }
+    // Oblique: direction d = (1,2,2) (|d| = 3), centre c = k d + p with p = (0.5,-0.5,0.25)
+    // orthogonal to d (p·d = 0.5 - 1 + 0.5 = 0) and |p| = 0.75; k = 2^18 in float (the
+    // sphere is ~8e5 away) and 2^40 in double (~3e12 away). Every coordinate is exact in
+    // binary. The ray passes the centre at distance 0.75 at t = k, and enters
+    // sqrt(1 - 0.5625) = sqrt(0.4375) length units earlier, i.e. sqrt(0.4375)/3 in t:
+    // t = k - sqrt(0.4375) / 3.
+    const T k = std::is_same_v<T, float> ? T(262144) : T(1099511627776.0);
+    const v3<T> d(1, 2, 2);
+    const v3<T> c = k * d + v3<T>(T(0.5), T(-0.5), T(0.25));
+    REQUIRE(c.z - T(2) * k == T(0.25)); // c is exact
+    const auto hit = shade::intersect(shade::ray<T>{{0, 0, 0}, d}, shade::sphere<T>(c, 1));
+    REQUIRE(hit.has_value());
+    CHECK(near_rel(hit->t, k - std::sqrt(T(0.4375)) / T(3), 8 * eps<T>));
+    CHECK(hit->front_face);
+}
+
+TEST_CASE_TEMPLATE("sphere: bad input never produces a hit", T, float, double) {
+    const T nan = std::numeric_limits<T>::quiet_NaN();
+    const T inf = std::numeric_limits<T>::infinity();
+    const shade::sphere<T> s({0, 0, -5}, 2);
+    const v3<T> o(0, 0, 0), d(0, 0, -1); // enters at t = 3, leaves at t = 7
+    REQUIRE(shade::intersect(shade::ray<T>{o, d}, s).has_value());
+    auto miss = [&](const shade::ray<T>& r) { return !shade::intersect(r, s).has_value(); };
+    CHECK(miss({o, {0, nan, -1}}));
+    CHECK(miss({o, {0, 0, 0}}));
+    CHECK(miss({{inf, 0, 0}, d}));
+    CHECK(miss({{0, 0, nan}, d}));
+    CHECK(miss({o, {0, 0, 1}}));          // sphere behind the origin
+    CHECK(miss({o, {0, 1, 0}}));          // passes beside it
+    CHECK(miss({o, d, 0, T(2.5)}));       // entry beyond t_max
+    CHECK(miss({o, d, 8, inf}));          // both roots before t_min
+    CHECK(miss({o, d, T(-1), inf}));      // invalid interval
+    CHECK(miss({o, d, 0, nan}));
+    // With t_min between the roots the exit is reported: t = 7, p = (0,0,-7), n = (0,0,-1).
+    const auto exit = shade::intersect(shade::ray<T>{o, d, 4, inf}, s);
+    REQUIRE(exit.has_value());
+    CHECK(near_rel(exit->t, T(7), 8 * eps<T>));
+    CHECK(near_vec(exit->n, v3<T>(0, 0, -1), 8 * eps<T>));
+    CHECK_FALSE(exit->front_face);
+    // A centre so far that o - c overflows gives no hit rather than NaN.
+    const T big = std::numeric_limits<T>::max();
+    CHECK_FALSE(shade::intersect(shade::ray<T>{{0, 0, -big}, {0, 0, 1}},
+                                 shade::sphere<T>({0, 0, big}, 1))
+                    .has_value());
+}
+
+TEST_CASE_TEMPLATE("sphere: scaled by 1e-3 or 1e3, or translated by 1e4, gives the same hits", T, float, double) {
+    // Centre and origins are multiples of 1/8 (translation by 1e4 stays exact in float).
+    // Rays aim at points clearly inside the silhouette (hits) or clearly beside it
+    // (misses). Scaling points by s (directions kept) scales t by s; 32 eps: a few
+    // roundings of the scaled inputs, no near-tangent ray.
+    const v3<T> c(T(0.5), T(-0.25), 3);
+    const T radius = T(1.5);
+    const std::vector<v3<T>> origins{{0, 0, 0}, {4, 1, T(-2.5)}, {T(0.75), T(-0.5), T(3.25)}};
+    const std::vector<v3<T>> targets{c, c + v3<T>(T(0.5), T(0.25), 0), c + v3<T>(3, 0, 0),
+                                     c + v3<T>(0, T(-2.5), 1)};
+    const shade::sphere<T> s(c, radius);
+    int hits = 0;
+    for (const auto& o : origins)
+        for (const auto& target : targets) {
+            const shade::ray<T> r{o, target - o};
+            const auto h = shade::intersect(r, s);
+            for (const T scale : {T(1e-3), T(1e3)}) {
+                const auto g = shade::intersect(shade::ray<T>{o * scale, r.direction},
+                                                shade::sphere<T>(c * scale, radius * scale));
+                REQUIRE(g.has_value() == h.has_value());
+                if (h) {
+                    CHECK(near_rel(g->t, h->t * scale, 32 * eps<T>));
+                    CHECK(g->front_face == h->front_face);
+                }
+            }
+            const v3<T> shift(T(1e4), T(-1e4), T(1e4));
+            const auto g = shade::intersect(shade::ray<T>{o + shift, r.direction},
+                                            shade::sphere<T>(c + shift, radius));
+            REQUIRE(g.has_value() == h.has_value());
+            if (h) {
+                ++hits;
+                CHECK(near_rel(g->t, h->t, 32 * eps<T>));
+            }
+        }
+    CHECK(hits >= 6);
+}
+
+TEST_CASE_TEMPLATE("sphere: constructor rejects bad parameters by name", T, float, double) {
+    const T nan = std::numeric_limits<T>::quiet_NaN();
+    const T inf = std::numeric_limits<T>::infinity();
+    for (const T bad : {T(0), T(-1), nan, inf})
+        CHECK_THROWS_WITH_AS((void)shade::sphere<T>({0, 0, 0}, bad), doctest::Contains("'radius'"),
+                             shade::invalid_parameter);
+    CHECK_THROWS_WITH_AS((void)shade::sphere<T>({0, inf, 0}, 1), doctest::Contains("'center'"),
+                         shade::invalid_parameter);
+}
