@@ -1,6 +1,7 @@
 #pragma once
 // shade: header-only C++20 shading, BRDF and ray-intersection library on GLM.
-// This umbrella header includes every public header. Conventions: shade/core/frame.hpp.
+// This umbrella header includes every public header except shade/check/doctest.hpp (which
+// needs doctest). Conventions: shade/core/frame.hpp and docs/conventions.md.
 
 #include <shade/version.hpp>
 
@@ -8,9 +9,29 @@
 #include <shade/core/error.hpp>
 #include <shade/core/frame.hpp>
 #include <shade/core/math.hpp>
+#include <shade/core/random.hpp>
+#include <shade/core/sampling.hpp>
 #include <shade/core/surface_point.hpp>
 #include <shade/core/types.hpp>
 
+#include <shade/geometry/camera.hpp>
+#include <shade/geometry/hit.hpp>
+#include <shade/geometry/plane.hpp>
+#include <shade/geometry/ray.hpp>
+#include <shade/geometry/sphere.hpp>
+#include <shade/geometry/triangle.hpp>
+
 #include <shade/brdf/brdf.hpp>
+
+#include <shade/light/light.hpp>
 #include <shade/light/light_sample.hpp>
+
 #include <shade/shading/shader.hpp>
+
+#include <shade/check/properties.hpp>
+
+#include <shade/color/convert.hpp>
+#include <shade/color/delta_e.hpp>
+#include <shade/color/lab.hpp>
+#include <shade/color/srgb.hpp>
+#include <shade/color/xyz.hpp>
