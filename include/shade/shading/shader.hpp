@@ -62,4 +62,23 @@ lit(B) -> lit<B>;
 template <brdf B>
 lit(B, rgb<scalar_of<B>>) -> lit<B>;
 
+/// S can be shaded: it is a shader, or a BRDF (which shade_of lifts with shade::lit).
+template <class S>
+concept shader_or_brdf = shader<S> || brdf<S>;
+
+/// The radiance s reflects toward v at `at` from one light sample: s.shade(at, v, sample)
+/// for a shader, else lit<S>{s}.shade(at, v, sample) for a BRDF (no ambient term; wrap the
+/// BRDF in shade::lit yourself to give it an ambient reflectance). Lets combinators and
+/// light sums accept shaders and BRDFs alike.
+template <shader_or_brdf S>
+[[nodiscard]] rgb<scalar_of<S>> shade_of(const S& s, const surface_point<scalar_of<S>>& at,
+                                         const vec3<scalar_of<S>>& v,
+                                         const light_sample<scalar_of<S>>& sample) {
+    if constexpr (shader<S>) {
+        return s.shade(at, v, sample);
+    } else {
+        return lit<S>{s, rgb<scalar_of<S>>(0)}.shade(at, v, sample);
+    }
+}
+
 } // namespace shade

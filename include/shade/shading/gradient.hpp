@@ -1,0 +1,116 @@
+#pragma once
+// shade::gradient: a periodic blend of two shaders or BRDFs along a direction.
+
+#include <cmath>
+#include <concepts>
+#include <utility>
+
+#include <glm/geometric.hpp>
+
+#include <shade/brdf/brdf.hpp>
+#include <shade/core/error.hpp>
+#include <shade/core/math.hpp>
+#include <shade/core/surface_point.hpp>
+#include <shade/core/types.hpp>
+#include <shade/light/light_sample.hpp>
+#include <shade/shading/shader.hpp>
+
+namespace shade {
+
+/// A cosine gradient between two children along the unit direction d:
+///
+///   alpha(p) = (1 + cos(2 pi (p.d) / period + phase)) / 2      in [0, 1]
+///   result   = alpha * first + (1 - alpha) * second
+///
+/// i.e. the first child is alpha-composited over the second with opacity alpha. With
+/// phase 0, alpha = 1 (pure first child) on the planes p.d = k * period, alpha = 0 (pure
+/// second child) at p.d = (k + 1/2) * period and alpha = 1/2 in between at
+/// p.d = (k +- 1/4) * period. The cosine makes the blend C-infinity smooth and periodic.
+///
+/// If both children are BRDFs the gradient is a BRDF: f = alpha f_0 + (1 - alpha) f_1, a
+/// convex combination, so it stays non-negative, reciprocal and energy conserving when
+/// both children are (f_diffuse and f_specular blend likewise if both split). Otherwise it
+/// is a shader blending the children's radiance (a BRDF child lifted by shade_of, i.e.
+/// lit without ambient).
+template <shader_or_brdf S0, shader_or_brdf S1>
+class gradient {
+public:
+    using scalar_type = scalar_of<S0>;
+    using T = scalar_type;
+    static_assert(std::same_as<scalar_of<S0>, scalar_of<S1>>,
+                  "both children must have the same scalar type");
+
+    /// A gradient from s0 to s1 along `direction` (any finite non-zero length; normalised
+    /// here) with the given period (> 0, world units) and phase (radians, finite). Throws
+    /// shade::invalid_parameter naming "direction", "period" or "phase".
+    gradient(S0 s0, S1 s1, const vec3<T>& direction, T period, T phase = T(0))
+        : s0_(std::move(s0)), s1_(std::move(s1)),
+          direction_(require_direction("direction", direction)),
+          period_(require_positive("period", period)), phase_(require_finite("phase", phase)) {}
+
+    /// The child weighted by alpha.
+    [[nodiscard]] const S0& first() const noexcept { return s0_; }
+    /// The child weighted by 1 - alpha.
+    [[nodiscard]] const S1& second() const noexcept { return s1_; }
+    /// The unit direction of the gradient.
+    [[nodiscard]] const vec3<T>& direction() const noexcept { return direction_; }
+    /// The period along the direction.
+    [[nodiscard]] T period() const noexcept { return period_; }
+    /// The phase in radians.
+    [[nodiscard]] T phase() const noexcept { return phase_; }
+
+    /// The weight of the first child at p (see the class comment).
+    [[nodiscard]] T alpha(const vec3<T>& p) const noexcept {
+        const T angle = T(2) * pi<T> * glm::dot(p, direction_) / period_ + phase_;
+        return (T(1) + std::cos(angle)) * T(0.5);
+    }
+
+    /// BRDF value (1/sr, no cosine): alpha f_0 + (1 - alpha) f_1.
+    [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const
+        requires(brdf<S0> && brdf<S1>)
+    {
+        const T a = alpha(at.p);
+        return a * s0_.f(l, v, at) + (T(1) - a) * s1_.f(l, v, at);
+    }
+
+    /// Diffuse part of the BRDF value, blended like f.
+    [[nodiscard]] rgb<T> f_diffuse(const vec3<T>& l, const vec3<T>& v,
+                                   const surface_point<T>& at) const
+        requires(split_brdf<S0> && split_brdf<S1>)
+    {
+        const T a = alpha(at.p);
+        return a * s0_.f_diffuse(l, v, at) + (T(1) - a) * s1_.f_diffuse(l, v, at);
+    }
+
+    /// Specular part of the BRDF value, blended like f.
+    [[nodiscard]] rgb<T> f_specular(const vec3<T>& l, const vec3<T>& v,
+                                    const surface_point<T>& at) const
+        requires(split_brdf<S0> && split_brdf<S1>)
+    {
+        const T a = alpha(at.p);
+        return a * s0_.f_specular(l, v, at) + (T(1) - a) * s1_.f_specular(l, v, at);
+    }
+
+    /// Radiance (light_sample units): alpha shade_0 + (1 - alpha) shade_1.
+    [[nodiscard]] rgb<T> shade(const surface_point<T>& at, const vec3<T>& v,
+                               const light_sample<T>& s) const
+        requires(!(brdf<S0> && brdf<S1>))
+    {
+        const T a = alpha(at.p);
+        return a * shade_of(s0_, at, v, s) + (T(1) - a) * shade_of(s1_, at, v, s);
+    }
+
+private:
+    S0 s0_;
+    S1 s1_;
+    vec3<T> direction_;
+    T period_;
+    T phase_;
+};
+
+template <shader_or_brdf S0, shader_or_brdf S1>
+gradient(S0, S1, vec3<scalar_of<S0>>, scalar_of<S0>) -> gradient<S0, S1>;
+template <shader_or_brdf S0, shader_or_brdf S1>
+gradient(S0, S1, vec3<scalar_of<S0>>, scalar_of<S0>, scalar_of<S0>) -> gradient<S0, S1>;
+
+} // namespace shade

@@ -1,0 +1,93 @@
+#include <cmath>
+#include <limits>
+
+#include <doctest/doctest.h>
+
+#include <shade/shading/gradient.hpp>
+
+#include "shading/local_models.hpp"
+
+using test_models::constant_shader;
+using test_models::lambert;
+using test_models::near;
+using test_models::split_constant;
+
+namespace {
+
+template <class T>
+shade::surface_point<T> at_point(T x, T y, T z) {
+    return shade::surface_point<T>::at(shade::vec3<T>(x, y, z), shade::vec3<T>(0, 0, 1));
+}
+
+} // namespace
+
+TEST_CASE_TEMPLATE("gradient alpha is 1, 0 and 1/2 at the derived points", T, float, double) {
+    using v = shade::vec3<T>;
+    using S = constant_shader<T>;
+    // d = +z (given as (0, 0, 2), normalised), period 4, phase 0:
+    //   alpha = (1 + cos(2 pi z / 4)) / 2 = (1 + cos(pi z / 2)) / 2.
+    const shade::gradient<S, S> g(S{}, S{}, v(0, 0, 2), T(4));
+    CHECK(g.direction() == v(0, 0, 1));
+    CHECK(g.alpha(v(0)) == T(1));                                          // cos 0 = 1
+    CHECK(g.alpha(v(0, 0, 2)) == doctest::Approx(0.0).epsilon(1e-6));      // cos pi = -1
+    CHECK(g.alpha(v(0, 0, 1)) == doctest::Approx(0.5).epsilon(1e-6));      // cos pi/2 = 0
+    CHECK(g.alpha(v(0, 0, -1)) == doctest::Approx(0.5).epsilon(1e-6));     // even in z
+    CHECK(g.alpha(v(0, 0, 4)) == doctest::Approx(1.0).epsilon(1e-6));      // one period
+    CHECK(g.alpha(v(7, -3, 0)) == T(1));                                   // x, y ignored
+    // z = 2/3: cos(pi/3) = 1/2, alpha = 3/4.
+    CHECK(g.alpha(v(0, 0, T(2) / T(3))) == doctest::Approx(0.75).epsilon(1e-6));
+    // Phase pi/2 shifts the pattern: at z = 0, cos(pi/2) = 0, alpha = 1/2; at z = -1,
+    // cos(0) = 1.
+    const shade::gradient<S, S> shifted(S{}, S{}, v(0, 0, 1), T(4), shade::pi<T> / T(2));
+    CHECK(shifted.alpha(v(0)) == doctest::Approx(0.5).epsilon(1e-6));
+    CHECK(shifted.alpha(v(0, 0, -1)) == doctest::Approx(1.0).epsilon(1e-6));
+}
+
+TEST_CASE_TEMPLATE("gradient blends: alpha first + (1 - alpha) second, as a shader and as a BRDF", T, float, double) {
+    using v = shade::vec3<T>;
+    using c = shade::rgb<T>;
+    using S = constant_shader<T>;
+    using L = lambert<T>;
+    using P = split_constant<T>;
+    static_assert(shade::shader<shade::gradient<S, S>>);
+    static_assert(shade::shader<shade::gradient<S, L>>);
+    static_assert(!shade::brdf<shade::gradient<S, L>>);
+    static_assert(shade::brdf<shade::gradient<L, L>>);
+    static_assert(!shade::shader<shade::gradient<L, L>>);
+    static_assert(shade::split_brdf<shade::gradient<P, P>>);
+    shade::light_sample<T> s;
+    s.l = v(0, 0, 1);
+    s.diffuse = c(1);
+    s.specular = c(1);
+    const shade::gradient g(S{c(1, 0, 0)}, S{c(0, 0, 1)}, v(1, 0, 0), T(2));
+    // x = 0: alpha 1 -> first; x = 1: alpha 0 -> second; x = 1/2: halfway.
+    CHECK(near(g.shade(at_point(T(0), T(0), T(0)), v(0, 0, 1), s), c(1, 0, 0), T(1e-6)));
+    CHECK(near(g.shade(at_point(T(1), T(0), T(0)), v(0, 0, 1), s), c(0, 0, 1), T(1e-6)));
+    CHECK(near(g.shade(at_point(T(0.5), T(0), T(0)), v(0, 0, 1), s), c(T(0.5), 0, T(0.5)), T(1e-6)));
+    // BRDFs: f = alpha k0/pi + (1 - alpha) k1/pi; at x = 1/2, (0.2 + 0.6)/2 / pi = 0.4/pi.
+    const shade::gradient gb(L{c(T(0.2))}, L{c(T(0.6))}, v(1, 0, 0), T(2));
+    const v l(0, 0, 1);
+    CHECK(near(gb.f(l, l, at_point(T(0.5), T(0), T(0))), c(T(0.4) / shade::pi<T>), T(1e-6)));
+    // Split parts blend the same way: at x = 1/2, specular (0.1 + 0.3)/2 = 0.2.
+    const shade::gradient gp(P{c(0), c(T(0.1))}, P{c(0), c(T(0.3))}, v(1, 0, 0), T(2));
+    CHECK(near(gp.f_specular(l, l, at_point(T(0.5), T(0), T(0))), c(T(0.2)), T(1e-6)));
+    CHECK(near(gp.f_diffuse(l, l, at_point(T(0.5), T(0), T(0))), c(0), T(1e-6)));
+    // Mixed: a Lambert child lit without ambient (0.6 facing a white light) and a constant.
+    const shade::gradient gm(S{c(1)}, L{c(T(0.6))}, v(1, 0, 0), T(2));
+    CHECK(near(gm.shade(at_point(T(1), T(0), T(0)), v(0, 0, 1), s), c(T(0.6)), T(1e-6)));
+}
+
+TEST_CASE_TEMPLATE("gradient rejects bad parameters by name", T, float, double) {
+    using v = shade::vec3<T>;
+    using S = constant_shader<T>;
+    using gradient = shade::gradient<S, S>;
+    const T nan = std::numeric_limits<T>::quiet_NaN();
+    CHECK_THROWS_WITH_AS(gradient(S{}, S{}, v(0), T(1)), doctest::Contains("'direction'"),
+                         shade::invalid_parameter);
+    CHECK_THROWS_WITH_AS(gradient(S{}, S{}, v(1, 0, 0), T(0)), doctest::Contains("'period'"),
+                         shade::invalid_parameter);
+    CHECK_THROWS_WITH_AS(gradient(S{}, S{}, v(1, 0, 0), T(-2)), doctest::Contains("'period'"),
+                         shade::invalid_parameter);
+    CHECK_THROWS_WITH_AS(gradient(S{}, S{}, v(1, 0, 0), T(1), nan), doctest::Contains("'phase'"),
+                         shade::invalid_parameter);
+}
