@@ -43,6 +43,18 @@ concept split_brdf = brdf<B> &&
         { b.f_specular(w, w, at) } -> std::same_as<rgb<typename B::scalar_type>>;
     };
 
+/// Tag selecting a BRDF's unchecked constructor: `phong<float>(shade::unchecked, ...)`.
+/// The unchecked constructors skip parameter validation (for hot loops that build models
+/// from parameters already validated once); the caller promises the parameters satisfy the
+/// documented rules of the validating constructor, otherwise f may return NaN, Inf or
+/// negative values.
+struct unchecked_t {
+    explicit constexpr unchecked_t() = default;
+};
+
+/// The unchecked-construction tag value.
+inline constexpr unchecked_t unchecked{};
+
 /// The scalar type of a BRDF, shader or light.
 template <has_scalar_type X>
 using scalar_of = typename X::scalar_type;

@@ -1,0 +1,129 @@
+#include <cmath>
+
+#include <doctest/doctest.h>
+
+#include <shade/brdf/phong.hpp>
+#include <shade/shading/shader.hpp>
+
+#include "brdf/support.hpp"
+
+using namespace brdf_test;
+
+static_assert(shade::split_brdf<shade::phong<float, shade::phong_form::classic>>);
+static_assert(shade::split_brdf<shade::phong<double, shade::phong_form::modified>>);
+static_assert(shade::split_brdf<shade::normalized_phong<float>>);
+static_assert(shade::split_brdf<shade::normalized_phong<double>>);
+static_assert(!shade::phong_form::classic::reciprocal && shade::phong_form::normalized::reciprocal);
+
+namespace {
+
+// Hand values are built from sin/cos of rounded angles and raised to powers up to 10, so
+// they agree to a few dozen ulps, not to the last bit.
+template <class T>
+constexpr T tol = sizeof(T) <= 4 ? T(1e-5) : T(1e-12);
+
+} // namespace
+
+TEST_CASE_TEMPLATE("phong normalized: at r = v the lobe is k_s (n+2)/(2 pi)", T, float, double) {
+    // l at 50 deg, v its mirror image: r = v, so (r.v)^n = 1 and f_s = k_s (n + 2)/(2 pi).
+    // n = 10, k_s = 0.5: 0.5 * 12 / (2 pi) = 3/pi. f_d = k_d/pi = 0.2/pi. f = 3.2/pi.
+    for (const auto& at : {flat<T>(), tilted<T>()}) {
+        const shade::normalized_phong<T> model(rgb<T>(T(0.2)), rgb<T>(T(0.5)), T(10));
+        const auto l = direction(at, T(0.8726646), T(0.4));
+        const auto v = direction(at, T(0.8726646), T(0.4) + shade::pi<T>);
+        CHECK(close(model.f_specular(l, v, at), rgb<T>(3 / shade::pi<T>), tol<T>));
+        CHECK(close(model.f(l, v, at), rgb<T>(T(3.2) / shade::pi<T>), tol<T>));
+    }
+}
+
+TEST_CASE_TEMPLATE("phong modified: f_s = k_s cos^n of the angle between r and v", T, float, double) {
+    // l = n so r = n; v at 60 deg: r.v = 1/2. n = 2, k_s = 1: f_s = 1/4 (no normalization).
+    const auto at = flat<T>();
+    const shade::modified_phong<T> model(rgb<T>(0), rgb<T>(1), T(2));
+    CHECK(close(model.f(at.n(), direction(at, shade::pi<T> / 3, T(0)), at), rgb<T>(T(0.25)), tol<T>));
+    // Shininess 0: the lobe is the constant k_s (0^0 = 1), even where r.v < 0.
+    const shade::modified_phong<T> flat_lobe(rgb<T>(0), rgb<T>(T(0.3)), T(0));
+    const auto l = direction(at, T(1.2), T(0));
+    const auto v = direction(at, T(1.2), T(0)); // l = v at 69 deg: r.v = cos(2*69 deg) < 0
+    CHECK(close(flat_lobe.f(l, v, at), rgb<T>(T(0.3)), tol<T>));
+}
+
+TEST_CASE_TEMPLATE("phong classic: divides by n.l and so reproduces the classic model through lit", T, float, double) {
+    // At l = v = n: r.v = 1, n.l = 1: f_s = k_s/pi. At l at 60 deg and v its mirror:
+    // r.v = 1, n.l = 1/2: f_s = k_s/(pi/2) = 2 k_s/pi.
+    const auto at = flat<T>();
+    const shade::classic_phong<T> model(rgb<T>(0), rgb<T>(T(0.5)), T(20));
+    CHECK(close(model.f(at.n(), at.n(), at), rgb<T>(T(0.5) / shade::pi<T>), tol<T>));
+    const auto l = direction(at, shade::pi<T> / 3, T(0));
+    const auto v = direction(at, shade::pi<T> / 3, shade::pi<T>);
+    CHECK(close(model.f(l, v, at), rgb<T>(T(1) / shade::pi<T>), tol<T>));
+
+    // Through lit: k_d I_d (n.l) + k_s I_s (r.v)^n exactly. l at 40 deg, v at 30 deg on the
+    // other side, azimuth offset 0.5 rad: evaluate the classic formula by hand.
+    const rgb<T> k_d(T(0.3), T(0.2), T(0.1));
+    const rgb<T> k_s(T(0.6));
+    const T n = T(8);
+    const shade::lit shader{shade::classic_phong<T>(k_d, k_s, n)};
+    shade::light_sample<T> s;
+    s.l = direction(at, T(0.6981317), T(0));
+    s.diffuse = rgb<T>(T(1.5));
+    s.specular = rgb<T>(T(2));
+    const auto view = direction(at, T(0.5235988), shade::pi<T> + T(0.5));
+    const T n_dot_l = glm::dot(at.n(), s.l);
+    const shade::vec3<T> r = T(2) * n_dot_l * at.n() - s.l;
+    const rgb<T> classic = k_d * s.diffuse * n_dot_l + k_s * s.specular * std::pow(glm::dot(r, view), n);
+    CHECK(close(shader.shade(at, view, s), classic, tol<T>));
+}
+
+TEST_CASE_TEMPLATE("phong: reciprocity holds for modified and normalized, not for classic", T, float, double) {
+    const auto at = tilted<T>();
+    const shade::modified_phong<T> modified(rgb<T>(T(0.1)), rgb<T>(T(0.5)), T(5));
+    const shade::normalized_phong<T> normalized(rgb<T>(T(0.1)), rgb<T>(T(0.5)), T(5));
+    const shade::classic_phong<T> classic(rgb<T>(0), rgb<T>(T(0.5)), T(5));
+    int classic_differs = 0;
+    for (const auto& p : random_pairs(at, 300)) {
+        CHECK(close(modified.f(p.l, p.v, at), modified.f(p.v, p.l, at), tol<T>));
+        CHECK(close(normalized.f(p.l, p.v, at), normalized.f(p.v, p.l, at), tol<T>));
+        // classic: f(l, v) n.l = f(v, l) n.v, so the two differ whenever n.l != n.v.
+        const T n_dot_l = glm::dot(at.n(), p.l);
+        const T n_dot_v = glm::dot(at.n(), p.v);
+        const rgb<T> a = classic.f(p.l, p.v, at) * n_dot_l;
+        const rgb<T> b = classic.f(p.v, p.l, at) * n_dot_v;
+        if (n_dot_l > T(1e-3) && n_dot_v > T(1e-3)) CHECK(close(a, b, T(100) * tol<T>));
+        if (!close(classic.f(p.l, p.v, at), classic.f(p.v, p.l, at), T(1e-3))) ++classic_differs;
+    }
+    CHECK(classic_differs > 100);
+}
+
+TEST_CASE_TEMPLATE("phong: zero below, finite and non-negative for degenerate pairs and extreme shininess", T, float, double) {
+    for (const auto& at : {flat<T>(), tilted<T>()}) {
+        for (const T n : {T(0), T(1), T(1e4)}) {
+            CAPTURE(n);
+            const rgb<T> k_d(T(0.2)), k_s(T(0.7));
+            const shade::classic_phong<T> a(k_d, k_s, n);
+            const shade::modified_phong<T> b(k_d, k_s, n);
+            const shade::normalized_phong<T> c(k_d, k_s, n);
+            check_zero_below(a, at);
+            check_zero_below(b, at);
+            check_zero_below(c, at);
+            check_finite_non_negative(a, at);
+            check_finite_non_negative(b, at);
+            check_finite_non_negative(c, at);
+        }
+    }
+}
+
+TEST_CASE_TEMPLATE("phong: invalid parameters throw naming the parameter", T, float, double) {
+    using P = shade::normalized_phong<T>;
+    const rgb<T> ok(T(0.5));
+    const T nan = std::numeric_limits<T>::quiet_NaN();
+    check_throws_naming([&] { (void)P(rgb<T>(-1), ok, T(1)); }, "k_d");
+    check_throws_naming([&] { (void)P(ok, rgb<T>(0, -1, 0), T(1)); }, "k_s");
+    check_throws_naming([&] { (void)P(ok, rgb<T>(nan), T(1)); }, "k_s");
+    check_throws_naming([&] { (void)P(ok, ok, T(-1)); }, "shininess");
+    check_throws_naming([&] { (void)P(ok, ok, nan); }, "shininess");
+    check_throws_naming([&] { (void)P(ok, ok, shade::infinity<T>); }, "shininess");
+    // Finite but overflowing together: k_s * (n + 2)/(2 pi) = Inf.
+    check_throws_naming([&] { (void)P(ok, rgb<T>(std::numeric_limits<T>::max()), T(100)); }, "k_s");
+    CHECK_NOTHROW((void)P(shade::unchecked, rgb<T>(-1), ok, T(-1)));
+}
