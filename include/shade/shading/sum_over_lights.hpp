@@ -75,7 +75,7 @@ template <class S, light L, class Visibility, class Jitter>
         for (int i = 0; i < n; ++i)
             sum += shade_visible(s, at, v, l.sample(at.p, stratified_u<T>(i, j, n, jitter(i, j))),
                                  visible);
-    return sum / T(n * n);
+    return sum / (T(n) * T(n));
 }
 
 /// Lights is a range of lights (std::vector<any_light<T>>, std::span, ...).
