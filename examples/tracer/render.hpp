@@ -1,0 +1,141 @@
+#pragma once
+// The reference tracer's render loop: primary rays through the camera, direct lighting
+// with shadow rays, several samples per pixel, rows shared between threads, and the
+// linear-radiance -> exposure -> tone map -> sRGB 8-bit chain.
+//
+// Determinism: every pixel draws its random numbers from its own generator, seeded by the
+// pixel's index (and the render seed), so the image does not depend on which thread
+// rendered which row, nor on the number of threads.
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <thread>
+#include <vector>
+
+#include <shade/color/srgb.hpp>
+
+#include "support/image.hpp"
+
+#include "scene.hpp"
+
+namespace tracer {
+
+/// Settings of one render.
+struct render_options {
+    int width = 480;
+    int height = 270;
+    int spp = 4;            ///< samples per pixel (jittered within the pixel)
+    int threads = 0;        ///< 0: all hardware threads
+    std::uint64_t seed = 1; ///< seed of all per-pixel generators
+    lighting_options lighting{};
+    bool progress = false;  ///< draw a progress bar on stderr once a render passes 1 s
+};
+
+/// A linear-radiance image, row-major from the top row.
+struct radiance_image {
+    int width = 0;
+    int height = 0;
+    std::vector<rgb> pixels;
+    [[nodiscard]] const rgb& at(int x, int y) const { return pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+};
+
+/// Radiance along one camera ray: the shaded closest hit, or the background.
+inline rgb trace(const scene& s, const shade::ray<real>& r, shade::rng& random, const lighting_options& options) {
+    const auto h = s.intersect(r);
+    if (!h) return s.background;
+    const vec3 v = -glm::normalize(r.direction);
+    return s.shade_hit(*h, v, random, options);
+}
+
+/// Renders the scene with its camera. Throws std::invalid_argument for a scene without a
+/// camera or non-positive sizes.
+inline radiance_image render(const scene& s, const render_options& options) {
+    if (!s.camera) throw std::invalid_argument("scene '" + s.name + "' has no camera");
+    if (options.width <= 0 || options.height <= 0 || options.spp <= 0)
+        throw std::invalid_argument("width, height and spp must be positive");
+    radiance_image image;
+    image.width = options.width;
+    image.height = options.height;
+    image.pixels.assign(std::size_t(options.width) * std::size_t(options.height), rgb(0));
+
+    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads = options.threads > 0 ? unsigned(options.threads) : hardware;
+    std::atomic<int> next_row{0};
+    std::atomic<int> rows_done{0};
+    const auto start = std::chrono::steady_clock::now();
+
+    const auto work = [&] {
+        for (int y = next_row++; y < options.height; y = next_row++) {
+            for (int x = 0; x < options.width; ++x) {
+                const std::uint64_t index = std::uint64_t(y) * std::uint64_t(options.width) + std::uint64_t(x);
+                shade::rng random(options.seed, index);
+                rgb sum(0);
+                for (int k = 0; k < options.spp; ++k) {
+                    // One sample at the pixel centre, the rest jittered over the pixel.
+                    const real jx = options.spp == 1 ? real(0.5) : random.uniform<real>();
+                    const real jy = options.spp == 1 ? real(0.5) : random.uniform<real>();
+                    const auto r = s.camera->ray_for_raster(real(x) + jx, real(y) + jy, options.width, options.height);
+                    sum += trace(s, r, random, options.lighting);
+                }
+                image.pixels[std::size_t(index)] = sum / real(options.spp);
+            }
+            ++rows_done;
+        }
+    };
+
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+    if (options.progress) {
+        // The calling thread draws the bar (after 1 s) and then joins the work.
+        std::thread bar([&] {
+            bool shown = false;
+            while (rows_done.load() < options.height) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(100));
+                const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                if (elapsed < 1.0) continue;
+                shown = true;
+                const int done = rows_done.load();
+                const int filled = 40 * done / options.height;
+                std::fprintf(stderr, "\r[%-40.*s] %3d%% %.1fs", filled,
+                             "########################################", 100 * done / options.height, elapsed);
+            }
+            if (shown) std::fprintf(stderr, "\r%70s\r", "");
+        });
+        work();
+        for (auto& t : pool) t.join();
+        bar.join();
+    } else {
+        work();
+        for (auto& t : pool) t.join();
+    }
+    return image;
+}
+
+/// Exposure and tone mapping: c' = c * exposure, then Reinhard's global operator on
+/// luminance with a white point (Reinhard, Stark, Shirley, Ferwerda 2002, "Photographic
+/// Tone Reproduction for Digital Images", SIGGRAPH, eq. 4): L_d = L (1 + L / L_white^2) /
+/// (1 + L), applied by scaling the colour by L_d / L so hues are kept. Returns linear RGB
+/// in [0, 1] for values up to L_white.
+inline rgb tone_map(const rgb& c, real exposure, real white = 4) {
+    const rgb e = c * exposure;
+    // Rec. 709 / sRGB luminance weights (IEC 61966-2-1, the Y row of the RGB->XYZ matrix).
+    const real L = 0.2126 * e.x + 0.7152 * e.y + 0.0722 * e.z;
+    if (!(L > 0)) return rgb(0);
+    const real Ld = L * (1 + L / (white * white)) / (1 + L);
+    return glm::clamp(e * (Ld / L), rgb(0), rgb(1));
+}
+
+/// The 8-bit sRGB image of a radiance image after exposure and tone map.
+inline shade::examples::image to_srgb8(const radiance_image& radiance, real exposure = 1) {
+    auto out = shade::examples::image::filled(radiance.width, radiance.height);
+    for (int y = 0; y < radiance.height; ++y)
+        for (int x = 0; x < radiance.width; ++x)
+            out.set(x, y, shade::encode_srgb8(tone_map(radiance.at(x, y), exposure)));
+    return out;
+}
+
+} // namespace tracer

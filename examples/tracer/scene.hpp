@@ -1,0 +1,265 @@
+#pragma once
+// The reference tracer's scene: spheres, planes and triangle meshes, each with a material
+// (any shade::shader, type-erased), lit by any of shade's lights, with shadow rays.
+
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include <shade/core/random.hpp>
+#include <shade/core/surface_point.hpp>
+#include <shade/geometry/camera.hpp>
+#include <shade/geometry/plane.hpp>
+#include <shade/geometry/sphere.hpp>
+#include <shade/geometry/triangle.hpp>
+#include <shade/light/light.hpp>
+#include <shade/shading/shader.hpp>
+
+#include "bvh.hpp"
+#include "mesh.hpp"
+
+namespace tracer {
+
+using rgb = shade::rgb<real>;
+using vec2 = shade::vec2<real>;
+using surface_point = shade::surface_point<real>;
+using light_sample = shade::light_sample<real>;
+
+/// A material: any shade::shader<double>, stored behind a std::function so that one scene
+/// can mix shader types.
+using material = std::function<rgb(const surface_point&, const vec3&, const light_sample&)>;
+
+/// Wraps a shade shader (or a BRDF, lifted with shade::lit) as a material.
+template <class S>
+material make_material(S s) {
+    if constexpr (shade::shader<S>) {
+        return [s](const surface_point& at, const vec3& v, const light_sample& ls) {
+            return s.shade(at, v, ls);
+        };
+    } else {
+        return make_material(shade::lit<S>{s, rgb(0)});
+    }
+}
+
+/// How a mesh's normals are used.
+///   flat:    the triangle's geometric normal everywhere (facets show);
+///   gouraud: lighting evaluated at the three vertices, colours interpolated (Gouraud 1971);
+///   phong:   vertex normals interpolated, lighting per hit point (Phong 1975).
+enum class mesh_shading { flat, gouraud, phong };
+
+/// Where a camera or shadow ray met the scene.
+struct scene_hit {
+    real t = 0;
+    vec3 p{0};
+    vec3 geometric_n{0, 0, 1}; ///< unit geometric normal, flipped toward the ray origin
+    vec3 shading_n{0, 0, 1};   ///< unit shading normal, same side as geometric_n
+    std::size_t object = 0;    ///< index into scene::objects
+    std::uint32_t triangle = 0;///< triangle index for meshes
+    vec3 barycentric{1, 0, 0}; ///< for meshes
+};
+
+/// One object of the scene.
+struct object {
+    enum class kind { sphere, plane, mesh } shape = kind::sphere;
+    std::optional<shade::sphere<real>> sphere;
+    std::optional<shade::plane<real>> plane;
+    std::shared_ptr<const tracer::mesh> mesh;
+    std::shared_ptr<const tracer::bvh> mesh_bvh;
+    mesh_shading shading = mesh_shading::phong;
+    material surface;
+};
+
+/// Settings of the direct-lighting integrator.
+struct lighting_options {
+    int area_samples_per_side = 4; ///< n: each area light is sampled n x n times per hit
+};
+
+/// A scene: objects, lights, camera and background.
+struct scene {
+    std::string name;
+    std::vector<object> objects;
+    std::vector<shade::any_light<real>> lights;
+    std::optional<shade::pinhole_camera<real>> camera;
+    rgb background{0.02, 0.02, 0.03};
+
+    void add_sphere(const shade::sphere<real>& s, material m) {
+        object o;
+        o.shape = object::kind::sphere;
+        o.sphere = s;
+        o.surface = std::move(m);
+        objects.push_back(std::move(o));
+    }
+    void add_plane(const shade::plane<real>& p, material m) {
+        object o;
+        o.shape = object::kind::plane;
+        o.plane = p;
+        o.surface = std::move(m);
+        objects.push_back(std::move(o));
+    }
+    void add_mesh(tracer::mesh m, mesh_shading shading, material mat) {
+        object o;
+        o.shape = object::kind::mesh;
+        auto shared = std::make_shared<const tracer::mesh>(std::move(m));
+        o.mesh_bvh = std::make_shared<const tracer::bvh>(shared->triangle_bounds());
+        o.mesh = std::move(shared);
+        o.shading = shading;
+        o.surface = std::move(mat);
+        objects.push_back(std::move(o));
+    }
+
+    /// The closest hit along r, if any.
+    [[nodiscard]] std::optional<scene_hit> intersect(shade::ray<real> r) const {
+        std::optional<scene_hit> best;
+        for (std::size_t i = 0; i < objects.size(); ++i) {
+            if (auto h = intersect_object(i, r)) {
+                r.t_max = h->t;
+                best = h;
+            }
+        }
+        return best;
+    }
+
+    /// True when something blocks r within its interval (shadow rays).
+    [[nodiscard]] bool occluded(const shade::ray<real>& r) const {
+        for (std::size_t i = 0; i < objects.size(); ++i) {
+            const object& o = objects[i];
+            if (o.shape == object::kind::mesh) {
+                if (o.mesh_bvh->any(r, [&](std::uint32_t tri, const shade::ray<real>& rr) {
+                        return triangle_hit(*o.mesh, tri, rr).has_value();
+                    }))
+                    return true;
+            } else if (intersect_object(i, r)) {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    /// Direct lighting at hit h seen from direction v (unit, toward the viewer): the sum over
+    /// lights of the object's material, with shadow rays. `random` jitters area-light strata.
+    [[nodiscard]] rgb shade_hit(const scene_hit& h, const vec3& v, shade::rng& random,
+                                const lighting_options& options = {}) const {
+        const object& o = objects[h.object];
+        if (o.shape == object::kind::mesh && o.shading == mesh_shading::gouraud) {
+            // Gouraud: light the three vertices (with their own normals and view
+            // directions, without shadows, as the 1971 method does) and interpolate.
+            rgb c(0);
+            const vec3 eye = h.p + v * h.t;
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t vi = o.mesh->indices[3 * std::size_t(h.triangle) + std::size_t(k)];
+                const vec3 pk = o.mesh->positions[vi];
+                const vec3 vk = glm::normalize(eye - pk);
+                const auto at = surface_point::at(pk, o.mesh->normals[vi]);
+                c += h.barycentric[k] * light_point(o, at, h.geometric_n, vk, random, options, false);
+            }
+            return c;
+        }
+        const auto at = surface_point::at(h.p, h.shading_n);
+        return light_point(o, at, h.geometric_n, v, random, options, true);
+    }
+
+private:
+    [[nodiscard]] std::optional<shade::triangle_hit<real>> triangle_hit(const tracer::mesh& m, std::uint32_t tri,
+                                                                        const shade::ray<real>& r) const {
+        const std::size_t i = 3 * std::size_t(tri);
+        const shade::triangle<real> t{m.positions[m.indices[i]], m.positions[m.indices[i + 1]],
+                                      m.positions[m.indices[i + 2]]};
+        return shade::intersect<shade::watertight>(r, t);
+    }
+
+    [[nodiscard]] std::optional<scene_hit> intersect_object(std::size_t i, const shade::ray<real>& r) const {
+        const object& o = objects[i];
+        scene_hit out;
+        out.object = i;
+        switch (o.shape) {
+        case object::kind::sphere: {
+            const auto h = shade::intersect(r, *o.sphere);
+            if (!h) return std::nullopt;
+            out.t = h->t;
+            out.p = h->p;
+            out.geometric_n = out.shading_n = h->facing_normal();
+            return out;
+        }
+        case object::kind::plane: {
+            const auto h = shade::intersect(r, *o.plane);
+            if (!h) return std::nullopt;
+            out.t = h->t;
+            out.p = h->p;
+            out.geometric_n = out.shading_n = h->facing_normal();
+            return out;
+        }
+        case object::kind::mesh: {
+            const tracer::mesh& m = *o.mesh;
+            const auto h = o.mesh_bvh->closest<shade::triangle_hit<real>>(
+                r, [&](std::uint32_t tri, const shade::ray<real>& rr) {
+                    auto th = triangle_hit(m, tri, rr);
+                    if (th) out.triangle = tri; // the last accepted hit is the closest
+                    return th;
+                });
+            if (!h) return std::nullopt;
+            out.t = h->t;
+            out.p = h->p;
+            out.barycentric = h->barycentric;
+            out.geometric_n = h->facing_normal();
+            out.shading_n = out.geometric_n;
+            if (o.shading != mesh_shading::flat) {
+                const std::size_t k = 3 * std::size_t(out.triangle);
+                vec3 n = h->barycentric.x * m.normals[m.indices[k]] +
+                         h->barycentric.y * m.normals[m.indices[k + 1]] +
+                         h->barycentric.z * m.normals[m.indices[k + 2]];
+                n = glm::normalize(n);
+                // Keep the interpolated normal on the viewer's side of the surface.
+                out.shading_n = glm::dot(n, out.geometric_n) < 0 ? -n : n;
+            }
+            return out;
+        }
+        }
+        return std::nullopt;
+    }
+
+    /// Sum over lights at `at` for one object, with shadow rays when `shadows`.
+    [[nodiscard]] rgb light_point(const object& o, const surface_point& at, const vec3& geometric_n,
+                                  const vec3& v, shade::rng& random, const lighting_options& options,
+                                  bool shadows) const {
+        rgb sum(0);
+        for (const auto& light : lights) {
+            const int n = light.is_delta() ? 1 : options.area_samples_per_side;
+            rgb light_sum(0);
+            for (int i = 0; i < n; ++i) {
+                for (int j = 0; j < n; ++j) {
+                    const vec2 u((real(i) + random.uniform<real>()) / real(n),
+                                 (real(j) + random.uniform<real>()) / real(n));
+                    light_sample s = light.sample(at.p, u);
+                    if (shadows && !visible(at.p, geometric_n, s)) {
+                        s.diffuse = rgb(0);
+                        s.specular = rgb(0);
+                    }
+                    light_sum += o.surface(at, v, s);
+                }
+            }
+            sum += light_sum / real(n * n);
+        }
+        return sum;
+    }
+
+    /// Shadow ray from p toward the light sample. Self-intersection: the origin is pushed
+    /// off the surface along the geometric normal by a distance relative to |p| (the
+    /// rounding error of a computed hit point is a few ulps of its largest coordinate;
+    /// 2^-32 relative is ~2^20 such ulps in double, far above that error yet far below any
+    /// feature of the scenes). A light below the geometric surface is always shadowed.
+    [[nodiscard]] bool visible(const vec3& p, const vec3& geometric_n, const light_sample& s) const {
+        if (!(glm::dot(s.l, geometric_n) > 0)) return false;
+        const real scale = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), real(1)});
+        const vec3 origin = p + geometric_n * (scale * 0x1p-32);
+        shade::ray<real> r{origin, s.l, 0, std::isinf(s.distance) ? s.distance : s.distance * (1 - 1e-9)};
+        return !occluded(r);
+    }
+};
+
+} // namespace tracer
