@@ -344,7 +344,9 @@ TEST_CASE_TEMPLATE("triangle: all algorithms agree on 10^5 random ray/triangle p
     }
 
     MESSAGE("reference hits: " << reference_hits << " of " << pairs);
-    for (const auto& [name, k] : tallies) {
+    for (const auto& entry : tallies) {
+        const std::string& name = entry.first; // not a structured binding: CAPTURE needs a variable
+        const tally& k = entry.second;
         MESSAGE(name << ": hits " << k.hits << ", edge-grazing disagreements with the reference "
                      << k.disagreements << ", worst t error " << static_cast<double>(k.worst_t)
                      << " eps kappa");
