@@ -84,6 +84,8 @@ public:
     ///     normalize(forward + x_ndc tan(fov_y/2) aspect right + y_ndc tan(fov_y/2) up),
     /// t_min = 0 and t_max = +infinity; t is therefore a distance. |x_ndc|, |y_ndc| <= 1
     /// covers the image; larger values give rays outside the frustum, which is allowed.
+    /// A NaN coordinate gives a ray with zero direction, which is not valid() and hits
+    /// nothing.
     [[nodiscard]] ray<T> ray_for_ndc(T x_ndc, T y_ndc) const noexcept {
         const vec3<T> d = forward_ + (x_ndc * tan_half_fov_ * aspect_) * right_ +
                           (y_ndc * tan_half_fov_) * up_;
