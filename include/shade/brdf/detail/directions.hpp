@@ -52,11 +52,13 @@ struct half_angle {
     T cos_theta_d = 0; ///< l·h = v·h, in [0, 1]
 };
 
-/// h = normalize(l + v) together with l·h = v·h = |l + v| / 2 (for unit l, v:
-/// v·(l + v) = 1 + l·v = |l + v|^2 / 2). Computing the cosine from |l + v| instead of a dot
-/// product makes it exactly symmetric in l and v (so models using it are reciprocal to the
-/// last bit) and accurate when l and v are nearly opposite, where dot(v, h) would be a
-/// small difference of rounded terms. Precondition as for half_vector.
+/// h = normalize(l + v) together with cos_theta_d = |l + v| / 2, which is (l·h + v·h)/2
+/// for any l, v (because (l + v)·h = |l + v|) and so l·h = v·h for exactly unit l, v.
+/// Computing the cosine from |l + v| instead of dot(v, h) makes it exactly symmetric in l
+/// and v (models using it are reciprocal to the last bit) and accurate when l and v are
+/// nearly opposite: there rounded unit vectors make l·h and v·h differ by
+/// (|v|^2 - |l|^2) / (2 |l + v|), which is large when |l + v| is small; their mean does not
+/// suffer from this. Precondition as for half_vector.
 template <std::floating_point T>
 [[nodiscard]] inline half_angle<T> half_vector_and_cos(const vec3<T>& l, const vec3<T>& v) noexcept {
     const vec3<T> s = l + v;

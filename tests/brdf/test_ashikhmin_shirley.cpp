@@ -1,0 +1,101 @@
+#include <cmath>
+
+#include <doctest/doctest.h>
+
+#include <shade/brdf/ashikhmin_shirley.hpp>
+
+#include "brdf/support.hpp"
+
+using namespace brdf_test;
+
+static_assert(shade::split_brdf<shade::ashikhmin_shirley<float>>);
+static_assert(shade::split_brdf<shade::ashikhmin_shirley<double>>);
+
+namespace {
+
+template <class T>
+constexpr T tol = sizeof(T) <= 4 ? T(2e-5) : T(1e-12);
+
+} // namespace
+
+TEST_CASE_TEMPLATE("ashikhmin-shirley: hand values at l = v = n", T, float, double) {
+    // h = n: (n.h)^e = 1, v.h = 1, max(n.l, n.v) = 1, F = R_s.
+    // f_s = sqrt((p_u+1)(p_v+1))/(8 pi) R_s; p_u = 3, p_v = 15: sqrt(64) = 8: f_s = R_s/pi.
+    // f_d = 28 R_d/(23 pi) (1 - R_s) (1 - (1/2)^5)^2 = 28/(23 pi) (31/32)^2 R_d (1 - R_s).
+    const rgb<T> r_d(T(0.5), T(0.3), T(0.1)), r_s(T(0.05), T(0.1), T(0.2));
+    const shade::ashikhmin_shirley<T> model(r_d, r_s, T(3), T(15));
+    for (const auto& at : {flat<T>(), tilted<T>()}) {
+        const auto n = at.n();
+        CHECK(close(model.f_specular(n, n, at), r_s / shade::pi<T>, tol<T>));
+        const T k = T(28) / (T(23) * shade::pi<T>) * shade::sqr(T(31) / T(32));
+        CHECK(close(model.f_diffuse(n, n, at), k * r_d * (rgb<T>(1) - r_s), tol<T>));
+    }
+}
+
+TEST_CASE_TEMPLATE("ashikhmin-shirley: mirror pair and the anisotropic exponent along t and b", T, float, double) {
+    const rgb<T> r_s(T(0.1));
+    const T p_u = T(10), p_v = T(100);
+    const T c = std::sqrt((p_u + 1) * (p_v + 1)) / (T(8) * shade::pi<T>);
+    const shade::ashikhmin_shirley<T> model(rgb<T>(0), r_s, p_u, p_v);
+    for (const auto& at : {flat<T>(), tilted<T>()}) {
+        // Mirror pair at 60 deg: h = n, v.h = max(n.l, n.v) = 1/2, F = R_s + (1 - R_s)/32:
+        // f_s = c F / (1/4) = 4 c F.
+        const rgb<T> F = r_s + (rgb<T>(1) - r_s) / T(32);
+        const auto l = direction(at, shade::pi<T> / 3, T(1));
+        const auto v = direction(at, shade::pi<T> / 3, T(1) + shade::pi<T>);
+        CHECK(close(model.f(l, v, at), T(4) * c * F, tol<T>));
+        // v = n, l at 60 deg toward t (azimuth 0): h at 30 deg toward t, so h.b = 0 and the
+        // exponent is p_u: f_s = c cos(30)^p_u / (cos(30) * 1) * F(cos 30).
+        // Toward b (azimuth 90 deg) the exponent is p_v.
+        const T c30 = std::sqrt(T(3)) / T(2);
+        const rgb<T> F30 = shade::F_schlick(r_s, c30);
+        const auto l_t = direction(at, shade::pi<T> / 3, T(0));
+        const auto l_b = direction(at, shade::pi<T> / 3, shade::pi<T> / 2);
+        CHECK(close(model.f(l_t, at.n(), at), c * std::pow(c30, p_u) / c30 * F30, T(10) * tol<T>));
+        CHECK(close(model.f(l_b, at.n(), at), c * std::pow(c30, p_v) / c30 * F30, T(100) * tol<T>));
+    }
+}
+
+TEST_CASE_TEMPLATE("ashikhmin-shirley: isotropic when p_u = p_v, reciprocal always", T, float, double) {
+    const auto at = tilted<T>();
+    const shade::ashikhmin_shirley<T> iso(rgb<T>(T(0.4)), rgb<T>(T(0.05)), T(50), T(50));
+    const shade::ashikhmin_shirley<T> aniso(rgb<T>(T(0.4)), rgb<T>(T(0.05)), T(5), T(500));
+    // Rotating both directions about n leaves the isotropic model unchanged.
+    const T spin = T(0.9);
+    for (const T theta_l : {T(0.2), T(0.7), T(1.3)}) {
+        const auto l = direction(at, theta_l, T(0.1)), v = direction(at, T(0.5), T(2));
+        const auto l2 = direction(at, theta_l, T(0.1) + spin), v2 = direction(at, T(0.5), T(2) + spin);
+        CHECK(close(iso.f(l, v, at), iso.f(l2, v2, at), T(100) * tol<T>));
+    }
+    for (const auto& p : random_pairs(at, 1000)) {
+        CHECK(iso.f(p.l, p.v, at) == iso.f(p.v, p.l, at));
+        CHECK(aniso.f(p.l, p.v, at) == aniso.f(p.v, p.l, at));
+    }
+}
+
+TEST_CASE_TEMPLATE("ashikhmin-shirley: zero below, finite and non-negative for degenerate pairs and extreme exponents", T, float, double) {
+    for (const auto& at : {flat<T>(), tilted<T>()}) {
+        for (const T p : {T(0), T(1), T(1e4)}) {
+            CAPTURE(p);
+            const shade::ashikhmin_shirley<T> a(rgb<T>(T(0.5)), rgb<T>(T(0.05)), p, p);
+            const shade::ashikhmin_shirley<T> b(rgb<T>(T(0.5)), rgb<T>(1), p, T(1e4) - p);
+            check_zero_below(a, at);
+            check_finite_non_negative(a, at);
+            check_finite_non_negative(b, at);
+        }
+    }
+}
+
+TEST_CASE_TEMPLATE("ashikhmin-shirley: invalid parameters throw naming the parameter", T, float, double) {
+    using A = shade::ashikhmin_shirley<T>;
+    const rgb<T> ok(T(0.5));
+    check_throws_naming([&] { (void)A(rgb<T>(-1), ok, T(1), T(1)); }, "r_d");
+    check_throws_naming([&] { (void)A(ok, rgb<T>(T(1.5)), T(1), T(1)); }, "r_s");
+    check_throws_naming([&] { (void)A(ok, rgb<T>(T(-0.1)), T(1), T(1)); }, "r_s");
+    check_throws_naming([&] { (void)A(ok, ok, T(-1), T(1)); }, "p_u");
+    check_throws_naming([&] { (void)A(ok, ok, T(1), std::numeric_limits<T>::quiet_NaN()); }, "p_v");
+    check_throws_naming([&] { (void)A(ok, ok, shade::infinity<T>, T(1)); }, "p_u");
+    // The largest finite exponent is valid: f_s <= sqrt(p_u + 1) sqrt(2)/(8 pi) / eps^2 fits T.
+    CHECK_NOTHROW((void)A(ok, ok, std::numeric_limits<T>::max(), T(1)));
+    CHECK_NOTHROW((void)A(shade::unchecked, ok, ok, T(-1), T(-1)));
+}

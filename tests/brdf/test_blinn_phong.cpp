@@ -1,0 +1,119 @@
+#include <cmath>
+
+#include <doctest/doctest.h>
+
+#include <shade/brdf/blinn_phong.hpp>
+
+#include "brdf/support.hpp"
+
+using namespace brdf_test;
+namespace form = shade::blinn_phong_form;
+
+static_assert(shade::split_brdf<shade::blinn_phong<float>>);
+static_assert(shade::split_brdf<shade::blinn_phong<double, form::classic>>);
+static_assert(shade::split_brdf<shade::blinn_phong<float, form::normalized_rtr>>);
+static_assert(shade::split_brdf<shade::blinn_phong<double, form::modified>>);
+
+namespace {
+
+// Hand values use rounded sin/cos and powers up to 10: a few dozen ulps.
+template <class T>
+constexpr T tol = sizeof(T) <= 4 ? T(1e-5) : T(1e-12);
+
+} // namespace
+
+TEST_CASE_TEMPLATE("blinn-phong: normalization constants by hand", T, float, double) {
+    // exact: (n+2)(n+4)/(8 pi (2^(-n/2) + n)). n = 0: 8/(8 pi) = 1/pi (Lambertian lobe).
+    // n = 2: 4*6/(8 pi * 2.5) = 1.2/pi. RTR: (n+8)/(8 pi); n = 2: 1.25/pi; n = 0: 1/pi.
+    CHECK(close(form::normalized_exact::normalization(T(0)), T(1) / shade::pi<T>, tol<T>));
+    CHECK(close(form::normalized_exact::normalization(T(2)), T(1.2) / shade::pi<T>, tol<T>));
+    CHECK(close(form::normalized_rtr::normalization(T(2)), T(1.25) / shade::pi<T>, tol<T>));
+    CHECK(close(form::normalized_rtr::normalization(T(0)), T(1) / shade::pi<T>, tol<T>));
+    // Huge n must not overflow the product (n+2)(n+4): the factor tends to (n+6)/(8 pi).
+    const T big = T(1e30);
+    CHECK(std::isfinite(form::normalized_exact::normalization(big)));
+    CHECK(close(form::normalized_exact::normalization(big), big / (T(8) * shade::pi<T>), T(1e-5)));
+}
+
+TEST_CASE("blinn-phong: the exact normalization makes the albedo at v = n exactly 1") {
+    // With v = n, theta_h = theta_l / 2, so the specular albedo is
+    //   c * 2 pi * int_0^{pi/2} cos^n(theta/2) cos(theta) sin(theta) dtheta,
+    // computed here by the midpoint rule (200000 steps, error ~1e-10) in double.
+    for (const double n : {0.0, 1.0, 7.0, 50.0, 1000.0}) {
+        CAPTURE(n);
+        const int steps = 200000;
+        const double h = (shade::pi<double> / 2) / steps;
+        double sum = 0;
+        for (int i = 0; i < steps; ++i) {
+            const double t = (i + 0.5) * h;
+            sum += std::pow(std::cos(t / 2), n) * std::cos(t) * std::sin(t);
+        }
+        const double albedo = form::normalized_exact::normalization(n) * 2 * shade::pi<double> * sum * h;
+        CHECK(albedo == doctest::Approx(1.0).epsilon(1e-7));
+        // The RTR approximation overshoots for n > 0 (by 7.5% near n = 8).
+        if (n > 0) CHECK(form::normalized_rtr::normalization(n) > form::normalized_exact::normalization(n));
+    }
+}
+
+TEST_CASE_TEMPLATE("blinn-phong: hand-derived values", T, float, double) {
+    for (const auto& at : {flat<T>(), tilted<T>()}) {
+        // l = v = n: h = n, n.h = 1: f_s = k_s c. exact, n = 2, k_s = 0.5: 0.6/pi.
+        const shade::blinn_phong<T> exact(rgb<T>(0), rgb<T>(T(0.5)), T(2));
+        CHECK(close(exact.f(at.n(), at.n(), at), rgb<T>(T(0.6) / shade::pi<T>), tol<T>));
+        // modified, l at 60 deg, v = n: h at 30 deg, n.h = cos 30 = sqrt(3)/2, n = 2:
+        // f_s = k_s * 3/4 = 0.75 with k_s = 1; plus k_d/pi = 0.1/pi.
+        const shade::blinn_phong<T, form::modified> modified(rgb<T>(T(0.1)), rgb<T>(1), T(2));
+        const auto l60 = direction(at, shade::pi<T> / 3, T(0.7));
+        CHECK(close(modified.f(l60, at.n(), at), rgb<T>(T(0.75) + T(0.1) / shade::pi<T>), tol<T>));
+        // classic, l = v at 60 deg: h = l, n.h = 1/2, n.l = 1/2, n = 1:
+        // f_s = k_s (1/2) / (pi/2) = k_s/pi.
+        const shade::blinn_phong<T, form::classic> classic(rgb<T>(0), rgb<T>(T(0.4)), T(1));
+        CHECK(close(classic.f(l60, l60, at), rgb<T>(T(0.4) / shade::pi<T>), tol<T>));
+        // rtr at l = v = n, n = 8: (16/(8 pi)) k_s = 2 k_s / pi.
+        const shade::blinn_phong<T, form::normalized_rtr> rtr(rgb<T>(0), rgb<T>(T(0.5)), T(8));
+        CHECK(close(rtr.f(at.n(), at.n(), at), rgb<T>(T(1) / shade::pi<T>), tol<T>));
+    }
+}
+
+TEST_CASE_TEMPLATE("blinn-phong: reciprocal except the classic form", T, float, double) {
+    const auto at = tilted<T>();
+    const shade::blinn_phong<T> exact(rgb<T>(T(0.1)), rgb<T>(T(0.5)), T(30));
+    const shade::blinn_phong<T, form::classic> classic(rgb<T>(0), rgb<T>(T(0.5)), T(30));
+    int classic_differs = 0;
+    for (const auto& p : random_pairs(at, 300)) {
+        // h is computed from l + v = v + l, so the two evaluations agree to the last bit.
+        CHECK(exact.f(p.l, p.v, at) == exact.f(p.v, p.l, at));
+        if (!close(classic.f(p.l, p.v, at), classic.f(p.v, p.l, at), T(1e-3))) ++classic_differs;
+    }
+    CHECK(classic_differs > 100);
+}
+
+TEST_CASE_TEMPLATE("blinn-phong: zero below, finite and non-negative for degenerate pairs and extreme shininess", T, float, double) {
+    for (const auto& at : {flat<T>(), tilted<T>()}) {
+        for (const T n : {T(0), T(1), T(1e4)}) {
+            CAPTURE(n);
+            const rgb<T> k_d(T(0.2)), k_s(T(0.7));
+            const shade::blinn_phong<T, form::classic> a(k_d, k_s, n);
+            const shade::blinn_phong<T, form::modified> b(k_d, k_s, n);
+            const shade::blinn_phong<T, form::normalized_rtr> c(k_d, k_s, n);
+            const shade::blinn_phong<T, form::normalized_exact> d(k_d, k_s, n);
+            check_zero_below(a, at);
+            check_zero_below(d, at);
+            check_finite_non_negative(a, at);
+            check_finite_non_negative(b, at);
+            check_finite_non_negative(c, at);
+            check_finite_non_negative(d, at);
+        }
+    }
+}
+
+TEST_CASE_TEMPLATE("blinn-phong: invalid parameters throw naming the parameter", T, float, double) {
+    using B = shade::blinn_phong<T>;
+    const rgb<T> ok(T(0.5));
+    check_throws_naming([&] { (void)B(rgb<T>(0, 0, -1), ok, T(1)); }, "k_d");
+    check_throws_naming([&] { (void)B(ok, rgb<T>(-1), T(1)); }, "k_s");
+    check_throws_naming([&] { (void)B(ok, ok, T(-0.5)); }, "shininess");
+    check_throws_naming([&] { (void)B(ok, ok, std::numeric_limits<T>::quiet_NaN()); }, "shininess");
+    check_throws_naming([&] { (void)shade::blinn_phong<T, form::classic>(ok, rgb<T>(std::numeric_limits<T>::max()), T(1)); }, "k_s");
+    CHECK_NOTHROW((void)B(shade::unchecked, ok, ok, T(-1)));
+}

@@ -1,0 +1,82 @@
+#include <cmath>
+
+#include <doctest/doctest.h>
+
+#include <shade/brdf/fresnel.hpp>
+
+#include "brdf/support.hpp"
+
+using namespace brdf_test;
+
+static_assert(shade::fresnel_term<shade::schlick<float>, float>);
+static_assert(shade::fresnel_term<shade::dielectric_fresnel<double>, double>);
+
+namespace {
+
+template <class T>
+constexpr T tol = sizeof(T) <= 4 ? T(1e-6) : T(1e-14);
+
+} // namespace
+
+TEST_CASE_TEMPLATE("F_schlick: f0 at normal incidence, 1 at grazing, the fifth power between", T, float, double) {
+    const rgb<T> f0(T(0.04), T(0.5), T(0.9));
+    CHECK(close(shade::F_schlick(f0, T(1)), f0, tol<T>));
+    CHECK(close(shade::F_schlick(f0, T(0)), rgb<T>(1), tol<T>));
+    // cos = 1/2: (1 - 1/2)^5 = 1/32, F = f0 + (1 - f0)/32.
+    CHECK(close(shade::F_schlick(f0, T(0.5)), f0 + (rgb<T>(1) - f0) / T(32), tol<T>));
+    // Cosines a hair outside [0, 1] are clamped: F stays in [f0, 1].
+    CHECK(close(shade::F_schlick(f0, T(1.0000001)), f0, tol<T>));
+    CHECK(close(shade::F_schlick(f0, T(-1e-7)), rgb<T>(1), tol<T>));
+    const shade::schlick<T> term(f0);
+    CHECK(close(term.F(T(0.5)), shade::F_schlick(f0, T(0.5)), tol<T>));
+}
+
+TEST_CASE_TEMPLATE("F_dielectric: glass (eta = 1.5) at normal incidence is 0.04", T, float, double) {
+    // ((1.5 - 1)/(1.5 + 1))^2 = 0.2^2 = 0.04.
+    CHECK(close(shade::F_dielectric(T(1), T(1.5)), T(0.04), T(1e-5)));
+    CHECK(close(shade::f0_from_ior(T(1.5)), T(0.04), tol<T>));
+    CHECK(close(shade::schlick<T>::from_ior(T(1.5)).f0(), rgb<T>(T(0.04)), tol<T>));
+    // Grazing incidence reflects everything.
+    CHECK(close(shade::F_dielectric(T(0), T(1.5)), T(1), tol<T>));
+    // eta = 1: no interface, nothing reflected, including the 0/0 point c = 0.
+    CHECK(shade::F_dielectric(T(0.3), T(1)) == doctest::Approx(0).epsilon(1e-6));
+    CHECK(shade::F_dielectric(T(0), T(1)) == T(0));
+}
+
+TEST_CASE_TEMPLATE("F_dielectric: Brewster's angle reflects only the s-polarized half", T, float, double) {
+    // At Brewster's angle tan(theta_B) = eta, r_p = 0 and theta_i + theta_t = 90 deg, so
+    // r_s = (cos_i - eta cos_t)/(cos_i + eta cos_t) with cos_i = 1/sqrt(1 + eta^2),
+    // cos_t = eta/sqrt(1 + eta^2): r_s = (1 - eta^2)/(1 + eta^2), F = r_s^2 / 2.
+    // eta = 1.5: r_s = -1.25/3.25, F = 0.0739644970...
+    const T eta = T(1.5);
+    const T cos_b = T(1) / std::sqrt(T(1) + eta * eta);
+    CHECK(close(shade::F_dielectric(cos_b, eta), T(0.5) * shade::sqr(T(1.25) / T(3.25)), T(1e-5)));
+}
+
+TEST_CASE_TEMPLATE("F_dielectric: total internal reflection from the dense side", T, float, double) {
+    // eta = 1/1.5 (glass to air): the critical angle has sin = 1/1.5, cos = sqrt(5)/3 = 0.745.
+    // Any cos below it is totally reflected: F = 1. Just above it F < 1, and at normal
+    // incidence it is again 0.04 (the reflectance is symmetric in eta <-> 1/eta there).
+    const T eta = T(1) / T(1.5);
+    CHECK(shade::F_dielectric(T(0.5), eta) == T(1));
+    CHECK(shade::F_dielectric(T(0), eta) == T(1));
+    CHECK(shade::F_dielectric(T(0.8), eta) < T(1));
+    CHECK(close(shade::F_dielectric(T(1), eta), T(0.04), T(1e-5)));
+    // In range everywhere, with no NaN.
+    for (int i = 0; i <= 1000; ++i) {
+        const T c = T(i) / T(1000);
+        for (const T e : {T(1e-3), eta, T(1), T(1.5), T(1e3)}) {
+            const T f = shade::F_dielectric(c, e);
+            CHECK((f >= T(0) && f <= T(1)));
+        }
+    }
+}
+
+TEST_CASE_TEMPLATE("fresnel terms: invalid parameters throw naming the parameter", T, float, double) {
+    check_throws_naming([] { (void)shade::schlick<T>(rgb<T>(T(1.1), 0, 0)); }, "f0");
+    check_throws_naming([] { (void)shade::schlick<T>(rgb<T>(T(-0.1))); }, "f0");
+    check_throws_naming([] { (void)shade::schlick<T>::from_ior(T(0)); }, "eta");
+    check_throws_naming([] { (void)shade::dielectric_fresnel<T>(T(-1.5)); }, "eta");
+    check_throws_naming([] { (void)shade::dielectric_fresnel<T>(std::numeric_limits<T>::quiet_NaN()); }, "eta");
+    CHECK_NOTHROW((void)shade::dielectric_fresnel<T>(shade::unchecked, T(-1)));
+}
