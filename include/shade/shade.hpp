@@ -21,12 +21,30 @@
 #include <shade/geometry/sphere.hpp>
 #include <shade/geometry/triangle.hpp>
 
+#include <shade/brdf/ashikhmin_shirley.hpp>
+#include <shade/brdf/blinn_phong.hpp>
 #include <shade/brdf/brdf.hpp>
+#include <shade/brdf/cook_torrance.hpp>
+#include <shade/brdf/fresnel.hpp>
+#include <shade/brdf/lambert.hpp>
+#include <shade/brdf/microfacet.hpp>
+#include <shade/brdf/oren_nayar.hpp>
+#include <shade/brdf/phong.hpp>
 
+#include <shade/light/area.hpp>
+#include <shade/light/directional.hpp>
+#include <shade/light/emission.hpp>
 #include <shade/light/light.hpp>
 #include <shade/light/light_sample.hpp>
+#include <shade/light/point.hpp>
+#include <shade/light/spot.hpp>
 
+#include <shade/shading/checker.hpp>
+#include <shade/shading/gooch.hpp>
+#include <shade/shading/gradient.hpp>
 #include <shade/shading/shader.hpp>
+#include <shade/shading/sum_over_lights.hpp>
+#include <shade/shading/toon.hpp>
 
 #include <shade/check/properties.hpp>
 
