@@ -17,6 +17,7 @@
 #include <shade/brdf/brdf.hpp>
 #include <shade/check/result.hpp>
 #include <shade/core/error.hpp>
+#include <shade/core/frame.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/random.hpp>
 #include <shade/core/sampling.hpp>
@@ -25,9 +26,13 @@ namespace shade::check {
 
 /// Settings of the albedo estimator and the energy-conservation check.
 struct albedo_options {
-    /// Strata per axis of the unit square: each albedo estimate uses strata² jittered,
-    /// cosine-weighted samples (default 256² = 65536).
+    /// Strata per axis of the unit square: each albedo estimate uses strata² jittered
+    /// samples (default 256² = 65536).
     std::size_t strata = 256;
+    /// Share of the samples drawn around the mirror direction of v (see
+    /// directional_albedo), in [0, 0.95]; the rest are cosine-weighted. 0 gives pure
+    /// cosine sampling.
+    double lobe_fraction = 2.0 / 3.0;
     /// Viewing angles theta_v, evenly spaced from 0 to max_theta_degrees inclusive.
     std::size_t view_angles = 16;
     /// Largest viewing angle from the normal, in degrees (< 90: at 90 the view is on the
@@ -51,21 +56,57 @@ struct albedo_sample {
     glm::dvec3 standard_error{0};  ///< its estimated standard error (collapsed strata)
 };
 
+namespace detail {
+
+/// A direction around the unit axis r with density (e+1)/(2 pi) cos^e(angle to r), from
+/// u in [0,1)^2 (the Phong lobe, sampled as in Lafortune & Willems 1994).
+template <std::floating_point T>
+vec3<T> sample_power_lobe(const vec3<T>& r, double e, const vec2<T>& u) {
+    const T cos_a = T(std::pow(double(u.x), 1.0 / (e + 1.0)));
+    const T sin_a = safe_sqrt(T(1) - cos_a * cos_a);
+    const T phi = T(2) * pi<T> * u.y;
+    const frame<T> f = frame<T>::from_normal(r);
+    return glm::normalize(f.to_world(vec3<T>(sin_a * std::cos(phi), sin_a * std::sin(phi), cos_a)));
+}
+
+/// The density of sample_power_lobe at w (per steradian).
+template <std::floating_point T>
+double power_lobe_pdf(const vec3<T>& r, double e, const vec3<T>& w) {
+    const double c = double(glm::dot(r, w));
+    return c > 0 ? (e + 1.0) / (2.0 * pi<double>) * std::pow(c, e) : 0.0;
+}
+
+} // namespace detail
+
 /// Estimates a(v) = ∫ f(l, v) max(n·l, 0) dl for the world-space view v at `at`.
 ///
-/// Estimator: l is drawn cosine-weighted (pdf = n·l / pi) from strata² jittered strata of
-/// the unit square mapped with the concentric map, so each sample contributes
-/// f(l, v) (n·l) / pdf = pi f(l, v). Stratification makes the error fall roughly as
-/// 1/strata² for smooth lobes instead of 1/strata. Sums are kept in double for any T.
+/// Estimator: a one-sample mixture (defensive importance sampling, Hesterberg 1995,
+/// "Weighted Average Importance Sampling and Defensive Mixture Distributions",
+/// Technometrics 37(2)): l is drawn with density
+///   p(l) = (1 - q) (n·l)/pi + (q/2) P_8(l) + (q/2) P_128(l),   q = lobe_fraction,
+/// where P_e is a Phong lobe of exponent e around the mirror direction of v. The cosine
+/// part keeps p > 0 wherever f (n·l) > 0, so the estimate f (n·l) / p is unbiased for any
+/// BRDF; the lobes put samples where specular models peak, which pure cosine sampling
+/// misses at grazing views (there it is off by tens of percent with 128² samples). The
+/// technique is chosen by the first coordinate of strata² jittered strata (concentric map
+/// for the cosine part), so the samples stay stratified. With lobe_fraction = 0 every
+/// sample of a Lambertian BRDF contributes exactly pi f. Sums are kept in double.
 template <brdf B>
 albedo_sample<scalar_of<B>> directional_albedo(const B& model, const vec3<scalar_of<B>>& v,
                                                const surface_point<scalar_of<B>>& at,
                                                std::size_t strata = 256,
-                                               std::uint64_t seed = 1) {
+                                               std::uint64_t seed = 1,
+                                               double lobe_fraction = 2.0 / 3.0) {
     using T = scalar_of<B>;
     if (strata < 2)
         throw invalid_parameter("strata", "must be >= 2 (strata^2 samples per view)",
                                 shade::detail::to_text(double(strata)));
+    // Below 1, so the cosine part stays in the mixture (it is what makes the estimate unbiased).
+    const double q = require_in_range("lobe_fraction", lobe_fraction, 0.0, 0.95);
+    const vec3<T> n = at.n();
+    const vec3<T> mirror = glm::normalize(T(2) * glm::dot(n, v) * n - v);
+    constexpr double e_wide = 8;
+    constexpr double e_narrow = 128;
     rng random(seed);
     glm::dvec3 sum(0);
     glm::dvec3 pair_sq(0);
@@ -73,12 +114,25 @@ albedo_sample<scalar_of<B>> directional_albedo(const B& model, const vec3<scalar
     const T inv = T(1) / T(strata);
     for (std::size_t i = 0; i < strata; ++i) {
         for (std::size_t j = 0; j < strata; ++j) {
-            const vec2<T> u((T(i) + random.uniform<T>()) * inv, (T(j) + random.uniform<T>()) * inv);
-            const vec3<T> l_local = square_to_cosine_hemisphere(u);
+            vec2<T> u((T(i) + random.uniform<T>()) * inv, (T(j) + random.uniform<T>()) * inv);
+            vec3<T> l;
+            // Pick the technique with u.x and stretch the chosen part of it back to [0, 1).
+            if (double(u.x) < 1.0 - q) {
+                u.x = T(std::min(double(u.x) / (1.0 - q), 1.0 - 1e-7));
+                l = glm::normalize(at.shading.to_world(square_to_cosine_hemisphere(u)));
+            } else {
+                const double x = (double(u.x) - (1.0 - q)) / q; // in [0, 1)
+                const bool wide = x < 0.5;
+                u.x = T(std::min(wide ? 2 * x : 2 * x - 1, 1.0 - 1e-7));
+                l = detail::sample_power_lobe(mirror, wide ? e_wide : e_narrow, u);
+            }
             glm::dvec3 x(0);
-            if (l_local.z > T(0)) { // on the horizon n·l = 0 contributes nothing
-                const vec3<T> l = glm::normalize(at.shading.to_world(l_local));
-                x = glm::dvec3(model.f(l, v, at)) * pi<double>;
+            const double n_dot_l = double(glm::dot(n, l));
+            if (n_dot_l > 0) { // at or below the horizon n·l = 0 contributes nothing
+                const double pdf = (1.0 - q) * n_dot_l / pi<double> +
+                                   0.5 * q * detail::power_lobe_pdf(mirror, e_wide, l) +
+                                   0.5 * q * detail::power_lobe_pdf(mirror, e_narrow, l);
+                x = glm::dvec3(model.f(l, v, at)) * (n_dot_l / pdf);
             }
             sum += x;
             if (j % 2 == 1) pair_sq += (x - previous) * (x - previous);
@@ -116,7 +170,8 @@ std::vector<albedo_sample<scalar_of<B>>> white_furnace(const B& model,
             const T theta = angles == 1 ? T(0) : T(max_theta * double(k) / double(angles - 1));
             const vec3<T> v = glm::normalize(at.shading.to_world(spherical_direction(theta, phi)));
             auto s = directional_albedo(model, v, at, options.strata,
-                                        options.seed + 7919u * (a * angles + k));
+                                        options.seed + 7919u * (a * angles + k),
+                                        options.lobe_fraction);
             s.theta_v = theta;
             s.phi_v = phi;
             curve.push_back(s);
