@@ -1,5 +1,6 @@
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include <doctest/doctest.h>
@@ -84,6 +85,26 @@ TEST_CASE_TEMPLATE("sphere: t is in units of the direction, for tiny and huge di
         CHECK(near_rel(h->t * len, T(3), 8 * eps<T>));
         CHECK(near_vec(h->p, v3<T>(0, 0, -3), 32 * eps<T>));
     }
+}
+
+TEST_CASE_TEMPLATE("sphere: a subnormal direction still hits (regression, found by fuzzing)", T, float, double) {
+    // The rescaling factor 2^-e for a subnormal largest component is not representable
+    // (float: denorm_min = 2^-149 needs 2^149), so it must be applied as an exponent.
+    // Unit sphere at the origin, origin 1/1024 outside it on -z: the ray along +z with
+    // direction length len enters at distance 1/1024, so t = 2^-10 / len. With
+    // len = 2^-130 (float) or 2^-1030 (double), both subnormal, t = 2^120 or 2^1020,
+    // finite in each type (the largest are just below 2^128 and 2^1024); the old factor
+    // 2^129 or 2^1029 was infinite.
+    const T len = std::is_same_v<T, float> ? std::ldexp(T(1), -130) : std::ldexp(T(1), -1030);
+    REQUIRE(len < std::numeric_limits<T>::min()); // subnormal
+    REQUIRE(len > T(0));
+    const shade::sphere<T> s({0, 0, 0}, 1);
+    const T start = T(1) + std::ldexp(T(1), -10);
+    const auto h = shade::intersect(shade::ray<T>{{0, 0, -start}, {0, 0, len}}, s);
+    REQUIRE(h.has_value());
+    CHECK(h->front_face);
+    CHECK(near_rel(h->t, std::ldexp(T(1), -10) / len, 8 * eps<T>));
+    CHECK(near_vec(h->p, v3<T>(0, 0, -1), 8 * eps<T>));
 }
 
 TEST_CASE_TEMPLATE("sphere: tangent ray touches once; a hair outside misses", T, float, double) {

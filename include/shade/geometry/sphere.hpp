@@ -40,15 +40,17 @@ private:
 
 namespace detail {
 
-/// 2^-e for the e with max|v_i| = m * 2^e, m in [0.5, 1): multiplying by it rescales v so
+/// -e for the e with max|v_i| = m * 2^e, m in [0.5, 1): std::ldexp(v_i, -e) rescales v so
 /// its largest component lies in [0.5, 1) without any rounding (a power of two), so that
-/// v·v can neither overflow nor underflow. Precondition: v finite and non-zero.
+/// v·v can neither overflow nor underflow. Returned as an exponent, not as the factor
+/// 2^-e, because that factor overflows to infinity when m is subnormal (float: m < 2^-126
+/// has e down to -148, and 2^148 is not a float). Precondition: v finite and non-zero.
 template <std::floating_point T>
-[[nodiscard]] inline T power_of_two_rescale(const vec3<T>& v) noexcept {
+[[nodiscard]] inline int power_of_two_rescale_exponent(const vec3<T>& v) noexcept {
     const T m = std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
     int e = 0;
     (void)std::frexp(m, &e);
-    return std::ldexp(T(1), -e);
+    return -e;
 }
 
 } // namespace detail
@@ -78,8 +80,11 @@ template <std::floating_point T>
 template <std::floating_point T>
 [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, const sphere<T>& s) noexcept {
     if (!r.valid()) return std::nullopt;
-    const T scale = detail::power_of_two_rescale(r.direction);
-    const vec3<T> d = r.direction * scale; // exact; t for d is t_user / scale
+    const int scale = detail::power_of_two_rescale_exponent(r.direction);
+    // d = direction * 2^scale, exact (a component more than the exponent range below the
+    // largest may underflow, far below rounding); t for d is t_user / 2^scale.
+    const vec3<T> d(std::ldexp(r.direction.x, scale), std::ldexp(r.direction.y, scale),
+                    std::ldexp(r.direction.z, scale));
     const vec3<T> f = r.origin - s.center();
     const T radius = s.radius();
 
@@ -95,8 +100,8 @@ template <std::floating_point T>
     // are 0; c_0 / q would be 0/0.
     const T root_a = q / a;
     const T root_b = q != T(0) ? c0 / q : T(0);
-    const T t_near = std::min(root_a, root_b) * scale;
-    const T t_far = std::max(root_a, root_b) * scale;
+    const T t_near = std::ldexp(std::min(root_a, root_b), scale);
+    const T t_far = std::ldexp(std::max(root_a, root_b), scale);
 
     T t;
     bool entering;
