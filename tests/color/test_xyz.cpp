@@ -95,6 +95,31 @@ TEST_CASE_TEMPLATE("white points: published values and validation", T, float, do
     CHECK_THROWS_AS((void)shade::white_point<T>::from_xyz({T(1), T(1), nan}), shade::invalid_parameter);
 }
 
+TEST_CASE_TEMPLATE("white points: ratios that overflow are rejected (regression, found by fuzzing)",
+                   T, float, double) {
+    // x = 0.5 and y = the smallest subnormal pass x > 0, y > 0, x + y < 1, but X = x/y is
+    // 0.5 / 2^-149 = 2^148 in float (2^1073 in double), beyond the largest finite value.
+    // Likewise from_xyz with X = the largest finite value and Y = 0.5 gives X/Y = 2 max.
+    // Both must throw rather than build a white with an infinite component, and name the
+    // divisor.
+    using limits = std::numeric_limits<T>;
+    try {
+        (void)shade::white_point<T>::from_chromaticity(T(0.5), limits::denorm_min());
+        FAIL("from_chromaticity accepted an overflowing y");
+    } catch (const shade::invalid_parameter& e) {
+        CHECK(e.parameter() == "y");
+    }
+    try {
+        (void)shade::white_point<T>::from_xyz({limits::max(), T(0.5), T(1)});
+        FAIL("from_xyz accepted an overflowing X/Y");
+    } catch (const shade::invalid_parameter& e) {
+        CHECK(e.parameter() == "white.Y");
+    }
+    // A huge Y underflows Z/Y: Z = the smallest subnormal, Y = 4 gives 2^-151 -> 0.
+    CHECK_THROWS_AS((void)shade::white_point<T>::from_xyz({T(1), T(4), limits::denorm_min()}),
+                    shade::invalid_parameter);
+}
+
 TEST_CASE_TEMPLATE("Bradford adaptation maps white to white and inverts", T, float, double) {
     const auto d65 = shade::white_point<T>::d65();
     const auto d50 = shade::white_point<T>::d50();

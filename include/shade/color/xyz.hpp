@@ -72,7 +72,8 @@ public:
         require_positive("y", y);
         if (!(x + y < T(1)))
             throw invalid_parameter("y", "must satisfy x + y < 1", detail::to_text(y));
-        return white_point(x / y, T(1), (T(1) - x - y) / y);
+        return ratios_checked("y", "must keep x/y and (1 - x - y)/y finite and > 0", y, x / y,
+                              (T(1) - x - y) / y);
     }
 
     /// A white from XYZ values, rescaled to Y = 1. Throws shade::invalid_parameter naming
@@ -81,7 +82,8 @@ public:
         require_positive("white.X", white.X);
         require_positive("white.Y", white.Y);
         require_positive("white.Z", white.Z);
-        return white_point(white.X / white.Y, T(1), white.Z / white.Y);
+        return ratios_checked("white.Y", "must keep X/Y and Z/Y finite and > 0", white.Y,
+                              white.X / white.Y, white.Z / white.Y);
     }
 
     /// The white's XYZ (Y = 1).
@@ -91,6 +93,16 @@ public:
 
 private:
     white_point(T X, T Y, T Z) noexcept : xyz_{X, Y, Z} {}
+
+    // The white (X, 1, Z) from ratios computed by a factory. A tiny y or Y makes a ratio
+    // overflow to infinity (or a huge Y underflow it to 0) even for valid inputs; reject
+    // that here, naming the divisor, so every white_point keeps finite components > 0.
+    static white_point ratios_checked(std::string_view name, std::string_view rule, T got, T X,
+                                      T Z) {
+        if (!(std::isfinite(X) && std::isfinite(Z) && X > T(0) && Z > T(0)))
+            throw invalid_parameter(name, rule, detail::to_text(got));
+        return white_point(X, T(1), Z);
+    }
 
     xyz<T> xyz_;
 };
