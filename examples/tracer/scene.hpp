@@ -20,6 +20,7 @@
 #include <shade/geometry/triangle.hpp>
 #include <shade/light/light.hpp>
 #include <shade/shading/shader.hpp>
+#include <shade/shading/sum_over_lights.hpp>
 
 #include "bvh.hpp"
 #include "mesh.hpp"
@@ -223,29 +224,24 @@ private:
         return std::nullopt;
     }
 
-    /// Sum over lights at `at` for one object, with shadow rays when `shadows`.
+    /// A material as a shade::shader, so that shade::sum_over_lights can drive it.
+    struct material_shader {
+        using scalar_type = real;
+        const material* surface;
+        [[nodiscard]] rgb shade(const surface_point& at, const vec3& v, const light_sample& s) const {
+            return (*surface)(at, v, s);
+        }
+    };
+
+    /// Sum over lights at `at` for one object (shade::sum_over_lights), with shadow rays
+    /// when `shadows`; area lights are sampled on a jittered n x n grid.
     [[nodiscard]] rgb light_point(const object& o, const surface_point& at, const vec3& geometric_n,
                                   const vec3& v, shade::rng& random, const lighting_options& options,
                                   bool shadows) const {
-        rgb sum(0);
-        for (const auto& light : lights) {
-            const int n = light.is_delta() ? 1 : options.area_samples_per_side;
-            rgb light_sum(0);
-            for (int i = 0; i < n; ++i) {
-                for (int j = 0; j < n; ++j) {
-                    const vec2 u((real(i) + random.uniform<real>()) / real(n),
-                                 (real(j) + random.uniform<real>()) / real(n));
-                    light_sample s = light.sample(at.p, u);
-                    if (shadows && !visible(at.p, geometric_n, s)) {
-                        s.diffuse = rgb(0);
-                        s.specular = rgb(0);
-                    }
-                    light_sum += o.surface(at, v, s);
-                }
-            }
-            sum += light_sum / real(n * n);
-        }
-        return sum;
+        const material_shader s{&o.surface};
+        const auto jitter = [&](int, int) { return vec2(random.uniform<real>(), random.uniform<real>()); };
+        const auto unoccluded = [&](const light_sample& ls) { return !shadows || visible(at.p, geometric_n, ls); };
+        return shade::sum_over_lights(s, at, v, lights, unoccluded, options.area_samples_per_side, jitter);
     }
 
     /// Shadow ray from p toward the light sample. Self-intersection: the origin is pushed
