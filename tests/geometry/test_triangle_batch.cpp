@@ -51,6 +51,17 @@ template <class T, std::size_t N>
 void check_against_scalar(const shade::ray<T>& r, const shade::triangle_batch<T, N>& batch,
                           shade::culling cull, tally& count) {
     const auto all = shade::intersect(r, batch, cull);
+    // The portable one-lane-at-a-time kernel (used by compilers without GNU vector
+    // extensions) must give the same bits as the vector kernel used here.
+    const auto portable = shade::detail::intersect_batch<shade::detail::scalar_lanes<T>>(r, batch, cull);
+    for (std::size_t i = 0; i < N; ++i) {
+        CHECK(portable.hit[i] == all.hit[i]);
+        CHECK(bits(portable.t[i]) == bits(all.t[i]));
+        CHECK(bits(portable.b0[i]) == bits(all.b0[i]));
+        CHECK(bits(portable.b1[i]) == bits(all.b1[i]));
+        CHECK(bits(portable.b2[i]) == bits(all.b2[i]));
+        CHECK(portable.front_face[i] == all.front_face[i]);
+    }
     std::optional<std::size_t> nearest;
     std::optional<shade::triangle_hit<T>> nearest_hit;
     for (std::size_t i = 0; i < N; ++i) {
