@@ -61,11 +61,19 @@ void canvas::fill_rect(float x0, float y0, float x1, float y1, rgb<float> colour
 
 void canvas::text(float x, float y, std::string_view s, rgb<float> colour, float scale) {
     std::string copy(s);
-    // stb_easy_font emits 4 vertices of 16 bytes per quad; ~270 bytes per character is
-    // its documented worst case.
-    std::vector<char> buffer(copy.size() * 300 + 64);
+    // stb_easy_font emits one quad (4 vertices of 16 bytes) per glyph segment and silently
+    // stops when the buffer is full; ~270 bytes per character is only its average (a "0"
+    // has 6 quads, 384 bytes). So grow the buffer until the last call left room for
+    // another quad, i.e. nothing was cut off.
+    constexpr std::size_t quad_bytes = 64;
+    std::vector<char> buffer(copy.size() * 300 + quad_bytes);
     unsigned char rgba[4] = {255, 255, 255, 255};
-    const int quads = stb_easy_font_print(0, 0, copy.data(), rgba, buffer.data(), int(buffer.size()));
+    int quads = 0;
+    for (;;) {
+        quads = stb_easy_font_print(0, 0, copy.data(), rgba, buffer.data(), int(buffer.size()));
+        if (std::size_t(quads + 1) * quad_bytes <= buffer.size()) break;
+        buffer.resize(2 * buffer.size());
+    }
     const auto* v = reinterpret_cast<const float*>(buffer.data());
     for (int q = 0; q < quads; ++q) {
         // Each vertex: x, y, z (floats) and 4 colour bytes = 4 floats' worth.
