@@ -72,6 +72,22 @@ TEST_CASE_TEMPLATE("F_dielectric: total internal reflection from the dense side"
     }
 }
 
+TEST_CASE_TEMPLATE("F_dielectric: a tiny eta at normal incidence is 1, not NaN (regression, found by fuzzing)",
+                   T, float, double) {
+    // eta = 1e-20 passes the constructor (finite, > 0), but eta^2 - 1 + c^2 rounds to 0
+    // at c = 1, so g = 0 and the second factor was (c(g + c) - 1)/(c(g - c) + 1) = 0/0.
+    // Exact value: F(1) = f0_from_ior(eta) = ((eta - 1)/(eta + 1))^2 = (1 - 2 eta + ...)
+    // = 1 to working precision; also the limit of the formula as g -> 0 at c = 1
+    // (a -> -1, b -> 1, F = a^2 (1 + b^2)/2 = 1).
+    const T eta = T(1e-20);
+    const T F = shade::F_dielectric(T(1), eta);
+    CHECK(F == doctest::Approx(1.0).epsilon(1e-6));
+    CHECK(F <= T(1));
+    // The BRDF built on it stays finite at l = v = n (v·h = 1).
+    const shade::dielectric_fresnel<T> fresnel(eta);
+    CHECK(fresnel.F(T(1)).x == doctest::Approx(1.0).epsilon(1e-6));
+}
+
 TEST_CASE_TEMPLATE("fresnel terms: invalid parameters throw naming the parameter", T, float, double) {
     check_throws_naming([] { (void)shade::schlick<T>(rgb<T>(T(1.1), 0, 0)); }, "f0");
     check_throws_naming([] { (void)shade::schlick<T>(rgb<T>(T(-0.1))); }, "f0");

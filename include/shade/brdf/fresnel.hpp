@@ -71,7 +71,11 @@ template <std::floating_point T>
     const T g_minus_c = g - c;
     const T a = g_minus_c / g_plus_c;
     // c (g - c) + 1 > 0: for eta > 1, g > c; for eta < 1 without TIR, c (c - g) < c^2 <= 1.
-    const T b = (c * g_plus_c - T(1)) / (c * g_minus_c + T(1));
+    // In floating point it is 0 at c = 1 when eta^2 is lost in eta^2 - 1 + c^2 (g = 0;
+    // eta < ~2e-4 in float): numerator and denominator then both equal g in exact
+    // arithmetic, so b takes its limit 1 instead of 0/0 = NaN.
+    const T denominator = c * g_minus_c + T(1);
+    const T b = denominator > T(0) ? (c * g_plus_c - T(1)) / denominator : T(1);
     return std::min(T(0.5) * a * a * (T(1) + b * b), T(1));
 }
 
