@@ -1,0 +1,187 @@
+#pragma once
+// What the BRDF fuzz targets share: decoding a shading situation (normal, tangent, l, v)
+// from the input, and the checks every BRDF must pass on it.
+//
+// Situation layout (after the target's own parameters; input.hpp decodes the scalars):
+//   normal n and tangent t (vectors; n normalised with require_direction, a zero or
+//   non-finite n makes the input uninteresting and it is skipped; a tangent parallel to n
+//   falls back to frame::from_normal), then a byte choosing how l and v are made:
+//     0  both decoded and normalised          4  l = n, v decoded
+//     1  v = l                                5  v = n, l decoded
+//     2  v = -l (h undefined)                 6  l grazing: decoded, made orthogonal to n
+//     3  v = the mirror of l about n (h = n)  7  raw: l and v as decoded, not normalised,
+//                                                possibly non-finite
+// Checks, for a BRDF built by its validating constructor (parameters it rejects must throw
+// exactly shade::invalid_parameter, caught by the target):
+//   * situations 0-6 (unit l, v, n): f, and f_diffuse and f_specular for a split BRDF,
+//     are finite and >= 0 in every channel, and f is exactly 0 when n·l <= 0 or n·v <= 0;
+//   * situation 7: f is evaluated (ASan/UBSan watch it); nothing is promised for it.
+
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <utility>
+
+#include <glm/geometric.hpp>
+
+#include <shade/brdf/brdf.hpp>
+#include <shade/core/error.hpp>
+#include <shade/core/frame.hpp>
+#include <shade/core/surface_point.hpp>
+
+#include "expect.hpp"
+#include "input.hpp"
+
+namespace shade::fuzz {
+
+/// One shading situation: the point with its frame, l and v, and whether l and v are unit
+/// vectors (situations 0-6) so that the BRDF's contract applies.
+template <std::floating_point T>
+struct brdf_situation {
+    surface_point<T> at;
+    vec3<T> l;
+    vec3<T> v;
+    bool unit = true;
+};
+
+/// Normalises w, or returns nothing when w is zero or not finite.
+template <std::floating_point T>
+[[nodiscard]] std::optional<vec3<T>> unit_or_nothing(const vec3<T>& w) {
+    try {
+        return require_direction("w", w);
+    } catch (const invalid_parameter&) {
+        return std::nullopt;
+    }
+}
+
+/// Decodes a situation (see the top of this file), or nothing for an unusable normal or
+/// direction.
+template <std::floating_point T>
+[[nodiscard]] std::optional<brdf_situation<T>> decode_situation(input& in) {
+    const auto n = unit_or_nothing(in.vector<T>());
+    const vec3<T> tangent = in.vector<T>();
+    if (!n) return std::nullopt;
+    brdf_situation<T> s;
+    try {
+        s.at.shading = frame<T>::from_normal_tangent(*n, tangent);
+    } catch (const invalid_parameter&) {
+        s.at.shading = frame<T>::from_normal(*n);
+    }
+    const unsigned how = in.choice(8);
+    const vec3<T> a = in.vector<T>();
+    const vec3<T> b = in.vector<T>();
+    if (how == 7) {
+        s.l = a;
+        s.v = b;
+        s.unit = false;
+        return s;
+    }
+    const auto l = unit_or_nothing(a);
+    const auto v = unit_or_nothing(b);
+    switch (how) {
+    case 0:
+        if (!l || !v) return std::nullopt;
+        s.l = *l;
+        s.v = *v;
+        break;
+    case 1:
+    case 2:
+        if (!l) return std::nullopt;
+        s.l = *l;
+        s.v = how == 1 ? *l : -*l;
+        break;
+    case 3: {
+        if (!l) return std::nullopt;
+        s.l = *l;
+        const auto mirror = unit_or_nothing(T(2) * glm::dot(*n, *l) * *n - *l);
+        if (!mirror) return std::nullopt;
+        s.v = *mirror;
+        break;
+    }
+    case 4:
+    case 5:
+        if (!v) return std::nullopt;
+        s.l = how == 4 ? *n : *v;
+        s.v = how == 4 ? *v : *n;
+        break;
+    default: {
+        if (!l || !v) return std::nullopt;
+        const auto grazing = unit_or_nothing(*l - *n * glm::dot(*n, *l));
+        if (!grazing) return std::nullopt;
+        s.l = *grazing;
+        s.v = *v;
+        break;
+    }
+    }
+    return s;
+}
+
+/// Prints a situation (context for a failing expect).
+template <std::floating_point T>
+void show(const brdf_situation<T>& s) {
+    show("n", s.at.n());
+    show("t", s.at.shading.t);
+    show("l", s.l);
+    show("v", s.v);
+}
+
+/// Evaluates b in situation s and checks the BRDF contract (see the top of this file).
+template <brdf B>
+void check_brdf(const B& b, const brdf_situation<scalar_of<B>>& s) {
+    using T = scalar_of<B>;
+    const rgb<T> f = b.f(s.l, s.v, s.at);
+    if (!s.unit) return;
+    const bool below = !(glm::dot(s.at.n(), s.l) > T(0)) || !(glm::dot(s.at.n(), s.v) > T(0));
+    const bool f_ok = finite_non_negative(f);
+    const bool zero_ok = !below || f == rgb<T>(0);
+    if (!f_ok || !zero_ok) {
+        show(s);
+        show("f", f);
+    }
+    expect(f_ok, "BRDF value is NaN, infinite or negative for valid parameters");
+    expect(zero_ok, "BRDF value is not 0 with l or v below the horizon");
+    if constexpr (split_brdf<B>) {
+        const rgb<T> f_d = b.f_diffuse(s.l, s.v, s.at);
+        const rgb<T> f_s = b.f_specular(s.l, s.v, s.at);
+        if (!finite_non_negative(f_d) || !finite_non_negative(f_s)) {
+            show(s);
+            show("f_diffuse", f_d);
+            show("f_specular", f_s);
+        }
+        expect(finite_non_negative(f_d), "BRDF diffuse part is NaN, infinite or negative");
+        expect(finite_non_negative(f_s), "BRDF specular part is NaN, infinite or negative");
+    }
+}
+
+/// B built by its validating constructor from args, or nothing when that throws
+/// shade::invalid_parameter (the only exception it may throw; any other escapes and
+/// libFuzzer reports it).
+template <class B, class... Args>
+[[nodiscard]] std::optional<B> build(Args&&... args) {
+    try {
+        return B(std::forward<Args>(args)...);
+    } catch (const invalid_parameter&) {
+        return std::nullopt;
+    }
+}
+
+/// Decodes three scalars as a colour (any values; validating constructors judge them).
+template <std::floating_point T>
+[[nodiscard]] rgb<T> decode_rgb(input& in) noexcept {
+    return in.vector<T>();
+}
+
+/// The common entry of the BRDF targets: byte 0 picks double (bit 0 set) or float and the
+/// rest of the input goes to run_float or run_double. Returns 0.
+inline int dispatch(const std::uint8_t* data, std::size_t size, void (*run_float)(input&),
+                    void (*run_double)(input&)) {
+    input in(data, size);
+    if ((in.byte() & 1u) != 0)
+        run_double(in);
+    else
+        run_float(in);
+    return 0;
+}
+
+} // namespace shade::fuzz
