@@ -32,7 +32,7 @@ shade::surface_point<T> point() {
 
 // Fewer strata than the default keep the suite quick; 128^2 stratified samples are still
 // accurate to ~1e-3 for these smooth lobes (see test_properties.cpp for the accuracy test).
-constexpr shade::check::albedo_options quick_albedo{.strata = 128, .view_angles = 10, .azimuths = 3};
+const shade::check::albedo_options quick_albedo{.strata = 128, .view_angles = 10, .azimuths = 3};
 
 template <class B>
 void expect_physical(const B& model, const char* name) {
