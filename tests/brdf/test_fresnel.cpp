@@ -1,5 +1,7 @@
 #include <cmath>
 
+#include <limits>
+
 #include <doctest/doctest.h>
 
 #include <shade/brdf/fresnel.hpp>
@@ -86,6 +88,19 @@ TEST_CASE_TEMPLATE("F_dielectric: a tiny eta at normal incidence is 1, not NaN (
     // The BRDF built on it stays finite at l = v = n (v·h = 1).
     const shade::dielectric_fresnel<T> fresnel(eta);
     CHECK(fresnel.F(T(1)).x == doctest::Approx(1.0).epsilon(1e-6));
+}
+
+TEST_CASE_TEMPLATE("F_dielectric: a huge eta reflects everything, not NaN (regression, found by fuzzing)",
+                   T, float, double) {
+    // eta = the largest finite value passes the constructor, but eta^2 overflows, g = inf
+    // and (g - c)/(g + c) was inf/inf = NaN. As eta -> inf, a = (g - c)/(g + c) -> 1 and
+    // b = (c(g + c) - 1)/(c(g - c) + 1) -> 1 for c > 0 and -1 for c = 0, so
+    // F = a^2 (1 + b^2)/2 -> 1 at every angle.
+    const T eta = std::numeric_limits<T>::max();
+    for (const T c : {T(0), T(0.5), T(1)}) {
+        CAPTURE(c);
+        CHECK(shade::F_dielectric(c, eta) == T(1));
+    }
 }
 
 TEST_CASE_TEMPLATE("fresnel terms: invalid parameters throw naming the parameter", T, float, double) {

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <concepts>
+#include <limits>
 
 #include <shade/brdf/brdf.hpp>
 #include <shade/core/error.hpp>
@@ -65,6 +66,9 @@ template <std::floating_point T>
     const T c = std::clamp(cos_theta, T(0), T(1));
     const T g2 = eta * eta - T(1) + c * c;
     if (g2 < T(0)) return T(1); // total internal reflection
+    // eta^2 overflows for a huge (valid, finite) eta, e.g. 1e20 in float: then g = inf and
+    // a = inf/inf = NaN. F tends to 1 as eta -> inf at every angle (a -> 1, b^2 -> 1).
+    if (!(g2 <= std::numeric_limits<T>::max())) return T(1);
     const T g = std::sqrt(g2);
     const T g_plus_c = g + c;
     if (!(g_plus_c > T(0))) return T(0); // g = c = 0 only when eta = 1: no interface
