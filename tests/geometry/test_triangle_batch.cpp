@@ -55,12 +55,12 @@ void check_against_scalar(const shade::ray<T>& r, const shade::triangle_batch<T,
     // extensions) must give the same bits as the vector kernel used here.
     const auto portable = shade::detail::intersect_batch<shade::detail::scalar_lanes<T>>(r, batch, cull);
     for (std::size_t i = 0; i < N; ++i) {
-        CHECK(portable.hit[i] == all.hit[i]);
+        CHECK(portable.hit(i) == all.hit(i));
         CHECK(bits(portable.t[i]) == bits(all.t[i]));
         CHECK(bits(portable.b0[i]) == bits(all.b0[i]));
         CHECK(bits(portable.b1[i]) == bits(all.b1[i]));
         CHECK(bits(portable.b2[i]) == bits(all.b2[i]));
-        CHECK(portable.front_face[i] == all.front_face[i]);
+        CHECK(portable.front_face(i) == all.front_face(i));
     }
     std::optional<std::size_t> nearest;
     std::optional<shade::triangle_hit<T>> nearest_hit;
@@ -68,7 +68,7 @@ void check_against_scalar(const shade::ray<T>& r, const shade::triangle_batch<T,
         std::optional<shade::triangle_hit<T>> h;
         if (i < batch.size()) h = shade::intersect<shade::moller_trumbore>(r, batch.triangle_at(i), cull);
         ++count.lanes;
-        REQUIRE(all.hit[i] == h.has_value());
+        REQUIRE(all.hit(i) == h.has_value());
         if (!h) {
             CHECK(all.t[i] == shade::infinity<T>);
             continue;
@@ -78,7 +78,7 @@ void check_against_scalar(const shade::ray<T>& r, const shade::triangle_batch<T,
         CHECK(bits(all.b0[i]) == bits(h->barycentric.x));
         CHECK(bits(all.b1[i]) == bits(h->barycentric.y));
         CHECK(bits(all.b2[i]) == bits(h->barycentric.z));
-        CHECK(all.front_face[i] == h->front_face);
+        CHECK(all.front_face(i) == h->front_face);
         if (!nearest || h->t < nearest_hit->t) {
             nearest = i;
             nearest_hit = h;
@@ -118,14 +118,14 @@ TEST_CASE_TEMPLATE("triangle_batch: known hit in one lane, misses and empty lane
     const shade::ray<T> r{{T(0.5), T(0.5), 3}, {0, 0, -1}};
     const auto all = shade::intersect(r, batch);
     CHECK(all.count() == 1);
-    CHECK_FALSE(all.hit[0]);
-    REQUIRE(all.hit[1]);
+    CHECK_FALSE(all.hit(0));
+    REQUIRE(all.hit(1));
     CHECK(all.t[1] == T(3));
     CHECK(all.b0[1] == T(0.5));
     CHECK(all.b1[1] == T(0.25));
     CHECK(all.b2[1] == T(0.25));
-    CHECK(all.front_face[1]);
-    for (std::size_t i = 2; i < 8; ++i) CHECK_FALSE(all.hit[i]);
+    CHECK(all.front_face(1));
+    for (std::size_t i = 2; i < 8; ++i) CHECK_FALSE(all.hit(i));
     const auto c = shade::intersect_closest(r, batch);
     REQUIRE(c.has_value());
     CHECK(c->index == 1);
@@ -134,8 +134,8 @@ TEST_CASE_TEMPLATE("triangle_batch: known hit in one lane, misses and empty lane
     // The same ray from below hits the back face: det = -4, culled on request.
     const shade::ray<T> below{{T(0.5), T(0.5), -3}, {0, 0, 1}};
     const auto back = shade::intersect(below, batch);
-    REQUIRE(back.hit[1]);
-    CHECK_FALSE(back.front_face[1]);
+    REQUIRE(back.hit(1));
+    CHECK_FALSE(back.front_face(1));
     CHECK(shade::intersect(below, batch, shade::culling::back_faces).count() == 0);
     // An empty batch never hits.
     CHECK(shade::intersect(r, shade::triangle_batch<T, 8>{}).count() == 0);
@@ -280,9 +280,9 @@ TEST_CASE_TEMPLATE("triangle_batch: t_min and t_max bounds at the exact hit t", 
         check_against_scalar(shade::ray<T>{origin, direction, T(0), std::nextafter(t, T(0))}, batch,
                              shade::culling::none, count);
         // Lane 0 itself: hit on the exact interval, missed just beyond either bound.
-        CHECK(shade::intersect(shade::ray<T>{origin, direction, t, t}, batch).hit[0]);
-        CHECK_FALSE(shade::intersect(shade::ray<T>{origin, direction, std::nextafter(t, inf<T>), inf<T>}, batch).hit[0]);
-        CHECK_FALSE(shade::intersect(shade::ray<T>{origin, direction, T(0), std::nextafter(t, T(0))}, batch).hit[0]);
+        CHECK(shade::intersect(shade::ray<T>{origin, direction, t, t}, batch).hit(0));
+        CHECK_FALSE(shade::intersect(shade::ray<T>{origin, direction, std::nextafter(t, inf<T>), inf<T>}, batch).hit(0));
+        CHECK_FALSE(shade::intersect(shade::ray<T>{origin, direction, T(0), std::nextafter(t, T(0))}, batch).hit(0));
     }
     CHECK(bounded > 1000);
 }
@@ -341,7 +341,7 @@ TEST_CASE_TEMPLATE("triangle_batch: degenerate, non-finite, tiny and huge triang
         const shade::ray<T> r{origin, v3<T>(max, b1, b2) - origin};
         check_against_scalar(r, batch, shade::culling::none, count);
         const auto all = shade::intersect(r, batch);
-        (all.hit[5] ? kept : overflowed) += 1;
+        (all.hit(5) ? kept : overflowed) += 1;
     }
     MESSAGE("near-max triangle: " << kept << " hits kept, " << overflowed << " rejected");
     CHECK(kept > 0);
@@ -352,10 +352,10 @@ TEST_CASE_TEMPLATE("triangle_batch: degenerate, non-finite, tiny and huge triang
     // counts as inside; all products are exact powers of two); the degenerate, non-finite
     // and overflowing ones never, and lane 5 (plane x = max) is parallel to it.
     const auto down = shade::intersect(shade::ray<T>{{0, 0, 10}, {0, 0, -1}}, batch);
-    for (const std::size_t i : {0u, 1u, 2u, 3u, 5u, 6u}) CHECK_FALSE(down.hit[i]);
-    CHECK(down.hit[4]);
+    for (const std::size_t i : {0u, 1u, 2u, 3u, 5u, 6u}) CHECK_FALSE(down.hit(i));
+    CHECK(down.hit(4));
     CHECK(down.t[4] == T(10));
-    CHECK(down.hit[7]);
+    CHECK(down.hit(7));
     CHECK(down.t[7] == T(7));
     CHECK(down.closest() == std::optional<std::size_t>(7));
 }

@@ -29,7 +29,7 @@
 // Vectorization: the kernel is written once over a "lanes" type. With g++ and clang++ it
 // uses GNU vector extensions (vector_size), which both compile from the same source to
 // the target's SIMD instructions: 4 floats or 2 doubles per step with the x86-64
-// baseline SSE2, 8/4 with -mavx, 16/8 with -mavx512f, NEON on ARM. No intrinsics; other
+// baseline SSE2, 8/4 with -mavx or better, NEON on ARM. No intrinsics; other
 // compilers get the same kernel one lane at a time (detail::scalar_lanes, also tested).
 // Plain loops over the arrays were tried first: g++ 12 vectorized only part of them
 // (not under its default -ftrapping-math) and clang++ 14 none.
@@ -38,6 +38,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <concepts>
 #include <cstddef>
@@ -107,8 +108,9 @@ public:
             set(v2_, i, tri.v2);
             // A lane hits only where the scalar finish step would find a unit normal; a
             // usable lane has finite edges and therefore finite vertices.
-            usable_[i] = detail::is_unit_normal(tri.normal());
-            if (usable_[i]) large_ = large_ || exceeds_quarter_max(tri);
+            const bool usable = detail::is_unit_normal(tri.normal());
+            usable_[i] = usable ? T(1) : T(0);
+            if (usable) large_ = large_ || exceeds_quarter_max(tri);
         }
     }
 
@@ -150,7 +152,7 @@ private:
 
     soa3 v0_, e1_, e2_; // hot
     soa3 v1_, v2_;      // cold: hit points only
-    std::array<bool, N> usable_{};
+    std::array<T, N> usable_{}; // 1 where a lane can hit, else 0 (a value vectors load)
     std::size_t count_ = 0;
     bool large_ = false;
 
@@ -158,29 +160,38 @@ private:
     friend struct detail::batch_access;
 };
 
-/// Per-lane results of one ray against a triangle_batch. For lane i: hit[i] says whether
+/// Per-lane results of one ray against a triangle_batch. For lane i: hit(i) says whether
 /// shade::moller_trumbore would report a hit; where it does, t[i], b0[i], b1[i], b2[i] and
-/// front_face[i] are bitwise the scalar hit's t, barycentric and front_face. Where it
-/// does not, t[i] = +infinity, the barycentrics are 0 and front_face[i] is false.
+/// front_face(i) are bitwise the scalar hit's t, barycentric and front_face. Where it
+/// does not, t[i] = +infinity, the barycentrics are 0 and front_face(i) is false.
+/// The flags are bit masks (bit i for lane i), which SIMD code produces in one instruction.
 template <std::floating_point T, std::size_t N>
 struct triangle_batch_hits {
-    std::array<bool, N> hit{};        ///< lane i was hit
-    std::array<T, N> t{};             ///< ray parameter (direction units); +inf on a miss
-    std::array<T, N> b0{};            ///< barycentric weight of v0
-    std::array<T, N> b1{};            ///< barycentric weight of v1 (u)
-    std::array<T, N> b2{};            ///< barycentric weight of v2 (v)
-    std::array<bool, N> front_face{}; ///< the ray struck the counter-clockwise side
+    static_assert(N <= 64, "the hit flags are bits of a 64-bit mask");
+    std::uint64_t hit_bits = 0;   ///< bit i set: lane i was hit
+    std::uint64_t front_bits = 0; ///< bit i set: lane i was hit on its counter-clockwise side
+    std::array<T, N> t{};         ///< ray parameter (direction units); +inf on a miss
+    std::array<T, N> b0{};        ///< barycentric weight of v0
+    std::array<T, N> b1{};        ///< barycentric weight of v1 (u)
+    std::array<T, N> b2{};        ///< barycentric weight of v2 (v)
+
+    /// True when lane i was hit.
+    [[nodiscard]] bool hit(std::size_t i) const noexcept { return (hit_bits >> i) & 1u; }
+    /// True when lane i was hit on its front (counter-clockwise) side.
+    [[nodiscard]] bool front_face(std::size_t i) const noexcept { return (front_bits >> i) & 1u; }
 
     /// Number of lanes hit.
     [[nodiscard]] std::size_t count() const noexcept {
-        return static_cast<std::size_t>(std::count(hit.begin(), hit.end(), true));
+        return static_cast<std::size_t>(std::popcount(hit_bits));
     }
 
     /// The hit lane with the smallest t (the lowest such index on ties), or nothing.
     [[nodiscard]] std::optional<std::size_t> closest() const noexcept {
         std::optional<std::size_t> best;
-        for (std::size_t i = 0; i < N; ++i)
-            if (hit[i] && (!best || t[i] < t[*best])) best = i;
+        for (std::uint64_t bits = hit_bits; bits != 0; bits &= bits - 1) {
+            const auto i = static_cast<std::size_t>(std::countr_zero(bits));
+            if (!best || t[i] < t[*best]) best = i;
+        }
         return best;
     }
 };
@@ -218,18 +229,20 @@ struct scalar_lanes {
     static void store(T* p, vec v) noexcept { *p = v; }
     static vec splat(T x) noexcept { return x; }
     static vec select(mask m, vec a, vec b) noexcept { return m ? a : b; }
+    static vec keep(mask m, vec a) noexcept { return m ? a : T(0); }
+    static vec abs(vec a) noexcept { return std::abs(a); }
+    static vec flip_sign(vec a, vec s) noexcept { return std::signbit(s) ? -a : a; }
     static mask none() noexcept { return false; }
     static bool any(mask m) noexcept { return m; }
-    static bool lane(mask m, std::size_t) noexcept { return m; }
+    static std::uint64_t bits(mask m) noexcept { return m ? 1u : 0u; }
 };
 
 #if defined(__GNUC__) // g++ and clang++
-/// Bytes of the widest vector register the target compiles for (AVX-512, AVX, or the 16
-/// bytes of SSE2, NEON and the like). Wider generic vectors would only be split again
-/// and, on x86-64, change the calling convention (g++ -Wpsabi).
-#if defined(__AVX512F__)
-inline constexpr std::size_t native_vector_bytes = 64;
-#elif defined(__AVX__)
+/// Bytes of the vectors the kernel uses: 32 with AVX (also when AVX-512 is enabled:
+/// 64-byte generic vectors measured 3x slower there, their comparisons going through mask
+/// registers), else 16 (SSE2, NEON and the like). Vectors wider than the target's would
+/// only be split again and, on x86-64, change the calling convention (g++ -Wpsabi).
+#if defined(__AVX__)
 inline constexpr std::size_t native_vector_bytes = 32;
 #else
 inline constexpr std::size_t native_vector_bytes = 16;
@@ -269,13 +282,53 @@ struct vector_lanes {
         return reinterpret_cast<vec>((reinterpret_cast<mask>(a) & m) |
                                      (reinterpret_cast<mask>(b) & ~m));
     }
+    /// a where m is set, +0 elsewhere.
+    static vec keep(const mask& m, const vec& a) noexcept {
+        return reinterpret_cast<vec>(reinterpret_cast<mask>(a) & m);
+    }
+    /// |a| (sign bit cleared), as std::abs.
+    static vec abs(const vec& a) noexcept {
+        return reinterpret_cast<vec>(reinterpret_cast<mask>(a) & ~sign_bits());
+    }
+    /// a with its sign flipped where s has its sign bit set (a times sign(s), exactly).
+    static vec flip_sign(const vec& a, const vec& s) noexcept {
+        return reinterpret_cast<vec>(reinterpret_cast<mask>(a) ^
+                                     (reinterpret_cast<mask>(s) & sign_bits()));
+    }
+    static mask sign_bits() noexcept {
+        return reinterpret_cast<mask>(splat(-T(0)));
+    }
     static mask none() noexcept { return mask{}; }
     static bool any(const mask& m) noexcept {
         mask_int bits = 0;
         for (std::size_t i = 0; i < width; ++i) bits |= m[i];
         return bits != 0;
     }
-    static bool lane(const mask& m, std::size_t i) noexcept { return m[i] != 0; }
+    /// Bit i set where lane i of m is set: one movmsk instruction on x86 (these builtins
+    /// are g++'s and clang++'s), a loop elsewhere.
+    static std::uint64_t bits(const mask& m) noexcept {
+#if defined(__SSE2__)
+        if constexpr (Bytes == 16 && sizeof(T) == 4) {
+            using f4 [[gnu::vector_size(16)]] = float;
+            return static_cast<std::uint32_t>(__builtin_ia32_movmskps(reinterpret_cast<f4>(m)));
+        } else if constexpr (Bytes == 16 && sizeof(T) == 8) {
+            using d2 [[gnu::vector_size(16)]] = double;
+            return static_cast<std::uint32_t>(__builtin_ia32_movmskpd(reinterpret_cast<d2>(m)));
+        }
+#endif
+#if defined(__AVX__)
+        if constexpr (Bytes == 32 && sizeof(T) == 4) {
+            using f8 [[gnu::vector_size(32)]] = float;
+            return static_cast<std::uint32_t>(__builtin_ia32_movmskps256(reinterpret_cast<f8>(m)));
+        } else if constexpr (Bytes == 32 && sizeof(T) == 8) {
+            using d4 [[gnu::vector_size(32)]] = double;
+            return static_cast<std::uint32_t>(__builtin_ia32_movmskpd256(reinterpret_cast<d4>(m)));
+        }
+#endif
+        std::uint64_t out = 0;
+        for (std::size_t i = 0; i < width; ++i) out |= std::uint64_t(m[i] != 0) << i;
+        return out;
+    }
 };
 
 /// The kernel's default lanes: vectors where the compiler has GNU vector extensions.
@@ -306,9 +359,7 @@ template <class L, std::floating_point T, std::size_t N>
     const auto& v0 = access::v0(batch);
     const auto& e1 = access::e1(batch);
     const auto& e2 = access::e2(batch);
-    const auto& usable_lane = access::usable(batch);
-    std::array<T, N> usable{}; // 1 for usable lanes, as a value the vectors can load
-    for (std::size_t i = 0; i < N; ++i) usable[i] = usable_lane[i] ? T(1) : T(0);
+    const auto& usable = access::usable(batch);
 
     const vec o_x = L::splat(r.origin.x), o_y = L::splat(r.origin.y), o_z = L::splat(r.origin.z);
     const vec d_x = L::splat(r.direction.x), d_y = L::splat(r.direction.y),
@@ -316,17 +367,16 @@ template <class L, std::floating_point T, std::size_t N>
     const vec zero = L::splat(T(0)), one = L::splat(T(1));
     const vec loose = L::splat(T(0x1p-10)); // relative slack of the rounded tests
     const vec tiny = L::splat(T(0x1p-20));  // covers quotients that underflow to -0
-    const vec t_max_loose = L::splat(r.t_max * (T(1) + T(0x1p-10)));
     const bool front_only = cull == culling::back_faces;
 
-    std::array<T, N> det{}, u_num{}, v_num{}, t_num{};
-    std::array<mask, N / L::width> candidate{};
-    mask any = L::none();
-    // Pass 1, division-free: the scalar code's dot and cross products in GLM's order,
-    // cross(a, b) = (a.y b.z - b.y a.z, a.z b.x - b.z a.x, a.x b.y - b.x a.y) and
-    // dot(a, b) = (a.x b.x + a.y b.y) + a.z b.z.
+    const vec t_lo = L::splat(r.t_min);
+    const vec t_hi = L::splat(std::min(r.t_max, std::numeric_limits<T>::max()));
+    const vec inf = L::splat(infinity<T>);
     for (std::size_t k = 0; k < N / L::width; ++k) {
         const std::size_t i = k * L::width;
+        // Division-free part: the scalar code's dot and cross products in GLM's order,
+        // cross(a, b) = (a.y b.z - b.y a.z, a.z b.x - b.z a.x, a.x b.y - b.x a.y) and
+        // dot(a, b) = (a.x b.x + a.y b.y) + a.z b.z.
         const vec e1_x = L::load(&e1.x[i]), e1_y = L::load(&e1.y[i]), e1_z = L::load(&e1.z[i]);
         const vec e2_x = L::load(&e2.x[i]), e2_y = L::load(&e2.y[i]), e2_z = L::load(&e2.z[i]);
         const vec p_x = d_y * e2_z - e2_y * d_z;
@@ -341,51 +391,38 @@ template <class L, std::floating_point T, std::size_t N>
         const vec q_y = s_z * e1_x - e1_z * s_x;
         const vec q_z = s_x * e1_y - e1_x * s_y;
         const vec vn = d_x * q_x + d_y * q_y + d_z * q_z;
-        const vec tn = e2_x * q_x + e2_y * q_y + e2_z * q_z;
-        L::store(&det[i], dt);
-        L::store(&u_num[i], un);
-        L::store(&v_num[i], vn);
-        L::store(&t_num[i], tn);
 
-        const mask positive = dt > zero;
-        const vec sign = L::select(positive, one, -one);
-        const vec a = sign * dt; // |det|, exactly
+        // The candidate test (see shade::intersect below); s U is U with its sign flipped
+        // by the sign of det.
+        const vec a = L::abs(dt);
         const vec m = a * tiny;
-        const vec su = sign * un;
-        const vec sv = sign * vn;
-        const vec st = sign * tn;
-        mask keep = (L::load(&usable[i]) != zero) & (dt != zero) & (su >= -m) & (sv >= -m) &
-                    (su <= a + m) & (a - (su + sv) >= -(a * loose)) & (st >= -m) &
-                    (st <= t_max_loose * a + m);
-        if (front_only) keep = keep & positive;
-        candidate[k] = keep;
-        any = any | keep;
-    }
-    if (!L::any(any)) return out;
-
-    // Pass 2: the scalar algorithm's divisions and tests, for every lane at once.
-    const vec t_min = L::splat(r.t_min), t_max = L::splat(r.t_max);
-    const vec largest = L::splat(std::numeric_limits<T>::max());
-    const vec inf = L::splat(infinity<T>);
-    for (std::size_t k = 0; k < N / L::width; ++k) {
-        const std::size_t i = k * L::width;
-        const vec dt = L::load(&det[i]);
-        const vec u = L::load(&u_num[i]) / dt;
-        const vec v = L::load(&v_num[i]) / dt;
-        const vec b0 = one - u - v;
-        const vec t = L::load(&t_num[i]) / dt;
-        // t finite: -max <= t <= max fails for infinities and NaN.
-        const mask ok = candidate[k] & (u >= zero) & (u <= one) & (v >= zero) & (b0 >= zero) &
-                        (t >= -largest) & (t <= largest) & (t >= t_min) & (t <= t_max);
-        const mask front = ok & (dt > zero);
-        L::store(&out.t[i], L::select(ok, t, inf));
-        L::store(&out.b0[i], L::select(ok, b0, zero));
-        L::store(&out.b1[i], L::select(ok, u, zero));
-        L::store(&out.b2[i], L::select(ok, v, zero));
-        for (std::size_t j = 0; j < L::width; ++j) {
-            out.hit[i + j] = L::lane(ok, j);
-            out.front_face[i + j] = L::lane(front, j);
+        const vec su = L::flip_sign(un, dt);
+        const vec sv = L::flip_sign(vn, dt);
+        mask candidate = (L::load(&usable[i]) != zero) & (dt != zero) & (su >= -m) &
+                         (sv >= -m) & (a - (su + sv) >= -(a * loose));
+        if (front_only) candidate = candidate & (dt > zero);
+        if (L::bits(candidate) == 0) {
+            // No lane of this step can hit: no division (out is already all misses).
+            continue;
         }
+
+        // The scalar algorithm's divisions and tests. Its u <= 1 is implied by v >= 0 and
+        // b0 = (1 - u) - v >= 0 (a rounded difference is >= 0 exactly when the exact one
+        // is); t finite in [t_min, t_max] is t >= t_min and t <= min(t_max, max), as
+        // t_min >= 0 is finite and NaN fails both.
+        const vec tn = e2_x * q_x + e2_y * q_y + e2_z * q_z;
+        const vec u = un / dt;
+        const vec v = vn / dt;
+        const vec b0 = one - u - v;
+        const vec t = tn / dt;
+        const mask ok = candidate & (u >= zero) & (v >= zero) & (b0 >= zero) & (t >= t_lo) &
+                        (t <= t_hi);
+        L::store(&out.t[i], L::select(ok, t, inf));
+        L::store(&out.b0[i], L::keep(ok, b0));
+        L::store(&out.b1[i], L::keep(ok, u));
+        L::store(&out.b2[i], L::keep(ok, v));
+        out.hit_bits |= L::bits(ok) << i;
+        out.front_bits |= L::bits(ok & (dt > zero)) << i;
     }
 
     if (batch.large()) {
@@ -398,11 +435,11 @@ template <class L, std::floating_point T, std::size_t N>
             const T p_y = out.b0[i] * v0.y[i] + out.b1[i] * v1.y[i] + out.b2[i] * v2.y[i];
             const T p_z = out.b0[i] * v0.z[i] + out.b1[i] * v1.z[i] + out.b2[i] * v2.z[i];
             const bool finite = std::isfinite(p_x) && std::isfinite(p_y) && std::isfinite(p_z);
-            if (out.hit[i] && !finite) {
-                out.hit[i] = false;
+            if (out.hit(i) && !finite) {
+                out.hit_bits &= ~(std::uint64_t(1) << i);
+                out.front_bits &= ~(std::uint64_t(1) << i);
                 out.t[i] = infinity<T>;
                 out.b0[i] = out.b1[i] = out.b2[i] = T(0);
-                out.front_face[i] = false;
             }
         }
     }
@@ -419,15 +456,14 @@ template <class L, std::floating_point T, std::size_t N>
 /// rejection of invalid rays, degenerate triangles and t outside [t_min, t_max].
 ///
 /// Before dividing, a lane is kept as a candidate when, with s = sign(det), a = |det|:
-///     det != 0,  s U >= -m,  s V >= -m,  s U <= a + m,  a - s (U + V) >= -a 2^-10,
-///     s T_n >= -m,  s T_n <= t_max a (1 + 2^-10) + m,        m = a 2^-20,
-/// (and det > 0 under back-face culling). These are u >= 0, v >= 0, u <= 1, 1 - u - v >= 0,
-/// t >= 0 and t <= t_max multiplied by |det|, loosened so that no lane the rounded scalar
-/// test accepts can fail them: m covers a quotient U/det that underflows to -0 (which the
-/// scalar test accepts as u >= 0; it needs |U| < a 2^-148 or so), and 2^-10 covers the few
-/// roundings in 1 - u - v and t (about 2^-22 relative in float). Where no lane is a
-/// candidate the result is all misses without any division; otherwise the scalar tests
-/// decide, on the divided values, for every lane.
+///     det != 0,  s U >= -m,  s V >= -m,  a - s (U + V) >= -a 2^-10,   m = a 2^-20
+/// (and det > 0 under back-face culling). These are u >= 0, v >= 0 and 1 - u - v >= 0
+/// multiplied by |det|, loosened so that no lane the rounded scalar test accepts can fail
+/// them: m covers a quotient U/det that underflows to -0 (which the scalar test accepts
+/// as u >= 0; it needs |U| < a 2^-148 or so), and 2^-10 covers the few roundings in
+/// 1 - u - v (about 2^-22 relative in float). Where no lane is a candidate the result is
+/// all misses without any division; otherwise the scalar tests decide, on the divided
+/// values, for every lane. (Testing t before dividing too cost more than it saved.)
 template <std::floating_point T, std::size_t N>
 [[nodiscard]] triangle_batch_hits<T, N> intersect(const ray<T>& r, const triangle_batch<T, N>& batch,
                                                   culling cull = culling::none) noexcept {
@@ -452,7 +488,7 @@ template <std::floating_point T, std::size_t N>
     out.hit.barycentric = vec3<T>(all.b0[i], all.b1[i], all.b2[i]);
     out.hit.p = all.b0[i] * tri.v0 + all.b1[i] * tri.v1 + all.b2[i] * tri.v2;
     out.hit.n = tri.normal();
-    out.hit.front_face = all.front_face[i];
+    out.hit.front_face = all.front_face(i);
     return out;
 }
 
