@@ -1,5 +1,6 @@
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include <doctest/doctest.h>
 
@@ -41,6 +42,26 @@ TEST_CASE_TEMPLATE("gradient alpha is 1, 0 and 1/2 at the derived points", T, fl
     const shade::gradient<S, S> shifted(S{}, S{}, v(0, 0, 1), T(4), shade::pi<T> / T(2));
     CHECK(shifted.alpha(v(0)) == doctest::Approx(0.5).epsilon(1e-6));
     CHECK(shifted.alpha(v(0, 0, -1)) == doctest::Approx(1.0).epsilon(1e-6));
+}
+
+TEST_CASE_TEMPLATE("gradient alpha stays in [0, 1] far from the origin (regression, found by fuzzing)",
+                   T, float, double) {
+    using v = shade::vec3<T>;
+    using S = constant_shader<T>;
+    const shade::gradient<S, S> g(S{}, S{}, v(0, 0, 1), T(4));
+    // z = 2^40 (float) / 2^80 (double) is a whole number of periods (period 4 = 2^2), so
+    // alpha = (1 + cos(2 pi k)) / 2 = 1 exactly once p.d is reduced modulo the period.
+    const T far = std::is_same_v<T, float> ? std::ldexp(T(1), 40) : std::ldexp(T(1), 80);
+    CHECK(g.alpha(v(0, 0, far)) == doctest::Approx(1.0).epsilon(1e-6));
+    // z = the largest finite value: 2 pi z / 4 used to overflow to inf and cos(inf) = NaN.
+    // It is a multiple of 4 as well (a huge float is an even integer times a power of two).
+    const T huge = std::numeric_limits<T>::max();
+    CHECK(g.alpha(v(0, 0, huge)) == doctest::Approx(1.0).epsilon(1e-6));
+    // p.d itself overflows (d = (1, 1, 0)/sqrt 2, p = (max, max, 0): p.d = sqrt 2 max):
+    // the mean weight 1/2.
+    const shade::gradient<S, S> diagonal(S{}, S{}, v(1, 1, 0), T(4));
+    const T a = diagonal.alpha(v(huge, huge, 0));
+    CHECK(a == T(0.5));
 }
 
 TEST_CASE_TEMPLATE("gradient blends: alpha first + (1 - alpha) second, as a shader and as a BRDF", T, float, double) {

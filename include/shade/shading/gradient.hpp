@@ -61,7 +61,14 @@ public:
 
     /// The weight of the first child at p (see the class comment).
     [[nodiscard]] T alpha(const vec3<T>& p) const noexcept {
-        const T angle = T(2) * pi<T> * glm::dot(p, direction_) / period_ + phase_;
+        // (p.d) mod period first (std::fmod is exact): the same angle modulo 2 pi, but it
+        // stays finite and accurate far from the origin, where 2 pi (p.d) / period
+        // overflowed to inf for a huge finite p and cos(inf) gave NaN.
+        const T along = std::fmod(glm::dot(p, direction_), period_);
+        const T angle = T(2) * pi<T> * (along / period_) + phase_;
+        // Non-finite only when p.d itself overflows (|p| near the largest finite value),
+        // where the pattern is far below the resolution of T: use the mean weight 1/2.
+        if (!std::isfinite(angle)) return T(0.5);
         return (T(1) + std::cos(angle)) * T(0.5);
     }
 
