@@ -90,4 +90,12 @@ TEST_CASE_TEMPLATE("gooch rejects bad parameters by name", T, float, double) {
                          shade::invalid_parameter);
     CHECK_THROWS_WITH_AS(make([](auto& p) { p.shininess = T(0); }), doctest::Contains("'shininess'"),
                          shade::invalid_parameter);
+    // Regression, found by fuzzing: every member finite, but k_warm = yellow + beta k_d
+    // (or k_cool = blue + alpha k_d) overflows to inf, and shade() then computed
+    // 0 x inf = NaN where t = 0. Rejected, naming the weight.
+    const T big = std::numeric_limits<T>::max();
+    CHECK_THROWS_WITH_AS(make([&](auto& p) { p.beta = big; p.diffuse = shade::rgb<T>(2); }),
+                         doctest::Contains("'beta'"), shade::invalid_parameter);
+    CHECK_THROWS_WITH_AS(make([&](auto& p) { p.alpha = big; p.diffuse = shade::rgb<T>(2); }),
+                         doctest::Contains("'alpha'"), shade::invalid_parameter);
 }

@@ -111,6 +111,24 @@ TEST_CASE_TEMPLATE("toon: shade = k_a I_a + k_d I_d q_d + k_s I_s q_s", T, float
     CHECK(model.diffuse_factor(v(0, 0, 1), v(0, 0, -1)) == T(0));
 }
 
+TEST_CASE_TEMPLATE("toon: an overflowing k_d I_d in a dark band is 0, not NaN (regression, found by fuzzing)",
+                   T, float, double) {
+    using v = shade::vec3<T>;
+    using c = shade::rgb<T>;
+    // k_d = k_s = the largest finite value (valid: finite, >= 0) under a light of colour 4:
+    // k_d I_d overflows to inf. With l below the surface both bands are 0, so the terms
+    // are k_d (I_d x 0) = 0 and k_s (I_s x 0) = 0; (k_d I_d) x 0 was inf x 0 = NaN.
+    shade::toon_params<T> p;
+    p.diffuse = c(std::numeric_limits<T>::max());
+    p.specular = c(std::numeric_limits<T>::max());
+    const shade::toon<T> model(p);
+    const auto at = shade::surface_point<T>::at(v(0), v(0, 0, 1));
+    shade::light_sample<T> s = white_light(v(0, 0, -1));
+    s.diffuse = c(4);
+    s.specular = c(4);
+    CHECK(model.shade(at, v(0, 0, 1), s) == c(0));
+}
+
 TEST_CASE_TEMPLATE("toon rejects bad parameters by name", T, float, double) {
     const T nan = std::numeric_limits<T>::quiet_NaN();
     auto make = [](auto change) {

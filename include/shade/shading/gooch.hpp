@@ -63,6 +63,14 @@ public:
         (void)require_positive("shininess", p.shininess);
         k_cool_ = p.blue + p.alpha * p.diffuse;
         k_warm_ = p.yellow + p.beta * p.diffuse;
+        // Each member is finite, but the tones may overflow; an infinite tone weighted by
+        // t = 0 would give NaN in shade().
+        if (!is_finite(k_cool_))
+            throw invalid_parameter("alpha", "times diffuse plus blue must be finite",
+                                    detail::to_text(p.alpha));
+        if (!is_finite(k_warm_))
+            throw invalid_parameter("beta", "times diffuse plus yellow must be finite",
+                                    detail::to_text(p.beta));
     }
 
     /// The parameters.
@@ -88,7 +96,9 @@ public:
         const T n_dot_l = glm::dot(n, s.l);
         if (n_dot_l > T(0) && p_.highlight != rgb<T>(0)) {
             const vec3<T> r = T(2) * n_dot_l * n - s.l;
-            out += p_.highlight * s.specular * std::pow(clamped_dot(r, v), p_.shininess);
+            // The factor in [0, 1] scales the light first: k_s * I_s may overflow to inf
+            // for large valid values, and inf times a factor 0 would be NaN.
+            out += p_.highlight * (s.specular * std::pow(clamped_dot(r, v), p_.shininess));
         }
         return out;
     }

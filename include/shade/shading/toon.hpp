@@ -95,8 +95,10 @@ public:
     [[nodiscard]] rgb<T> shade(const surface_point<T>& at, const vec3<T>& v,
                                const light_sample<T>& s) const {
         const vec3<T>& n = at.n();
-        return p_.ambient * s.ambient + p_.diffuse * s.diffuse * diffuse_factor(n, s.l) +
-               p_.specular * s.specular * specular_factor(n, s.l, v);
+        // Each light colour is scaled by its factor in [0, 1] first: k_d * I_d may
+        // overflow to inf for large valid values, and inf times a factor 0 would be NaN.
+        return p_.ambient * s.ambient + p_.diffuse * (s.diffuse * diffuse_factor(n, s.l)) +
+               p_.specular * (s.specular * specular_factor(n, s.l, v));
     }
 
 private:
