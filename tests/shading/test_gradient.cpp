@@ -64,6 +64,20 @@ TEST_CASE_TEMPLATE("gradient alpha stays in [0, 1] far from the origin (regressi
     CHECK(a == T(0.5));
 }
 
+TEST_CASE_TEMPLATE("gradient: a child that overflowed to inf with weight 0 gives no NaN (regression, found by fuzzing)",
+                   T, float, double) {
+    using v = shade::vec3<T>;
+    using S = constant_shader<T>;
+    // d = +z, period 4: alpha(z = 2) = (1 + cos pi) / 2 = 0 (cos of pi rounded to T rounds
+    // to -1, checked by the REQUIRE), so the result must be the second child alone;
+    // 0 x inf was NaN. (Children's radiance can overflow for large valid parameters.)
+    const T inf = std::numeric_limits<T>::infinity();
+    const shade::gradient<S, S> g(S{shade::rgb<T>(inf)}, S{shade::rgb<T>(T(0.25))}, v(0, 0, 1), T(4));
+    const auto at = at_point(T(0), T(0), T(2));
+    REQUIRE(g.alpha(at.p) == T(0));
+    CHECK(g.shade(at, v(0, 0, 1), shade::light_sample<T>{}) == shade::rgb<T>(T(0.25)));
+}
+
 TEST_CASE_TEMPLATE("gradient blends: alpha first + (1 - alpha) second, as a shader and as a BRDF", T, float, double) {
     using v = shade::vec3<T>;
     using c = shade::rgb<T>;

@@ -17,6 +17,18 @@
 
 namespace shade {
 
+namespace detail {
+
+/// w * c for a blend weight w in [0, 1], but exactly 0 when w == 0: a child whose value
+/// overflowed to inf (large valid parameters) must not turn its zero weight into
+/// 0 x inf = NaN.
+template <std::floating_point T>
+[[nodiscard]] inline rgb<T> weighted(T w, const rgb<T>& c) noexcept {
+    return w == T(0) ? rgb<T>(0) : w * c;
+}
+
+} // namespace detail
+
 /// A cosine gradient between two children along the unit direction d:
 ///
 ///   alpha(p) = (1 + cos(2 pi (p.d) / period + phase)) / 2      in [0, 1]
@@ -77,7 +89,7 @@ public:
         requires(brdf<S0> && brdf<S1>)
     {
         const T a = alpha(at.p);
-        return a * s0_.f(l, v, at) + (T(1) - a) * s1_.f(l, v, at);
+        return detail::weighted(a, s0_.f(l, v, at)) + detail::weighted(T(1) - a, s1_.f(l, v, at));
     }
 
     /// Diffuse part of the BRDF value, blended like f.
@@ -86,7 +98,8 @@ public:
         requires(split_brdf<S0> && split_brdf<S1>)
     {
         const T a = alpha(at.p);
-        return a * s0_.f_diffuse(l, v, at) + (T(1) - a) * s1_.f_diffuse(l, v, at);
+        return detail::weighted(a, s0_.f_diffuse(l, v, at)) +
+               detail::weighted(T(1) - a, s1_.f_diffuse(l, v, at));
     }
 
     /// Specular part of the BRDF value, blended like f.
@@ -95,7 +108,8 @@ public:
         requires(split_brdf<S0> && split_brdf<S1>)
     {
         const T a = alpha(at.p);
-        return a * s0_.f_specular(l, v, at) + (T(1) - a) * s1_.f_specular(l, v, at);
+        return detail::weighted(a, s0_.f_specular(l, v, at)) +
+               detail::weighted(T(1) - a, s1_.f_specular(l, v, at));
     }
 
     /// Radiance (light_sample units): alpha shade_0 + (1 - alpha) shade_1.
@@ -104,7 +118,8 @@ public:
         requires(!(brdf<S0> && brdf<S1>))
     {
         const T a = alpha(at.p);
-        return a * shade_of(s0_, at, v, s) + (T(1) - a) * shade_of(s1_, at, v, s);
+        return detail::weighted(a, shade_of(s0_, at, v, s)) +
+               detail::weighted(T(1) - a, shade_of(s1_, at, v, s));
     }
 
 private:
