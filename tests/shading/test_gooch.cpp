@@ -2,6 +2,7 @@
 #include <limits>
 
 #include <doctest/doctest.h>
+#include <glm/geometric.hpp>
 
 #include <shade/shading/gooch.hpp>
 
@@ -67,6 +68,24 @@ TEST_CASE_TEMPLATE("gooch highlight: Phong (r.v)^s on the lit side only", T, flo
     // Without a highlight colour the default shader adds nothing.
     const shade::gooch<T> plain;
     CHECK(near(plain.shade(at, v(0, 0, 1), light_from(v(0, 0, 1))), plain.warm(), T(1e-6)));
+}
+
+TEST_CASE("gooch: a huge shininess with r.v rounding past 1 gives no NaN (regression, found by fuzzing)") {
+    // n = l = v = (1, 1, 1)/sqrt 3 in double: r = 2 (n.l) n - l, and r.v rounds to
+    // 1 + 2^-52, whose 1e200-th power overflowed to inf; times a specular light colour of
+    // 0 that was NaN. With r.v clamped to 1 the highlight is k_s I_s 1 = 0, and the result
+    // is the warm tone (t = (1 + n.l)/2 = 1) times I_d = 0: exactly 0.
+    using v = shade::vec3<double>;
+    shade::gooch_params<double> p;
+    p.highlight = shade::rgb<double>(0, 0, 1);
+    p.shininess = 1e200;
+    const shade::gooch<double> g(p);
+    const v n = glm::normalize(v(1, 1, 1));
+    const auto at = shade::surface_point<double>::at(v(0), n);
+    shade::light_sample<double> s;
+    s.l = n;
+    REQUIRE(glm::dot(2 * glm::dot(n, n) * n - n, n) > 1.0); // the rounding that triggered it
+    CHECK(g.shade(at, n, s) == shade::rgb<double>(0));
 }
 
 TEST_CASE_TEMPLATE("gooch rejects bad parameters by name", T, float, double) {

@@ -1,6 +1,7 @@
 #pragma once
 // shade::gooch: Gooch cool-to-warm shading for technical illustration.
 
+#include <algorithm>
 #include <cmath>
 #include <concepts>
 
@@ -98,7 +99,10 @@ public:
             const vec3<T> r = T(2) * n_dot_l * n - s.l;
             // The factor in [0, 1] scales the light first: k_s * I_s may overflow to inf
             // for large valid values, and inf times a factor 0 would be NaN.
-            out += p_.highlight * (s.specular * std::pow(clamped_dot(r, v), p_.shininess));
+            // r.v of unit vectors can round a few ulps past 1, and (1 + ulp)^shininess
+            // overflows to inf for a large valid shininess (then inf x 0 = NaN): clamp to 1.
+            const T r_dot_v = std::min(clamped_dot(r, v), T(1));
+            out += p_.highlight * (s.specular * std::pow(r_dot_v, p_.shininess));
         }
         return out;
     }
