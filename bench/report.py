@@ -1,0 +1,335 @@
+#!/usr/bin/env python3
+"""Turn Google Benchmark JSON output (and optional callgrind dumps) into docs/benchmarks.md.
+
+Called by script/bench; python3 standard library only.
+
+Benchmark names are "<family>/<type>[/<subgroup>]/<variant>" (bench/support.hpp). All
+variants of one group ran on the same data in the same binary run, so every ratio below
+divides two numbers from the same run of the same binary.
+"""
+
+import argparse
+import glob
+import json
+import os
+import re
+import sys
+
+# The baseline variant of each family: ratios are time(variant) / time(baseline).
+BASELINES = {
+    "triangle": "glm",
+    "triangle_batch": "glm",
+    "sphere": "glm",
+    "plane": "glm",
+    "brdf": "lambert",
+}
+
+FAMILY_TITLES = {
+    "triangle": "Ray/triangle, scalar (512 random pairs per hit rate)",
+    "triangle_batch": "Ray/triangle, batched: one ray against 8 or 16 triangles (SoA), per test",
+    "sphere": "Ray/sphere",
+    "plane": "Ray/plane",
+    "brdf": "BRDF evaluation (f(l, v), 512 direction pairs above the surface)",
+}
+
+
+def strip_name(name):
+    """Benchmark name without Google Benchmark's suffixes (/iterations:N, _median, ...)."""
+    name = re.sub(r"/iterations:\d+", "", name)
+    name = re.sub(r"_(mean|median|stddev|cv)$", "", name)
+    return name
+
+
+def load_json(path):
+    """{name: {"ns_per_iter", "ops", "hit_rate", "iterations"}} from one JSON file; medians
+    when repetitions were run, else the single run."""
+    with open(path) as f:
+        data = json.load(f)
+    runs, medians = {}, {}
+    for b in data.get("benchmarks", []):
+        name = strip_name(b.get("run_name", b["name"]))
+        scale = {"ns": 1.0, "us": 1e3, "ms": 1e6, "s": 1e9}[b.get("time_unit", "ns")]
+        entry = {
+            "ns_per_iter": float(b["cpu_time"]) * scale,
+            "ops": float(b.get("ops_per_iter", 1.0)),
+            "hit_rate": b.get("hit_rate"),
+            "iterations": int(b.get("iterations", 0)),
+        }
+        if b.get("run_type") == "aggregate":
+            if b.get("aggregate_name") == "median":
+                medians[name] = entry
+        else:
+            runs.setdefault(name, entry)
+    runs.update(medians)
+    return data.get("context", {}), runs
+
+
+def load_callgrind(directory, runs):
+    """{name: instructions per operation} from callgrind dumps made with
+    CALLGRIND_DUMP_STATS_AT(name) right after each benchmark's loop."""
+    result = {}
+    def dump_order(path):  # callgrind.out.<pid>.<n>: by pid, then dump number
+        return [int(x) if x.isdigit() else x for x in os.path.basename(path).split(".")[2:]]
+
+    for path in sorted(glob.glob(os.path.join(directory, "callgrind.out.*")), key=dump_order):
+        desc, total = None, None
+        with open(path, errors="replace") as f:
+            for line in f:
+                if line.startswith("desc: Trigger: Client Request: "):
+                    desc = line[len("desc: Trigger: Client Request: "):].strip()
+                elif line.startswith("totals:") or (line.startswith("summary:") and total is None):
+                    total = int(line.split()[1])
+        if desc and total is not None and desc in runs:
+            r = runs[desc]
+            if r["iterations"] > 0:
+                result[desc] = total / (r["iterations"] * r["ops"])
+    return result
+
+
+def split(name):
+    parts = name.split("/")
+    family, variant = parts[0], parts[-1]
+    typ = parts[1] if len(parts) > 2 else ""
+    sub = "/".join(parts[2:-1])
+    return family, typ, sub, variant
+
+
+def fmt_ratio(x):
+    return "–" if x is None else f"{x:.2f}×"
+
+
+def tables(values, unit, hit_rates=None):
+    """Markdown tables, one per (family, type): rows = variants, a column pair per
+    subgroup (value per operation, ratio to the family's baseline)."""
+    out = []
+    families = {}
+    for name, value in values.items():
+        family, typ, sub, variant = split(name)
+        families.setdefault((family, typ), {}).setdefault(sub, {})[variant] = (value, name)
+    order = list(BASELINES)
+    for (family, typ) in sorted(families, key=lambda k: (order.index(k[0]) if k[0] in order else 99, k[1] != "float", k[1])):
+        subs = families[(family, typ)]
+        sub_names = sorted(subs, key=lambda s: (len(s), s))
+        variants = []
+        for s in sub_names:
+            for v in subs[s]:
+                if v not in variants:
+                    variants.append(v)
+        baseline = BASELINES.get(family)
+        title = FAMILY_TITLES.get(family, family)
+        show_hits = hit_rates is not None and any(
+            subs[s][v][1] in hit_rates for s in sub_names for v in subs[s])
+        out.append(f"#### {title}: {typ}\n")
+        header = "| variant |"
+        rule = "|---|"
+        for s in sub_names:
+            label = s if s else "value"
+            header += f" {label}: {unit} | ratio |"
+            rule += "---:|---:|"
+            if show_hits:
+                header += " hits |"
+                rule += "---:|"
+        out.append(header)
+        out.append(rule)
+        for v in variants:
+            row = f"| {v}{' (baseline)' if v == baseline else ''} |"
+            for s in sub_names:
+                cell = subs[s].get(v)
+                base = subs[s].get(baseline)
+                if cell is None:
+                    row += " | |" + (" |" if show_hits else "")
+                    continue
+                value, name = cell
+                ratio = value / base[0] if base else None
+                row += f" {value:.2f} | {fmt_ratio(ratio)} |"
+                if show_hits:
+                    h = hit_rates.get(name)
+                    row += f" {h * 100:.1f} % |" if h is not None else " |"
+            out.append(row)
+        out.append("")
+    return out
+
+
+def per_op(runs):
+    return {n: r["ns_per_iter"] / r["ops"] for n, r in runs.items()}
+
+
+def hit_rates_of(runs):
+    return {n: r["hit_rate"] for n, r in runs.items() if r.get("hit_rate") is not None}
+
+
+def target_rows(values, label_unit):
+    """The issue's targets, each as measured ratios per type and hit rate."""
+    rows = []
+
+    def get(name):
+        return values.get(name)
+
+    for typ in ("float", "double"):
+        for rate in ("hit0", "hit50", "hit100"):
+            g = f"triangle/{typ}/{rate}/"
+            mt, glm, area = get(g + "moller_trumbore"), get(g + "glm"), get(g + "plane_then_areas")
+            if mt and glm:
+                r = mt / glm
+                rows.append((f"default scalar test (Möller-Trumbore) / GLM, {typ} {rate}", r, "≤ 1.00", r <= 1.0))
+            if mt and area:
+                r = mt / area
+                rows.append((f"Möller-Trumbore / area baseline (plane_then_areas), {typ} {rate}", r, "≤ 0.68", r <= 0.68))
+    for typ in ("float", "double"):
+        for rate in ("hit0", "hit50", "hit100"):
+            g = f"triangle_batch/{typ}/{rate}/"
+            b8, glm = get(g + "batch8"), get(g + "glm")
+            if b8 and glm:
+                r = glm / b8
+                rows.append((f"GLM / batch 1×8 per test (throughput gain), {typ} {rate}", r, "≥ 5", r >= 5.0))
+    for typ in ("float", "double"):
+        trig, free = get(f"brdf/{typ}/oren_nayar_trig"), get(f"brdf/{typ}/oren_nayar_trig_free")
+        if trig and free:
+            r = trig / free
+            rows.append((f"Oren-Nayar trig / trig-free (speed-up), {typ}", r, "≥ 2", r >= 2.0))
+    out = [f"| target ({label_unit}) | measured | goal | reached |", "|---|---:|---:|:---:|"]
+    for label, r, goal, ok in rows:
+        out.append(f"| {label} | {r:.2f} | {goal} | {'yes' if ok else '**no**'} |")
+    out.append("")
+    return out
+
+
+def cpu_model():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return "unknown"
+
+
+def cpu_flags_of_interest():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("flags"):
+                    flags = set(line.split(":", 1)[1].split())
+                    return " ".join(x for x in ("sse4_2", "avx", "avx2", "fma", "avx512f") if x in flags)
+    except OSError:
+        pass
+    return ""
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--time-dir", required=True, help="JSON files of the timed run")
+    ap.add_argument("--native-dir", help="JSON files of the -march=native batch run")
+    ap.add_argument("--callgrind-dir", help="callgrind dumps and JSON of the fixed-iteration run")
+    ap.add_argument("--compiler", default="")
+    ap.add_argument("--flags", default="")
+    ap.add_argument("--native-flags", default="")
+    ap.add_argument("--command", default="script/bench")
+    ap.add_argument("--benchmark-version", default="")
+    args = ap.parse_args()
+
+    time_runs, context = {}, {}
+    for path in sorted(glob.glob(os.path.join(args.time_dir, "*.json"))):
+        ctx, runs = load_json(path)
+        context = context or ctx
+        time_runs.update(runs)
+    if not time_runs:
+        sys.exit("report.py: no benchmark results in " + args.time_dir)
+
+    lines = ["# Benchmarks", "",
+             f"Generated by `{args.command}` (bench/report.py); do not edit by hand.", "",
+             "## Machine", "",
+             f"- CPU: {cpu_model()} ({os.cpu_count()} logical CPUs; {cpu_flags_of_interest()})",
+             f"- Compiler: {args.compiler}",
+             f"- Flags: `{args.flags}`",
+             f"- Google Benchmark: {args.benchmark_version or context.get('library_version', '?')}"
+             f"{' (a debug build of the library, as Debian ships it: it warns, the ratios still hold)' if context.get('library_build_type') == 'debug' else ''}",
+             f"- Run: {context.get('date', '?')}, load average at start "
+             f"{', '.join(f'{x:.2f}' for x in context.get('load_avg', [])) or '?'}",
+             "",
+             "## Method", "",
+             "- Every benchmark runs one routine over the same precomputed arrays (512 pairs: "
+             "35 KiB in float, so they stay in the 48 KiB L1 data cache; double takes twice "
+             "that) and hands each result to `benchmark::DoNotOptimize`. Intersection routines "
+             "are reduced to the same record (hit, t, two barycentrics or coordinates), so "
+             "every routine does the same observable work.",
+             "- GLM's `intersectRayTriangle` is given the `t > 0` check it lacks (it reports "
+             "hits behind the origin); its epsilon on det stays. Sphere: GLM's position-and-"
+             "normal overload (unit directions, as it requires). Plane: GLM's distance plus the "
+             "hit point.",
+             "- Times are CPU time per operation, the median of 3 repetitions; a ratio is "
+             "time(variant) / time(baseline) of the same group from the same run of the same "
+             "binary (below 1: faster than the baseline). The machine is shared (2 cores, other "
+             "builds running), so single times are noisy; the ratios and the instruction "
+             "counts are the figures to compare.",
+             "- Hit rates are measured with each routine on its own data and shown next to "
+             "its time (~0 %, ~50 %, ~100 % targeted; the random 50 % sets come out at "
+             "46-52 %).",
+             "- The batch (`shade::triangle_batch`, include/shade/geometry/triangle_batch.hpp) "
+             "gives bitwise the scalar Möller-Trumbore's results "
+             "(tests/geometry/test_triangle_batch.cpp). It uses GNU vector extensions: 4 "
+             "floats per step with the default x86-64 flags (SSE2), 8 with AVX.",
+             ""]
+
+    lines += ["## Targets (timed run)", ""]
+    lines += target_rows(per_op(time_runs), "ratio of times")
+
+    lines += ["Where a target is missed, the structural reasons (the code, not this run):", "",
+              "- Default scalar test vs GLM: `shade::moller_trumbore` (triangle.hpp) divides "
+              "u = U/det before its first test, where GLM compares U with det and divides once "
+              "at the end; it checks `ray::valid()` on every call; and on a hit it builds the "
+              "whole record in `detail::finish_triangle_hit`: the unit normal "
+              "(`normalize_or_zero`: a maximum, two sets of three divisions, a square root) and "
+              "the interpolated point with finiteness checks. GLM returns t and (u, v) only. "
+              "The instruction counts below show the gap growing with the hit rate.",
+              "- Batch vs GLM: to give bitwise the scalar test's results, every lane does the "
+              "scalar algorithm's full arithmetic (27 multiplications, 19 additions, 3 "
+              "divisions in lanes that can still hit), while GLM's scalar test leaves early on "
+              "most misses. The default x86-64 target (SSE2) has 4 float lanes (2 double); "
+              "the -march=native build below has 8 (AVX).",
+              ""]
+
+    native_runs = {}
+    if args.native_dir:
+        for path in sorted(glob.glob(os.path.join(args.native_dir, "*.json"))):
+            native_runs.update(load_json(path)[1])
+        if native_runs:
+            lines += [f"With `{args.native_flags}` (batch only, separate build):", ""]
+            nat = per_op(native_runs)
+            rows = target_rows(nat, "ratio of times")
+            lines += [rows[0], rows[1]] + [r for r in rows[2:] if "batch" in r]
+            lines += [""]
+
+    lines += ["## Time per operation (ns)", ""]
+    lines += tables(per_op(time_runs), "ns", hit_rates_of(time_runs))
+    if native_runs:
+        lines += [f"### Batch with `{args.native_flags}`", ""]
+        lines += tables(per_op(native_runs), "ns", hit_rates_of(native_runs))
+
+    lines += ["## Instructions per operation (callgrind)", ""]
+    if args.callgrind_dir:
+        cg_runs = {}
+        for path in sorted(glob.glob(os.path.join(args.callgrind_dir, "*.json"))):
+            cg_runs.update(load_json(path)[1])
+        ir = load_callgrind(args.callgrind_dir, cg_runs)
+        iters = sorted({r["iterations"] for r in cg_runs.values()})
+        lines += ["Counted by `valgrind --tool=callgrind` over exactly the benchmark loop "
+                  f"({', '.join(map(str, iters))} iterations of 512 operations; counters zeroed "
+                  "before the loop and dumped after it), divided by the number of operations. "
+                  "Independent of machine noise; includes the loop and `DoNotOptimize` "
+                  "overhead, the same for every variant. Same build as the timed run.", ""]
+        lines += ["### Targets (instruction counts)", ""]
+        lines += target_rows(ir, "ratio of instruction counts")
+        lines += tables(ir, "instr")
+    else:
+        lines += ["Not measured in this run: `script/bench --callgrind` adds them.", ""]
+
+    with open(args.out, "w") as f:
+        f.write("\n".join(lines))
+    print(f"report.py: wrote {args.out}")
+
+
+if __name__ == "__main__":
+    main()

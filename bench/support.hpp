@@ -1,0 +1,77 @@
+#pragma once
+// Shared helpers of the benchmarks in bench/*.cpp: registration with names that
+// bench/report.py groups into tables, counters it reads, the fixed-iteration mode and the
+// callgrind markers used by `script/bench --callgrind`.
+//
+// Naming: "<group>/<variant>", e.g. "triangle/float/hit50/glm". Everything before the
+// last '/' is the group: the variants of one group run on the same data in the same
+// binary, and bench/report.py computes their ratios to the group's baseline variant.
+//
+// Counters (in the JSON output): ops_per_iter, the number of operations (intersection
+// tests, BRDF evaluations) one benchmark iteration performs, so that time per operation =
+// time per iteration / ops_per_iter; hit_rate, for intersection benchmarks, the fraction
+// of those tests that hit, measured with the benchmarked routine itself on the same data.
+//
+// Fixed iterations: when the environment variable SHADE_BENCH_ITERATIONS is a positive
+// number, every benchmark runs exactly that many iterations (for callgrind, where time
+// means nothing). Under valgrind --tool=callgrind, each benchmark zeroes the counters
+// just before its timed loop and dumps them right after it, with the benchmark's name as
+// the dump's description, so bench/report.py can divide the instructions of exactly
+// that loop by iterations x ops_per_iter.
+
+#include <cstdint>
+#include <cstdlib>
+#include <string>
+#include <utility>
+
+#include <benchmark/benchmark.h>
+
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define SHADE_BENCH_CALLGRIND 1
+#else
+#define SHADE_BENCH_CALLGRIND 0
+#endif
+
+namespace shade_bench {
+
+/// The fixed iteration count from SHADE_BENCH_ITERATIONS, or 0 (let Google Benchmark
+/// choose) when it is unset or not a positive number.
+inline benchmark::IterationCount fixed_iterations() {
+    const char* text = std::getenv("SHADE_BENCH_ITERATIONS");
+    if (text == nullptr) return 0;
+    const long long n = std::atoll(text);
+    return n > 0 ? static_cast<benchmark::IterationCount>(n) : 0;
+}
+
+/// Registers the benchmark `name` whose every iteration calls body() once, performing
+/// ops_per_iter operations. hit_rate < 0 means "not an intersection benchmark".
+template <class Body>
+void add(const std::string& name, double ops_per_iter, Body body, double hit_rate = -1.0) {
+    auto* b = benchmark::RegisterBenchmark(
+        name.c_str(), [name, ops_per_iter, hit_rate, body](benchmark::State& state) mutable {
+#if SHADE_BENCH_CALLGRIND
+            CALLGRIND_ZERO_STATS;
+#endif
+            for (auto _ : state) body();
+#if SHADE_BENCH_CALLGRIND
+            CALLGRIND_DUMP_STATS_AT(name.c_str());
+#endif
+            state.counters["ops_per_iter"] = ops_per_iter;
+            if (hit_rate >= 0.0) state.counters["hit_rate"] = hit_rate;
+        });
+    if (const benchmark::IterationCount n = fixed_iterations(); n > 0) b->Iterations(n);
+}
+
+/// What every intersection benchmark keeps of one test, whatever the routine returns: hit
+/// or not, t and two barycentric coordinates (or zeros). Passing this same small record to
+/// benchmark::DoNotOptimize gives every routine the same observable work.
+template <class T>
+struct outcome {
+    int hit = 0;
+    T t = T(0);
+    T u = T(0);
+    T v = T(0);
+};
+
+} // namespace shade_bench

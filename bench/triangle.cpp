@@ -1,0 +1,234 @@
+// Ray/triangle intersection: shade's three scalar algorithms against GLM 0.9.9.8's
+// glm::intersectRayTriangle at three hit rates, and the SoA batch (one ray against 8 or
+// 16 triangles) against the same GLM test, per test. See bench/support.hpp for names,
+// counters and the callgrind mode; script/bench turns the output into docs/benchmarks.md.
+//
+// Data: 512 precomputed (ray, triangle) pairs per benchmark, so that in float (68 bytes
+// a pair) they stay in a 48 KiB L1 data cache; double takes twice that (L2, streamed in
+// order). Every variant of a group runs over the same arrays.
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#define GLM_ENABLE_EXPERIMENTAL
+#include <glm/gtx/intersect.hpp>
+
+#include <benchmark/benchmark.h>
+
+#include <shade/core/random.hpp>
+#include <shade/geometry/triangle.hpp>
+#include <shade/geometry/triangle_batch.hpp>
+
+#include "support.hpp"
+
+namespace {
+
+using shade_bench::outcome;
+
+constexpr std::size_t pair_count = 512;
+
+template <class T>
+using v3 = shade::vec3<T>;
+
+template <class T>
+struct pair_data {
+    std::vector<shade::ray<T>> rays;
+    std::vector<shade::triangle<T>> tris;
+};
+
+template <class T>
+v3<T> random_in_cube(shade::rng& g, T half_width) {
+    return v3<T>(T(2) * g.uniform<T>() - T(1), T(2) * g.uniform<T>() - T(1),
+                 T(2) * g.uniform<T>() - T(1)) *
+           half_width;
+}
+
+// Barycentrics (b1, b2) of a point clearly inside (margin 0.05 from every edge) or
+// clearly outside (0.05 to 0.5 beyond one of the three edges, chosen at random) the
+// triangle, so that every algorithm, GLM's epsilons included, agrees on the outcome.
+template <class T>
+std::pair<T, T> random_barycentrics(shade::rng& g, bool inside) {
+    for (;;) {
+        const T b1 = T(-0.5) + T(2) * g.uniform<T>();
+        const T b2 = T(-0.5) + T(2) * g.uniform<T>();
+        const T b0 = T(1) - b1 - b2;
+        const T lowest = std::min(b0, std::min(b1, b2));
+        if (inside ? lowest >= T(0.05) : (lowest <= T(-0.05) && lowest >= T(-0.5)))
+            return {b1, b2};
+    }
+}
+
+// Random triangles (vertices within 1 of a centre in [-2, 2]^3) and rays from 2 to 6 away
+// aimed at a point of the triangle's plane inside it with probability hit_fraction.
+template <class T>
+pair_data<T> make_pairs(double hit_fraction, std::uint64_t seed) {
+    shade::rng g(seed);
+    pair_data<T> data;
+    for (std::size_t i = 0; i < pair_count; ++i) {
+        const v3<T> centre = random_in_cube<T>(g, T(2));
+        const shade::triangle<T> tri{centre + random_in_cube<T>(g, T(1)),
+                                     centre + random_in_cube<T>(g, T(1)),
+                                     centre + random_in_cube<T>(g, T(1))};
+        const bool inside = g.uniform<double>() < hit_fraction;
+        const auto [b1, b2] = random_barycentrics<T>(g, inside);
+        const v3<T> target = tri.v0 + b1 * (tri.v1 - tri.v0) + b2 * (tri.v2 - tri.v0);
+        const v3<T> offset = random_in_cube<T>(g, T(1));
+        const T length = glm::length(offset);
+        const v3<T> origin = target + offset * ((T(2) + T(4) * g.uniform<T>()) / std::max(length, T(0.1)));
+        data.rays.push_back(shade::ray<T>{origin, target - origin});
+        data.tris.push_back(tri);
+    }
+    return data;
+}
+
+// One test of each routine, reduced to the same outcome record.
+template <class Algorithm, class T>
+outcome<T> run_shade(const shade::ray<T>& r, const shade::triangle<T>& tri) {
+    const auto h = shade::intersect<Algorithm>(r, tri);
+    if (!h) return {};
+    return {1, h->t, h->barycentric.y, h->barycentric.z};
+}
+
+// GLM with the t > 0 check it lacks (it reports hits behind the origin), so that it does
+// the same job as shade's routines. GLM's own epsilon on det stays.
+template <class T>
+outcome<T> run_glm(const shade::ray<T>& r, const shade::triangle<T>& tri) {
+    glm::vec<2, T> bary;
+    T distance;
+    if (glm::intersectRayTriangle(r.origin, r.direction, tri.v0, tri.v1, tri.v2, bary, distance) &&
+        distance > T(0))
+        return {1, distance, bary.x, bary.y};
+    return {};
+}
+
+template <class T, class Run>
+double hit_rate(const pair_data<T>& data, Run run) {
+    std::size_t hits = 0;
+    for (std::size_t i = 0; i < pair_count; ++i) hits += static_cast<std::size_t>(run(data.rays[i], data.tris[i]).hit);
+    return static_cast<double>(hits) / static_cast<double>(pair_count);
+}
+
+template <class T, class Run>
+void add_pairs(const std::string& name, const pair_data<T>& data, Run run) {
+    shade_bench::add(
+        name, double(pair_count),
+        [&data, run] {
+            for (std::size_t i = 0; i < pair_count; ++i) {
+                outcome<T> o = run(data.rays[i], data.tris[i]);
+                benchmark::DoNotOptimize(o);
+            }
+        },
+        hit_rate(data, run));
+}
+
+template <class T>
+void register_scalar(const char* type) {
+    // Static storage: the benchmarks refer to the data while they run.
+    static const std::array<pair_data<T>, 3> sets{make_pairs<T>(0.0, 11), make_pairs<T>(0.5, 12),
+                                                  make_pairs<T>(1.0, 13)};
+    const char* rates[3] = {"hit0", "hit50", "hit100"};
+    for (std::size_t k = 0; k < 3; ++k) {
+        const std::string group = std::string("triangle/") + type + "/" + rates[k] + "/";
+        const pair_data<T>& data = sets[k];
+        add_pairs<T>(group + "glm", data, run_glm<T>);
+        add_pairs<T>(group + "moller_trumbore", data, run_shade<shade::moller_trumbore, T>);
+        add_pairs<T>(group + "plane_then_areas", data, run_shade<shade::plane_then_areas, T>);
+        add_pairs<T>(group + "watertight", data, run_shade<shade::watertight, T>);
+    }
+}
+
+// ---- batch: one ray against 16 triangles placed along it ------------------------------
+
+constexpr std::size_t lanes = 16;
+constexpr std::size_t ray_count = pair_count / lanes;
+
+template <class T>
+struct batch_data {
+    pair_data<T> pairs; // pair i: ray i / 16 and triangle i
+    std::vector<shade::triangle_batch<T, 8>> batches8;   // 2 per ray
+    std::vector<shade::triangle_batch<T, 16>> batches16; // 1 per ray
+};
+
+// 32 rays; along each, 16 random triangles at t = 1 .. 16 that the ray pierces inside
+// (probability hit_fraction) or beside an edge.
+template <class T>
+batch_data<T> make_batches(double hit_fraction, std::uint64_t seed) {
+    shade::rng g(seed);
+    batch_data<T> data;
+    for (std::size_t k = 0; k < ray_count; ++k) {
+        const v3<T> origin = random_in_cube<T>(g, T(4));
+        v3<T> direction = random_in_cube<T>(g, T(1));
+        direction /= std::max(glm::length(direction), T(0.1));
+        const shade::ray<T> r{origin, direction};
+        std::array<shade::triangle<T>, lanes> tris;
+        for (std::size_t j = 0; j < lanes; ++j) {
+            shade::triangle<T> tri{random_in_cube<T>(g, T(1)), random_in_cube<T>(g, T(1)),
+                                   random_in_cube<T>(g, T(1))};
+            const bool inside = g.uniform<double>() < hit_fraction;
+            const auto [b1, b2] = random_barycentrics<T>(g, inside);
+            const v3<T> target = tri.v0 + b1 * (tri.v1 - tri.v0) + b2 * (tri.v2 - tri.v0);
+            const v3<T> shift = r.at(T(j + 1)) - target;
+            tri = {tri.v0 + shift, tri.v1 + shift, tri.v2 + shift};
+            tris[j] = tri;
+            data.pairs.rays.push_back(r);
+            data.pairs.tris.push_back(tri);
+        }
+        data.batches8.emplace_back(std::span<const shade::triangle<T>>(tris.data(), 8));
+        data.batches8.emplace_back(std::span<const shade::triangle<T>>(tris.data() + 8, 8));
+        data.batches16.emplace_back(std::span<const shade::triangle<T>>(tris.data(), 16));
+    }
+    return data;
+}
+
+template <class T, std::size_t N>
+double batch_hit_rate(const shade::ray<T>* rays, const std::vector<shade::triangle_batch<T, N>>& batches,
+                      std::size_t per_ray) {
+    std::size_t hits = 0;
+    for (std::size_t b = 0; b < batches.size(); ++b) hits += shade::intersect(rays[(b / per_ray) * lanes], batches[b]).count();
+    return static_cast<double>(hits) / static_cast<double>(pair_count);
+}
+
+template <class T>
+void register_batch(const char* type) {
+    static const std::array<batch_data<T>, 3> sets{make_batches<T>(0.0, 21), make_batches<T>(0.5, 22),
+                                                   make_batches<T>(1.0, 23)};
+    const char* rates[3] = {"hit0", "hit50", "hit100"};
+    for (std::size_t k = 0; k < 3; ++k) {
+        const std::string group = std::string("triangle_batch/") + type + "/" + rates[k] + "/";
+        const batch_data<T>& data = sets[k];
+        add_pairs<T>(group + "glm", data.pairs, run_glm<T>);
+        add_pairs<T>(group + "moller_trumbore", data.pairs, run_shade<shade::moller_trumbore, T>);
+        shade_bench::add(
+            group + "batch8",
+            double(pair_count),
+            [&data] {
+                for (std::size_t b = 0; b < data.batches8.size(); ++b) {
+                    auto all = shade::intersect(data.pairs.rays[(b / 2) * lanes], data.batches8[b]);
+                    benchmark::DoNotOptimize(all);
+                }
+            },
+            batch_hit_rate<T, 8>(data.pairs.rays.data(), data.batches8, 2));
+        shade_bench::add(
+            group + "batch16",
+            double(pair_count),
+            [&data] {
+                for (std::size_t b = 0; b < data.batches16.size(); ++b) {
+                    auto all = shade::intersect(data.pairs.rays[b * lanes], data.batches16[b]);
+                    benchmark::DoNotOptimize(all);
+                }
+            },
+            batch_hit_rate<T, 16>(data.pairs.rays.data(), data.batches16, 1));
+    }
+}
+
+const bool registered = [] {
+    register_scalar<float>("float");
+    register_scalar<double>("double");
+    register_batch<float>("float");
+    register_batch<double>("double");
+    return true;
+}();
+
+} // namespace
