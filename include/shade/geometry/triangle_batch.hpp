@@ -22,15 +22,18 @@
 // The division is deferred: each lane first computes the scalar algorithm's numerators
 // U = T·P, V = d·Q, T_n = e2·Q and det = e1·P without dividing, and a conservative
 // division-free test (a superset of the lanes the scalar test accepts) decides whether
-// any lane can hit. Only then are u = U/det, v = V/det and t = T_n/det computed, for all
-// lanes at once, and the scalar algorithm's own tests applied to them. A ray that misses
-// the whole batch (the common case in a bounding-volume hierarchy) divides nothing.
+// any lane of the vector step can hit. Only then are u = U/det, v = V/det and
+// t = T_n/det computed, for all lanes of the step at once, and the scalar algorithm's own
+// tests applied to them. A ray that misses the whole batch (the common case in a
+// bounding-volume hierarchy) divides nothing.
 //
 // Vectorization: the kernel is written once over a "lanes" type. With g++ and clang++ it
 // uses GNU vector extensions (vector_size), which both compile from the same source to
 // the target's SIMD instructions: 4 floats or 2 doubles per step with the x86-64
-// baseline SSE2, 8/4 with -mavx or better, NEON on ARM. No intrinsics; other
-// compilers get the same kernel one lane at a time (detail::scalar_lanes, also tested).
+// baseline SSE2, 8/4 with -mavx or better, NEON on ARM. The only target-specific code
+// turns a comparison mask into lane bits with the x86 movmsk builtins (a loop
+// elsewhere). Other compilers get the same kernel one lane at a time
+// (detail::scalar_lanes, also tested).
 // Plain loops over the arrays were tried first: g++ 12 vectorized only part of them
 // (not under its default -ftrapping-math) and clang++ 14 none.
 // Compile every translation unit that calls it with the same target flags (as for any
