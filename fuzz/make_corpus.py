@@ -1,0 +1,211 @@
+#!/usr/bin/env python3
+"""Writes the seed corpora fuzz/corpus/<target>/<name>.bin for every fuzz target.
+
+Each seed is a small, meaningful scene in the byte format of fuzz/input.hpp (a selector
+byte per scalar: 0 special value, 1 fixed point int16/256, ...) and of each target's own
+layout (see the comment at the top of each fuzz_<target>.cpp). The fuzzer mutates from
+these; committing them makes the bounded CI run start from useful inputs.
+Re-run after changing a target's layout:  python3 fuzz/make_corpus.py
+"""
+import os
+import struct
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+# Indices into special_values() in input.hpp.
+ZERO, NEG_ZERO, ONE, MINUS_ONE, HALF, TWO, INF, NEG_INF, NAN, DENORM_MIN, NORM_MIN, MAX, \
+    NEG_MAX, EPSILON, ONE_MINUS_HALF_EPS, TINY = range(16)
+
+
+def sp(i):
+    """A special value (selector 0)."""
+    return bytes([0, i])
+
+
+def fx(x):
+    """A fixed-point value x, a multiple of 1/256 within +-128 (selector 1)."""
+    n = int(round(x * 256))
+    assert -32768 <= n <= 32767 and n / 256 == x, x
+    return bytes([1]) + struct.pack('<h', n)
+
+
+def vec(*xs):
+    return b''.join(x if isinstance(x, bytes) else fx(x) for x in xs)
+
+
+def byte(*bs):
+    return bytes(bs)
+
+
+def write(target, name, data):
+    d = os.path.join(HERE, 'corpus', target)
+    os.makedirs(d, exist_ok=True)
+    with open(os.path.join(d, name + '.bin'), 'wb') as f:
+        f.write(data)
+
+
+UNIT_TRI = vec(0, 0, 0) + vec(1, 0, 0) + vec(0, 1, 0)
+INTERVAL = sp(ZERO) + sp(INF)
+
+
+def triangles():
+    for algo in ('moller_trumbore', 'plane_then_areas', 'watertight'):
+        t = 'triangle_' + algo
+        for scalar, head in (('float', 0), ('double', 1)):
+            write(t, f'hit_centre_{scalar}', byte(head, 0) + UNIT_TRI + vec(0.25, 0.25, 1) +
+                  vec(0, 0, -1) + INTERVAL)
+            write(t, f'back_face_culled_{scalar}', byte(head | 2, 0) + UNIT_TRI +
+                  vec(0.25, 0.25, -1) + vec(0, 0, 1) + INTERVAL)
+            write(t, f'aimed_edge_{scalar}', byte(head, 1) + UNIT_TRI + vec(0.5, 0.5, 2) +
+                  vec(0.5, 0.5, 1) + INTERVAL)
+            write(t, f'aimed_vertex_{scalar}', byte(head, 1) + UNIT_TRI + vec(-1, 2, 3) +
+                  vec(1, 0, 1) + INTERVAL)
+            write(t, f'parallel_{scalar}', byte(head, 0) + UNIT_TRI + vec(0, 0, 1) +
+                  vec(1, 0, 0) + INTERVAL)
+            write(t, f'interval_excludes_{scalar}', byte(head, 0) + UNIT_TRI +
+                  vec(0.25, 0.25, 1) + vec(0, 0, -1) + vec(2) + vec(3))
+            write(t, f'nan_direction_{scalar}', byte(head, 0) + UNIT_TRI + vec(0.25, 0.25, 1) +
+                  vec(0, sp(NAN), -1) + INTERVAL)
+            # Closed tetrahedron (0,0,0), (8,0,0), (0,8,0), (0,0,8), ray through an edge
+            # midpoint direction and through a vertex direction.
+            tet = bytes([0, 0, 0, 8, 0, 0, 0, 8, 0, 0, 0, 8]) + bytes([20])  # k = 0
+            write(t, f'closed_edge_{scalar}', byte(head, 2) + tet + vec(1, 1, -1))
+            write(t, f'closed_vertex_{scalar}', byte(head, 2) + tet + vec(-1, -1, 3))
+
+
+def plane():
+    for scalar, head in (('float', 0), ('double', 1)):
+        write('plane', f'hit_{scalar}', byte(head) + vec(0, 0, 0) + vec(0, 0, 2) +
+              vec(1, 1, 5) + vec(0, 0, -1) + INTERVAL)
+        write('plane', f'culled_back_{scalar}', byte(head | 2) + vec(0, 0, 0) + vec(0, 0, 1) +
+              vec(1, 1, -5) + vec(0, 0, 1) + INTERVAL)
+        write('plane', f'grazing_{scalar}', byte(head) + vec(0, 0, 0) + vec(0, 0, 1) +
+              vec(0, 0, 1) + vec(1, 0, sp(TINY)) + sp(ZERO) + sp(MAX))
+        write('plane', f'zero_normal_{scalar}', byte(head) + vec(0, 0, 0) + vec(0, 0, 0) +
+              vec(0, 0, 1) + vec(0, 0, -1) + INTERVAL)
+
+
+def sphere():
+    for scalar, head in (('float', 0), ('double', 1)):
+        write('sphere', f'hit_{scalar}', byte(head) + vec(0, 0, -5) + fx(2) + vec(0, 0, 0) +
+              vec(0, 0, -1) + INTERVAL)
+        write('sphere', f'inside_{scalar}', byte(head) + vec(0, 0, 0) + fx(1) +
+              vec(0.25, 0, 0) + vec(0, 1, 0) + INTERVAL)
+        write('sphere', f'aimed_tangent_{scalar}', byte(head | 2) + vec(0, 0, 0) + fx(1) +
+              vec(-4, 0, 0) + vec(0, 1, 0) + fx(1) + INTERVAL)
+        write('sphere', f'far_{scalar}', byte(head) + vec(100, 100, 100) + fx(0.5) +
+              vec(0, 0, 0) + vec(1, 1, 1) + INTERVAL)
+        write('sphere', f'bad_radius_{scalar}', byte(head) + vec(0, 0, 0) + sp(NAN) +
+              vec(0, 0, 5) + vec(0, 0, -1) + INTERVAL)
+
+
+def color():
+    for scalar, head in (('float', 0), ('double', 1)):
+        weights = vec(1, 1, 1)
+        d50_xyz = vec(0.96875, 1, 0.82421875)
+        write('color', f'ordinary_{scalar}', byte(head) + vec(0.5, 0.25, 0.75) +
+              vec(0.203125, 0.40625, 0.59375) + vec(50, 10, -20) + vec(60, -5, 30) + byte(10, 128, 255) +
+              vec(0.3125, 0.328125) + d50_xyz + byte(1) + weights)
+        write('color', f'd50_xyz_{scalar}', byte(head) + vec(0, 1, 0.0078125) +
+              vec(1, 1, 1) + vec(100, 0, 0) + vec(0, 0, 0) + byte(0, 0, 0) +
+              vec(0.3125, 0.328125) + d50_xyz + byte(0) + vec(2, 1, 1))
+        write('color', f'nan_and_inf_{scalar}', byte(head) + vec(sp(NAN), sp(INF), sp(NEG_INF)) +
+              vec(sp(MAX), -1, 0) + vec(sp(NAN), 0, 0) + vec(50, 0, 0) + byte(1, 2, 3) +
+              vec(sp(TINY), sp(DENORM_MIN)) + vec(sp(MAX), 0.5, 1) + byte(0) + weights)
+        write('color', f'opposite_hues_{scalar}', byte(head) + vec(0.125, 0.125, 0.125) +
+              vec(0.5, 0.5, 0.5) + vec(50, 2.5, 0) + vec(50, -2.5, 0) + byte(255, 255, 255) +
+              vec(0.3125, 0.328125) + d50_xyz + byte(1) + weights)
+
+
+def situation(how, n=(0, 0, 1), t=(1, 0, 0), a=(0.5, 0.25, 1), b=(-0.25, 0.5, 1)):
+    return vec(*n) + vec(*t) + byte(how) + vec(*a) + vec(*b)
+
+
+SITUATIONS = {
+    'generic': situation(0),
+    'l_equals_v': situation(1),
+    'l_opposite_v': situation(2),
+    'mirror_h_is_n': situation(3),
+    'l_is_n': situation(4),
+    'v_is_n': situation(5),
+    'grazing': situation(6),
+    'below_horizon': situation(0, b=(0.25, 0.5, -1)),
+    'raw_unnormalised': situation(7, a=(8, 0, 8), b=(0, sp(NAN), 1)),
+    'tilted_normal': situation(0, n=(1, 2, 3), t=(0, 1, 0)),
+}
+
+
+def brdfs():
+    params = {
+        'lambert': [('', vec(0.5, 0.25, 0.75))],
+        'phong': [(f'form{f}_', byte(f) + vec(0.25, 0.25, 0.25) + vec(0.5, 0.5, 0.5) + s)
+                  for f in range(3) for s in (fx(32),)] +
+                 [('shininess0_', byte(2) + vec(0.25, 0.25, 0.25) + vec(0.5, 0.5, 0.5) + sp(ZERO)),
+                  ('shininess1e4_', byte(0) + vec(0.25, 0.25, 0.25) + vec(0.5, 0.5, 0.5) +
+                   bytes([2]) + struct.pack('<h', 20000) + bytes([14]))],  # 0.61 * 2^14
+        'blinn_phong': [(f'form{f}_', byte(f) + vec(0.25, 0.25, 0.25) + vec(0.5, 0.5, 0.5) + fx(64))
+                        for f in range(4)] +
+                       [('shininess0_', byte(3) + vec(0.25, 0.25, 0.25) + vec(0.5, 0.5, 0.5) + sp(ZERO))],
+        'oren_nayar': [('trigfree_', byte(0) + vec(0.5, 0.5, 0.5) + fx(0.5)),
+                       ('trig_', byte(1) + vec(0.5, 0.5, 0.5) + fx(1)),
+                       ('sigma0_', byte(0) + vec(0.5, 0.5, 0.5) + sp(ZERO))],
+        'ashikhmin_shirley': [('iso_', vec(0.5, 0.5, 0.5) + vec(0.25, 0.25, 0.25) + fx(100) + fx(100)),
+                              ('aniso_', vec(0.5, 0.5, 0.5) + vec(0.25, 0.25, 0.25) + fx(10) + fx(127)),
+                              ('p0_', vec(0.5, 0.5, 0.5) + vec(0.25, 0.25, 0.25) + sp(ZERO) + sp(ZERO))],
+        'cook_torrance': [(f'c{c}_', byte(c) + r + vec(0.0390625, 0.0390625, 0.0390625) + fx(1.5) +
+                           vec(1, 1, 1) + vec(0.25, 0.25, 0.25))
+                          for c in (0, 1, 2, 3, 4, 5, 6, 7, 8, 17)
+                          for r in (fx(0.25),)] +
+                         [('rough1e-4_', byte(1) + sp(TINY) + vec(0.5, 0.5, 0.5) + fx(1.5) +
+                           vec(1, 1, 1) + vec(0, 0, 0)),
+                          ('rough1_', byte(6) + sp(ONE) + vec(0.5, 0.5, 0.5) + fx(1.5) +
+                           vec(1, 1, 1) + vec(0, 0, 0))],
+    }
+    for model, variants in params.items():
+        for prefix, p in variants:
+            for sname, s in SITUATIONS.items():
+                for scalar, head in (('float', 0), ('double', 1)):
+                    if scalar == 'double' and sname not in ('generic', 'grazing', 'mirror_h_is_n'):
+                        continue
+                    write('brdf_' + model, f'{prefix}{sname}_{scalar}', byte(head) + p + s)
+
+
+def emission(intensity=1):
+    return fx(intensity) + vec(0.125, 0.125, 0.125) + vec(1, 1, 1) + vec(1, 0.5, 0.25)
+
+
+def sums():
+    lights = {
+        'directional': byte(0) + emission() + byte(0) + vec(1, 1, 1),
+        'point': byte(1) + emission(4) + byte(2) + vec(1, 2, 3),
+        'spot': byte(2) + emission(4) + byte(1) + vec(0, 0, 4) + vec(0, 0, -1) + fx(0.25) + fx(0.5),
+        'area': byte(3) + emission(2) + byte(0) + vec(-1, -1, 3) + vec(2, 0, 0) + vec(0, 2, 0) + byte(1),
+    }
+    shader_names = ['lit_lambert', 'lit_blinn_phong', 'toon', 'gooch', 'checker', 'gradient']
+    tail = vec(0.25, 0.5, 0) + vec(0, 0, 1) + vec(0.25, 0, 1)  # p, n, v
+    for which, sname in enumerate(shader_names):
+        shader = (byte(which) + vec(0.5, 0.5, 0.5) + vec(0.25, 0.25, 0.25) + vec(0.125, 0, 0.25) +
+                  fx(16) + fx(1) + vec(1, 0, 0) + byte(3))
+        for lname, l in lights.items():
+            for vis in range(4):
+                if vis and lname != 'area':
+                    continue
+                data = byte(0) + shader + byte(0) + l + tail + byte(vis) + fx(0.5) + byte(1) + byte(2)
+                write('sum_over_lights', f'{sname}_{lname}_vis{vis}', data)
+        all_lights = byte(2) + lights['directional'] + lights['point'] + lights['area']
+        write('sum_over_lights', f'{sname}_three_lights_double',
+              byte(1) + shader + all_lights + tail + byte(0) + fx(1) + byte(1) + byte(3))
+    # samples_per_side 0 must throw invalid_parameter.
+    write('sum_over_lights', 'samples_per_side_zero',
+          byte(0) + byte(0) + vec(0.5, 0.5, 0.5) + vec(0.25, 0.25, 0.25) + vec(0, 0, 0) + fx(16) +
+          fx(1) + vec(1, 0, 0) + byte(3) + byte(0) + lights['area'] + tail + byte(0) + fx(1) +
+          byte(1) + byte(0))
+
+
+if __name__ == '__main__':
+    triangles()
+    plane()
+    sphere()
+    color()
+    brdfs()
+    sums()
