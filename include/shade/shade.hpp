@@ -20,6 +20,7 @@
 #include <shade/geometry/ray.hpp>
 #include <shade/geometry/sphere.hpp>
 #include <shade/geometry/triangle.hpp>
+#include <shade/geometry/triangle_batch.hpp>
 
 #include <shade/brdf/ashikhmin_shirley.hpp>
 #include <shade/brdf/blinn_phong.hpp>
