@@ -118,7 +118,9 @@ TEST_CASE_TEMPLATE("the course-slide Cook-Torrance with F = 1 exceeds albedo 1 n
     const auto walter_albedo = check::directional_albedo(c, at.n(), at);
     // The slide form is exactly 4/pi times the consistent one, so its albedo is too.
     CHECK(slide_albedo.albedo.x == doctest::Approx(walter_albedo.albedo.x * 4 / pi<double>).epsilon(1e-4));
-    CHECK(walter_albedo.albedo.x <= 1.0);
+    // The consistent form's albedo at normal view is 1 - (lobe mass lost below the
+    // horizon and to masking) ~ 0.9999 for m = 0.2: allow the estimator's own error.
+    CHECK(walter_albedo.albedo.x <= 1.0 + 3 * walter_albedo.standard_error.x);
     CHECK(slide_albedo.albedo.x > 1.02);
     // Near normal incidence (views within 30 degrees) the check must catch it.
     auto near_normal = quick_albedo;
