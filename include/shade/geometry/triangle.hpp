@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <cmath>
 #include <concepts>
+#include <limits>
 #include <optional>
 #include <string_view>
 #include <tuple>
@@ -41,6 +42,13 @@
 #include <shade/core/types.hpp>
 #include <shade/geometry/hit.hpp>
 #include <shade/geometry/ray.hpp>
+
+#if defined(__GNUC__)
+/// Keeps a rarely taken tail out of line (g++ and clang++ both define __GNUC__).
+#define SHADE_NOINLINE [[gnu::noinline]]
+#else
+#define SHADE_NOINLINE
+#endif
 
 namespace shade {
 
@@ -56,10 +64,32 @@ struct triangle {
 
     /// The geometric unit normal normalize(cross(v1 - v0, v2 - v0)), or the zero vector
     /// when the triangle is degenerate (that cross product is exactly zero) or not finite.
-    [[nodiscard]] vec3<T> normal() const noexcept {
-        return detail::normalize_or_zero(glm::cross(v1 - v0, v2 - v0));
-    }
+    [[nodiscard]] vec3<T> normal() const noexcept;
 };
+
+namespace detail {
+
+/// c / |c| for the unnormalised triangle normal c = cross(v1 - v0, v2 - v0), or the zero
+/// vector when c is zero or not finite. Fast path: when |c|^2 = c·c is a normal finite
+/// number (neither underflowed nor overflowed), c / sqrt(c·c) directly; squares of
+/// components that underflowed are below 2^-24 (float) of c·c, so they move the result by
+/// under an ulp. Otherwise (tiny, huge or non-finite c) the scaled normalize_or_zero.
+/// Dividing (rather than multiplying by 1 / sqrt(c·c)) keeps axis-aligned normals exact.
+template <std::floating_point T>
+[[nodiscard]] inline vec3<T> unit_normal_from_cross(const vec3<T>& c) noexcept {
+    const T len2 = glm::dot(c, c);
+    // NaN fails both comparisons, +infinity the second.
+    if (len2 >= std::numeric_limits<T>::min() && len2 <= std::numeric_limits<T>::max())
+        return c / std::sqrt(len2);
+    return normalize_or_zero(c);
+}
+
+} // namespace detail
+
+template <std::floating_point T>
+vec3<T> triangle<T>::normal() const noexcept {
+    return detail::unit_normal_from_cross(glm::cross(v1 - v0, v2 - v0));
+}
 
 namespace detail {
 
@@ -68,15 +98,25 @@ namespace detail {
 /// barycentric is a number >= 0, the triangle has a normal (not degenerate) and the face
 /// passes culling. Centralising this makes the "bad input never hits" rules identical for
 /// all algorithms, whatever NaN or infinity an algorithm's arithmetic produced.
+/// cross_e1_e2 must be glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0) (the algorithms that
+/// already have the edges pass it in; the result is then bitwise tri.normal()).
 template <std::floating_point T>
 [[nodiscard]] inline std::optional<triangle_hit<T>>
 finish_triangle_hit(const ray<T>& r, const triangle<T>& tri, T t, const vec3<T>& b,
-                    bool front_face, culling cull) noexcept {
+                    bool front_face, culling cull, const vec3<T>& cross_e1_e2) noexcept {
     if (!in_interval(t, r.t_min, r.t_max)) return std::nullopt;
     if (!(b.x >= T(0) && b.y >= T(0) && b.z >= T(0))) return std::nullopt; // NaN fails too
     if (cull == culling::back_faces && !front_face) return std::nullopt;
-    const vec3<T> n = tri.normal();
-    if (!is_unit_normal(n)) return std::nullopt;
+    // unit_normal_from_cross inlined, deciding on |c|^2 rather than on the normal: its
+    // fast path always gives a finite non-zero vector, so no check of n is needed there.
+    const T len2 = glm::dot(cross_e1_e2, cross_e1_e2);
+    vec3<T> n;
+    if (len2 >= std::numeric_limits<T>::min() && len2 <= std::numeric_limits<T>::max()) {
+        n = cross_e1_e2 / std::sqrt(len2);
+    } else {
+        n = normalize_or_zero(cross_e1_e2);
+        if (!is_unit_normal(n)) return std::nullopt; // degenerate or not finite
+    }
     const vec3<T> p = b.x * tri.v0 + b.y * tri.v1 + b.z * tri.v2;
     if (!is_finite(p)) return std::nullopt;
     triangle_hit<T> h;
@@ -122,22 +162,52 @@ struct moller_trumbore {
     template <std::floating_point T>
     [[nodiscard]] static std::optional<triangle_hit<T>>
     intersect(const ray<T>& r, const triangle<T>& tri, culling cull = culling::none) noexcept {
-        if (!r.valid()) return std::nullopt;
         const vec3<T> e1 = tri.v1 - tri.v0;
         const vec3<T> e2 = tri.v2 - tri.v0;
         const vec3<T> p_vec = glm::cross(r.direction, e2);
         const T det = glm::dot(e1, p_vec);
         if (det == T(0)) return std::nullopt;
         if (cull == culling::back_faces && !(det > T(0))) return std::nullopt;
+        // Division-free early outs on the numerators U = T·P and V = d·Q: the candidate
+        // test of shade::intersect(ray, triangle_batch) (triangle_batch.hpp, where the
+        // slacks are derived): with a = |det| and s = sign(det),
+        //     s U >= -a 2^-20,  s V >= -a 2^-20,  a - s (U + V) >= -a 2^-10.
+        // It accepts every (U, V) the divided tests below accept (a superset: the slacks
+        // cover a quotient underflowing to -0 and the roundings of 1 - u - v), so the
+        // results are exactly those of dividing first; NaN fails every comparison.
+        const T a = std::abs(det);
+        const T m = a * T(0x1p-20);
         const vec3<T> t_vec = r.origin - tri.v0;
-        const T u = glm::dot(t_vec, p_vec) / det;
-        if (!(u >= T(0) && u <= T(1))) return std::nullopt; // early out; NaN fails too
+        const T u_num = glm::dot(t_vec, p_vec);
+        const T s_u = det < T(0) ? -u_num : u_num;
+        if (!(s_u >= -m)) return std::nullopt;
         const vec3<T> q_vec = glm::cross(t_vec, e1);
-        const T v = glm::dot(r.direction, q_vec) / det;
+        const T v_num = glm::dot(r.direction, q_vec);
+        const T s_v = det < T(0) ? -v_num : v_num;
+        if (!(s_v >= -m && a - (s_u + s_v) >= -(a * T(0x1p-10)))) return std::nullopt;
+        return candidate(r, tri, e1, e2, q_vec, det, u_num, v_num, cull);
+    }
+
+private:
+    /// The rest of intersect for a candidate: the divisions, the exact tests and the hit
+    /// record. Kept out of line so that the far more frequent misses above run with few
+    /// live values (no register spills) and no division.
+    template <std::floating_point T>
+    [[nodiscard]] SHADE_NOINLINE static std::optional<triangle_hit<T>>
+    candidate(const ray<T>& r, const triangle<T>& tri, const vec3<T>& e1, const vec3<T>& e2,
+              const vec3<T>& q_vec, T det, T u_num, T v_num, culling cull) noexcept {
+        // The ray's validity is checked only here, for candidates: misses never need it,
+        // and every bad ray still gets no hit, as before.
+        if (!r.valid()) return std::nullopt;
+        const T u = u_num / det;
+        const T v = v_num / det;
         const T b0 = T(1) - u - v;
-        if (!(v >= T(0) && b0 >= T(0))) return std::nullopt;
+        // u <= 1 follows from v >= 0 and b0 = (1 - u) - v >= 0 (a rounded difference is
+        // >= 0 exactly when the exact one is); NaN fails too.
+        if (!(u >= T(0) && v >= T(0) && b0 >= T(0))) return std::nullopt;
         const T t = glm::dot(e2, q_vec) / det;
-        return detail::finish_triangle_hit(r, tri, t, vec3<T>(b0, u, v), det > T(0), cull);
+        return detail::finish_triangle_hit(r, tri, t, vec3<T>(b0, u, v), det > T(0), cull,
+                                           glm::cross(e1, e2));
     }
 };
 
@@ -180,7 +250,7 @@ struct plane_then_areas {
         const T b1 = glm::dot(n_hat, glm::cross(tri.v0 - tri.v2, p - tri.v2)) / area2;
         if (!(b1 >= T(0))) return std::nullopt;
         const T b2 = glm::dot(n_hat, glm::cross(tri.v1 - tri.v0, p - tri.v0)) / area2;
-        return detail::finish_triangle_hit(r, tri, t, vec3<T>(b0, b1, b2), front_face, cull);
+        return detail::finish_triangle_hit(r, tri, t, vec3<T>(b0, b1, b2), front_face, cull, n);
     }
 };
 
@@ -255,7 +325,8 @@ struct watertight {
         const T c_z = s_z * c[k_z];
         const T t = (u * a_z + v * b_z + w * c_z) / det;
         return detail::finish_triangle_hit(r, tri, t, vec3<T>(u / det, v / det, w / det),
-                                           det > T(0), cull);
+                                           det > T(0), cull,
+                                           glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
     }
 };
 
