@@ -277,13 +277,14 @@ def main():
     lines += target_rows(per_op(time_runs), "ratio of times")
 
     lines += ["Where a target is missed, the structural reasons (the code, not this run):", "",
-              "- Default scalar test vs GLM: `shade::moller_trumbore` (triangle.hpp) divides "
-              "u = U/det before its first test, where GLM compares U with det and divides once "
-              "at the end; it checks `ray::valid()` on every call; and on a hit it builds the "
-              "whole record in `detail::finish_triangle_hit`: the unit normal "
-              "(`normalize_or_zero`: a maximum, two sets of three divisions, a square root) and "
-              "the interpolated point with finiteness checks. GLM returns t and (u, v) only. "
-              "The instruction counts below show the gap growing with the hit rate.",
+              "- Default scalar test vs GLM: `shade::moller_trumbore` (triangle.hpp) rejects "
+              "misses without dividing, as GLM does, but a candidate costs more: `ray::valid()`, "
+              "three divisions (u, v and t each divided by det, which keeps the results "
+              "bitwise those the batch reproduces) where GLM multiplies by one reciprocal, and "
+              "on a hit the whole record in `detail::finish_triangle_hit`: the unit normal (a "
+              "square root and three divisions) and the interpolated point with finiteness "
+              "checks. GLM returns t and (u, v) only. The instruction counts below show the "
+              "gap growing with the hit rate.",
               "- Batch vs GLM: to give bitwise the scalar test's results, every lane does the "
               "scalar algorithm's full arithmetic (27 multiplications, 19 additions, 3 "
               "divisions in lanes that can still hit), while GLM's scalar test leaves early on "
