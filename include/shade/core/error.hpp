@@ -55,9 +55,15 @@ std::string to_text(T x) {
     return out.str();
 }
 
+// Written with a stream rather than `"(" + to_text(...) + ...`: g++ 12 at -O3 reports a
+// false -Wrestrict on that chain of std::string operator+ (GCC bug 105329), which
+// -Werror would turn into a build failure in Release builds of user code.
 template <std::floating_point T>
 std::string to_text(const vec3<T>& v) {
-    return "(" + to_text(v.x) + ", " + to_text(v.y) + ", " + to_text(v.z) + ")";
+    std::ostringstream out;
+    out.precision(9);
+    out << '(' << v.x << ", " << v.y << ", " << v.z << ')';
+    return out.str();
 }
 
 } // namespace detail
