@@ -83,11 +83,23 @@ pair_data<T> make_pairs(double hit_fraction, std::uint64_t seed) {
     return data;
 }
 
-// One test of each routine, reduced to the same outcome record.
+// One test of each routine, reduced to the same outcome record. find_intersection is the
+// lean test (t, barycentrics, front face), the same job GLM does; intersect also builds
+// the full record (hit point and unit normal), which a renderer needs once per ray.
 template <class Algorithm, class T>
 outcome<T> run_shade(const shade::ray<T>& r, const shade::triangle<T>& tri) {
+    const auto x = shade::find_intersection<Algorithm>(r, tri);
+    if (!x) return {};
+    return {1, x->t, x->barycentric.y, x->barycentric.z};
+}
+
+template <class Algorithm, class T>
+outcome<T> run_shade_record(const shade::ray<T>& r, const shade::triangle<T>& tri) {
     const auto h = shade::intersect<Algorithm>(r, tri);
     if (!h) return {};
+    // The point and normal are kept too, so that they are computed.
+    benchmark::DoNotOptimize(h->p);
+    benchmark::DoNotOptimize(h->n);
     return {1, h->t, h->barycentric.y, h->barycentric.z};
 }
 
@@ -136,6 +148,7 @@ void register_scalar(const char* type) {
         add_pairs<T>(group + "moller_trumbore", data, run_shade<shade::moller_trumbore, T>);
         add_pairs<T>(group + "plane_then_areas", data, run_shade<shade::plane_then_areas, T>);
         add_pairs<T>(group + "watertight", data, run_shade<shade::watertight, T>);
+        add_pairs<T>(group + "moller_trumbore_record", data, run_shade_record<shade::moller_trumbore, T>);
     }
 }
 

@@ -32,7 +32,12 @@ template <class Algorithm, std::floating_point T>
 void check_triangle(const ray<T>& r, const triangle<T>& tri, culling cull) {
     const auto h = intersect<Algorithm>(r, tri, cull);
     check_hit(r, h, cull);
+    // The lean test must find exactly what the full one reports.
+    const auto x = find_intersection<Algorithm>(r, tri, cull);
+    expect(x.has_value() == h.has_value(), "find_intersection and intersect disagree on a hit");
     if (!h) return;
+    expect(x->t == h->t && x->barycentric == h->barycentric && x->front_face == h->front_face,
+           "find_intersection and intersect disagree on t, barycentrics or the face");
     const vec3<T>& b = h->barycentric;
     const bool b_ok = is_finite(b) && b.x >= T(0) && b.y >= T(0) && b.z >= T(0);
     if (!b_ok) show("barycentric", b);
@@ -87,7 +92,7 @@ void check_closed(input& in) {
                                            triangle<T>{v[1], v[3], v[2]}};
     int hits = 0;
     for (const auto& f : faces) {
-        const auto h = watertight::intersect(r, f);
+        const auto h = intersect<watertight>(r, f);
         check_hit(r, h);
         if (h) ++hits;
     }

@@ -166,12 +166,16 @@ struct scene {
     }
 
 private:
-    [[nodiscard]] std::optional<shade::triangle_hit<real>> triangle_hit(const tracer::mesh& m, std::uint32_t tri,
-                                                                        const shade::ray<real>& r) const {
+    [[nodiscard]] static shade::triangle<real> mesh_triangle(const tracer::mesh& m, std::uint32_t tri) {
         const std::size_t i = 3 * std::size_t(tri);
-        const shade::triangle<real> t{m.positions[m.indices[i]], m.positions[m.indices[i + 1]],
-                                      m.positions[m.indices[i + 2]]};
-        return shade::intersect<shade::watertight>(r, t);
+        return {m.positions[m.indices[i]], m.positions[m.indices[i + 1]], m.positions[m.indices[i + 2]]};
+    }
+
+    /// Where r meets triangle tri of m (t and barycentrics only: the BVH tests many
+    /// triangles, and only the closest one needs a full record, from shade::make_hit).
+    [[nodiscard]] static std::optional<shade::triangle_intersection<real>>
+    triangle_hit(const tracer::mesh& m, std::uint32_t tri, const shade::ray<real>& r) {
+        return shade::find_intersection<shade::watertight>(r, mesh_triangle(m, tri));
     }
 
     [[nodiscard]] std::optional<scene_hit> intersect_object(std::size_t i, const shade::ray<real>& r) const {
@@ -197,23 +201,24 @@ private:
         }
         case object::kind::mesh: {
             const tracer::mesh& m = *o.mesh;
-            const auto h = o.mesh_bvh->closest<shade::triangle_hit<real>>(
+            const auto x = o.mesh_bvh->closest<shade::triangle_intersection<real>>(
                 r, [&](std::uint32_t tri, const shade::ray<real>& rr) {
                     auto th = triangle_hit(m, tri, rr);
                     if (th) out.triangle = tri; // the last accepted hit is the closest
                     return th;
                 });
-            if (!h) return std::nullopt;
-            out.t = h->t;
-            out.p = h->p;
-            out.barycentric = h->barycentric;
-            out.geometric_n = h->facing_normal();
+            if (!x) return std::nullopt;
+            const auto h = shade::make_hit(mesh_triangle(m, out.triangle), *x);
+            out.t = h.t;
+            out.p = h.p;
+            out.barycentric = h.barycentric;
+            out.geometric_n = h.facing_normal();
             out.shading_n = out.geometric_n;
             if (o.shading != mesh_shading::flat) {
                 const std::size_t k = 3 * std::size_t(out.triangle);
-                vec3 n = h->barycentric.x * m.normals[m.indices[k]] +
-                         h->barycentric.y * m.normals[m.indices[k + 1]] +
-                         h->barycentric.z * m.normals[m.indices[k + 2]];
+                vec3 n = h.barycentric.x * m.normals[m.indices[k]] +
+                         h.barycentric.y * m.normals[m.indices[k + 1]] +
+                         h.barycentric.z * m.normals[m.indices[k + 2]];
                 n = glm::normalize(n);
                 // Keep the interpolated normal on the viewer's side of the surface.
                 out.shading_n = glm::dot(n, out.geometric_n) < 0 ? -n : n;

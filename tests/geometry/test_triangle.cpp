@@ -328,7 +328,7 @@ TEST_CASE_TEMPLATE("triangle: all algorithms agree on 10^5 random ray/triangle p
         for_each_algorithm([&](auto algorithm) {
             using A = decltype(algorithm);
             tally& k = tallies[std::string(A::name)];
-            const auto h = A::intersect(r, tri, shade::culling::none);
+            const auto h = shade::intersect<A>(r, tri, shade::culling::none);
             if (h) ++k.hits;
             if (h.has_value() != ref.hit) {
                 ++k.disagreements;
@@ -472,7 +472,7 @@ mesh<T> tessellated_cube(int n) {
 template <class A, class T>
 bool mesh_hit(const mesh<T>& m, const shade::ray<T>& r) {
     for (std::size_t f = 0; f < m.faces.size(); ++f)
-        if (A::intersect(r, m.triangle(f), shade::culling::none)) return true;
+        if (shade::intersect<A>(r, m.triangle(f), shade::culling::none)) return true;
     return false;
 }
 
@@ -656,4 +656,108 @@ TEST_CASE_TEMPLATE("triangle: scaled by 1e-3 or 1e3, or translated by 1e4, the s
         }
     }
     CHECK(hits > 0);
+}
+
+// ---------------------------------------------------------------------------------------
+// The lean test and the record: find_intersection and make_hit.
+
+TEST_CASE_TEMPLATE("triangle: intersect is find_intersection followed by make_hit", C,
+                   SHADE_TEST_ALL_COMBOS) {
+    using T = typename C::scalar;
+    using A = typename C::algorithm;
+    std::mt19937_64 rng(77);
+    std::uniform_real_distribution<T> unit(T(-1), T(1));
+    std::size_t hits = 0;
+    for (int k = 0; k < 20000; ++k) {
+        const shade::triangle<T> tri{{unit(rng), unit(rng), unit(rng)},
+                                     {unit(rng), unit(rng), unit(rng)},
+                                     {unit(rng), unit(rng), unit(rng)}};
+        // Aimed near the centroid, so that about half of the rays hit.
+        const v3<T> o(2 * unit(rng), 2 * unit(rng), 2 * unit(rng));
+        const v3<T> aim = (tri.v0 + tri.v1 + tri.v2) / T(3) +
+                          T(0.3) * v3<T>(unit(rng), unit(rng), unit(rng));
+        const shade::ray<T> r{o, aim - o};
+        const auto cull = (k % 2) ? shade::culling::back_faces : shade::culling::none;
+        const auto x = shade::find_intersection<A>(r, tri, cull);
+        const auto h = shade::intersect<A>(r, tri, cull);
+        REQUIRE(x.has_value() == h.has_value());
+        if (!x) continue;
+        ++hits;
+        CHECK(x->t == h->t);
+        CHECK(x->barycentric == h->barycentric);
+        CHECK(x->front_face == h->front_face);
+        CHECK(x->u() == x->barycentric.y);
+        CHECK(x->v() == x->barycentric.z);
+        // The record: the interpolated point and the triangle's own unit normal.
+        const auto m = shade::make_hit(tri, *x);
+        CHECK(m.n == tri.normal());
+        CHECK(m.p == x->barycentric.x * tri.v0 + x->barycentric.y * tri.v1 +
+                         x->barycentric.z * tri.v2);
+        CHECK(m.p == h->p);
+    }
+    CHECK(hits > 4000);
+}
+
+TEST_CASE_TEMPLATE("triangle: make_hit keeps the point on the triangle's bounding box when the "
+                   "interpolation overflows",
+                   T, float, double) {
+    // Every vertex has x = max. With b = (1/2, 1/2, 2^-20) (sum above 1, as rounded
+    // barycentrics may be), b0 max + b1 max = max exactly and adding 2^-20 max overflows:
+    // p.x is clamped to the bounding box [max, max].
+    const T max = std::numeric_limits<T>::max();
+    const shade::triangle<T> tri{{max, 0, 0}, {max, 1, 0}, {max, 0, 1}};
+    const shade::triangle_intersection<T> x{T(1), v3<T>(T(0.5), T(0.5), T(0x1p-20)), true};
+    REQUIRE_FALSE(std::isfinite(x.barycentric.x * max + x.barycentric.y * max +
+                                x.barycentric.z * max));
+    const auto h = shade::make_hit(tri, x);
+    CHECK(h.p.x == max);
+    CHECK(h.p.y == T(0.5));
+    CHECK(h.p.z == T(0x1p-20));
+    CHECK(h.n == v3<T>(1, 0, 0));
+}
+
+TEST_CASE_TEMPLATE("triangle: no ray that is not valid() hits, over a sweep of special values", C,
+                   SHADE_TEST_ALL_COMBOS) {
+    // Möller-Trumbore has no explicit ray::valid() test: it relies on a non-finite or zero
+    // origin or direction turning det, U or V into NaN, infinity or zero. This sweep
+    // checks that claim (and the others' explicit test) on every combination of special
+    // values in one coordinate of the origin, one of the direction and the interval,
+    // against triangles the valid version of the ray hits.
+    using T = typename C::scalar;
+    using A = typename C::algorithm;
+    const T inf = std::numeric_limits<T>::infinity();
+    const T nan = std::numeric_limits<T>::quiet_NaN();
+    const T max = std::numeric_limits<T>::max();
+    const std::array<T, 10> specials{T(0), T(-0.0), T(0.25), T(-1), inf, -inf, nan, max, -max,
+                                     std::numeric_limits<T>::denorm_min()};
+    const std::array<shade::triangle<T>, 3> tris{
+        shade::triangle<T>{{-4, -4, 0}, {4, -4, 0}, {0, 4, 0}},
+        shade::triangle<T>{{0, -4, -4}, {0, 4, -4}, {0, 0, 4}},
+        shade::triangle<T>{{-4, 0, -4}, {4, 0, -4}, {0, 0, 4}}};
+    std::size_t tested = 0, valid_hits = 0;
+    for (int ko = 0; ko < 3; ++ko)
+        for (int kd = 0; kd < 3; ++kd)
+            for (const T so : specials)
+                for (const T sd : specials)
+                    for (const auto& [t_min, t_max] : std::array<std::pair<T, T>, 6>{
+                             {{0, inf}, {T(-1), inf}, {nan, inf}, {0, nan}, {2, 1}, {T(-0.0), inf}}}) {
+                        v3<T> o(T(0.5), T(0.25), T(0.125));
+                        v3<T> d(T(-0.1), T(-0.2), T(-0.3));
+                        o[ko] = so;
+                        d[kd] = sd;
+                        const shade::ray<T> r{o, d, t_min, t_max};
+                        for (const auto& tri : tris) {
+                            const auto x = shade::find_intersection<A>(r, tri);
+                            ++tested;
+                            if (!r.valid()) {
+                                CHECK_FALSE(x.has_value());
+                            } else if (x) {
+                                ++valid_hits;
+                                CHECK(std::isfinite(x->t));
+                                CHECK(x->t >= r.t_min);
+                            }
+                        }
+                    }
+    CHECK(tested == 3u * 3u * 10u * 10u * 6u * 3u);
+    CHECK(valid_hits > 100); // the sweep also contains rays that do hit
 }

@@ -7,19 +7,29 @@
 //     auto w = shade::intersect<shade::watertight>(r, tri);       // watertight
 //     auto c = shade::intersect<shade::watertight>(r, tri, shade::culling::back_faces);
 //
-// Every algorithm is a tag type with a static member `intersect(ray, triangle, culling)`
-// returning std::optional<triangle_hit<T>> and a `name`, so tests and benchmarks can loop
-// over shade::triangle_algorithms on the same data. All of them
+//     // In a hot loop (a BVH leaf), find t and the barycentrics only, and build the full
+//     // record once, for the closest triangle:
+//     if (auto x = shade::find_intersection(r, tri)) { r.t_max = x->t; best = {x, &tri}; }
+//     ... shade::triangle_hit<float> h = shade::make_hit(*best.tri, *best.x);
+//
+// Every algorithm is a tag type with a static member `find(ray, triangle, culling)`
+// returning std::optional<triangle_intersection<T>> (t, barycentrics, front_face) and a
+// `name`, so tests and benchmarks can loop over shade::triangle_algorithms on the same
+// data. shade::intersect<A> is find followed by shade::make_hit, which adds the hit point
+// and the unit normal. All algorithms
 //   * are double-sided by default (culling::back_faces keeps front faces only);
 //   * treat counter-clockwise (v0, v1, v2), seen from the front, as the front face: the
 //     geometric normal is normalize(cross(v1 - v0, v2 - v0));
-//   * report the same hit record: t in units of the ray direction, barycentrics
-//     (b0, b1, b2) of v0, v1, v2, p = b0 v0 + b1 v1 + b2 v2 (interpolated, so it lies on
-//     the triangle up to rounding), the geometric unit normal and front_face;
+//   * report the same record: t in units of the ray direction, barycentrics (b0, b1, b2)
+//     of v0, v1, v2, all >= 0, and front_face; make_hit adds p = b0 v0 + b1 v1 + b2 v2
+//     (interpolated, so it lies on the triangle up to rounding) and the geometric unit
+//     normal;
 //   * use no epsilons at all: a triangle 1e-6 wide is hit like one 1e6 wide;
 //   * return no hit for an invalid ray (see ray::valid), a degenerate triangle (the cross
 //     product of its edges evaluates to exactly zero, or a vertex is not finite), a ray
-//     parallel to the triangle's plane, or t outside [t_min, t_max].
+//     parallel to the triangle's plane, t outside [t_min, t_max], or when an
+//     intermediate product overflows (coordinates beyond about 1e18 in float, 1e150 in
+//     double).
 // They differ on rays through edges and vertices: only `watertight` guarantees that such a
 // ray hits at least one of the triangles sharing the edge or vertex.
 //
@@ -42,13 +52,6 @@
 #include <shade/core/types.hpp>
 #include <shade/geometry/hit.hpp>
 #include <shade/geometry/ray.hpp>
-
-#if defined(__GNUC__)
-/// Keeps a rarely taken tail out of line (g++ and clang++ both define __GNUC__).
-#define SHADE_NOINLINE [[gnu::noinline]]
-#else
-#define SHADE_NOINLINE
-#endif
 
 namespace shade {
 
@@ -91,41 +94,69 @@ vec3<T> triangle<T>::normal() const noexcept {
     return detail::unit_normal_from_cross(glm::cross(v1 - v0, v2 - v0));
 }
 
-namespace detail {
-
-/// The shared last step of every triangle algorithm: checks what the algorithm computed
-/// and builds the hit record. No hit unless t is finite and in [t_min, t_max], every
-/// barycentric is a number >= 0, the triangle has a normal (not degenerate) and the face
-/// passes culling. Centralising this makes the "bad input never hits" rules identical for
-/// all algorithms, whatever NaN or infinity an algorithm's arithmetic produced.
-/// cross_e1_e2 must be glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0) (the algorithms that
-/// already have the edges pass it in; the result is then bitwise tri.normal()).
+/// What a ray/triangle test finds: where along the ray, where on the triangle, and which
+/// side. shade::make_hit turns it into the full triangle_hit (hit point and normal).
+///
+/// barycentric = (b0, b1, b2) are the weights of v0, v1, v2, all >= 0, summing to 1 up
+/// to rounding; (u, v) = (b1, b2).
 template <std::floating_point T>
-[[nodiscard]] inline std::optional<triangle_hit<T>>
-finish_triangle_hit(const ray<T>& r, const triangle<T>& tri, T t, const vec3<T>& b,
-                    bool front_face, culling cull, const vec3<T>& cross_e1_e2) noexcept {
-    if (!in_interval(t, r.t_min, r.t_max)) return std::nullopt;
-    if (!(b.x >= T(0) && b.y >= T(0) && b.z >= T(0))) return std::nullopt; // NaN fails too
-    if (cull == culling::back_faces && !front_face) return std::nullopt;
-    // unit_normal_from_cross inlined, deciding on |c|^2 rather than on the normal: its
-    // fast path always gives a finite non-zero vector, so no check of n is needed there.
-    const T len2 = glm::dot(cross_e1_e2, cross_e1_e2);
-    vec3<T> n;
-    if (len2 >= std::numeric_limits<T>::min() && len2 <= std::numeric_limits<T>::max()) {
-        n = cross_e1_e2 / std::sqrt(len2);
-    } else {
-        n = normalize_or_zero(cross_e1_e2);
-        if (!is_unit_normal(n)) return std::nullopt; // degenerate or not finite
+struct triangle_intersection {
+    using scalar_type = T;
+
+    T t = T(0);                   ///< ray parameter, in units of the ray's direction
+    vec3<T> barycentric{1, 0, 0}; ///< (b0, b1, b2): weights of v0, v1, v2
+    bool front_face = true;       ///< true when the ray struck the counter-clockwise side
+
+    /// Weight of v1 (b1).
+    [[nodiscard]] constexpr T u() const noexcept { return barycentric.y; }
+    /// Weight of v2 (b2).
+    [[nodiscard]] constexpr T v() const noexcept { return barycentric.z; }
+};
+
+/// The full hit record of an intersection x that a triangle algorithm's find returned for
+/// tri: x's t, barycentrics and front_face, the geometric unit normal tri.normal(), and
+/// the point p = b0 v0 + b1 v1 + b2 v2. Where that sum overflows (vertices within a few
+/// ulps of the largest finite value), each coordinate of p is clamped to the triangle's
+/// bounding box, so p is always finite.
+/// Precondition: x came from a find (or intersect) on this same triangle, which
+/// guarantees a non-degenerate, finite triangle and finite barycentrics >= 0.
+template <std::floating_point T>
+[[nodiscard]] triangle_hit<T> make_hit(const triangle<T>& tri,
+                                       const triangle_intersection<T>& x) noexcept {
+    const vec3<T>& b = x.barycentric;
+    vec3<T> p = b.x * tri.v0 + b.y * tri.v1 + b.z * tri.v2;
+    if (!is_finite(p)) {
+        for (int k = 0; k < 3; ++k) {
+            const T lo = std::min(tri.v0[k], std::min(tri.v1[k], tri.v2[k]));
+            const T hi = std::max(tri.v0[k], std::max(tri.v1[k], tri.v2[k]));
+            p[k] = std::min(std::max(p[k], lo), hi); // an infinite p[k] becomes lo or hi
+        }
     }
-    const vec3<T> p = b.x * tri.v0 + b.y * tri.v1 + b.z * tri.v2;
-    if (!is_finite(p)) return std::nullopt;
     triangle_hit<T> h;
-    h.t = t;
+    h.t = x.t;
     h.p = p;
-    h.n = n;
-    h.front_face = front_face;
+    h.n = tri.normal();
+    h.front_face = x.front_face;
     h.barycentric = b;
     return h;
+}
+
+namespace detail {
+
+/// True when t is an accepted ray parameter of r: finite and in [t_min, t_max], with
+/// t_min >= 0 (a ray with a negative or NaN t_min is invalid and hits nothing). NaN fails,
+/// and so does an infinite t even when t_max is +infinity (a hit must be a point).
+template <std::floating_point T>
+[[nodiscard]] inline bool t_accepted(const ray<T>& r, T t) noexcept {
+    return r.t_min >= T(0) && t >= r.t_min && t <= r.t_max &&
+           t <= std::numeric_limits<T>::max();
+}
+
+/// True when the cross product of a triangle's edges makes a usable normal: finite and
+/// not exactly zero (the triangle is not degenerate and its vertices are finite).
+template <std::floating_point T>
+[[nodiscard]] inline bool usable_cross(const vec3<T>& n) noexcept {
+    return is_finite(n) && (n.x != T(0) || n.y != T(0) || n.z != T(0));
 }
 
 /// The next wider floating-point type, used by the watertight test's fallback: double for
@@ -144,70 +175,69 @@ struct wider<float> {
 } // namespace detail
 
 /// Möller and Trumbore's algorithm (the default): solves o + t d = (1-u-v) v0 + u v1 + v v2
-/// for (t, u, v) by Cramer's rule with scalar triple products, rejecting as early as
-/// possible.
+/// for (t, u, v) by Cramer's rule, with every determinant a scalar triple product.
 ///
 /// Möller, Trumbore 1997, "Fast, Minimum Storage Ray-Triangle Intersection", Journal of
-/// Graphics Tools 2(1):21-28, §2 (Cramer's rule, rewritten with P = d × e2, Q = T × e1):
-///     e1 = v1 - v0, e2 = v2 - v0, P = d × e2, det = e1·P, T = o - v0, Q = T × e1,
-///     u = T·P / det, v = d·Q / det, t = e2·Q / det.
-/// det = -d·(e1 × e2), so det > 0 exactly when the ray hits the front face. The paper's
-/// epsilon on det is dropped: only det == 0 (parallel ray or degenerate triangle) is
-/// rejected, so tiny triangles are not lost. The test u + v <= 1 is written as
-/// b0 = 1 - u - v >= 0 so that the returned b0 is never negative.
+/// Graphics Tools 2(1):21-28, §2. With e1 = v1 - v0, e2 = v2 - v0 and s = o - v0 the
+/// system is [-d | e1 | e2] (t, u, v) = s, and Cramer's rule gives
+///     det = -d·(e1 × e2),  u = -d·(s × e2) / det,  v = -d·(e1 × s) / det,
+///     t = s·(e1 × e2) / det.
+/// The paper evaluates these as P = d × e2, Q = s × e1. We rotate the triple products
+/// (a·(b × c) = b·(c × a)) around the geometric normal n = e1 × e2 and c = d × s:
+///     det = -d·n,  U = -e2·c,  V = e1·c,  T = s·n,   u = U/det, v = V/det, t = T/det,
+/// the arrangement Embree's Möller-Trumbore kernels use with a stored normal (Wald,
+/// Woop, Benthin, Johnson, Ernst 2014, "Embree: A Kernel Framework for Efficient CPU Ray
+/// Tracing", ACM Transactions on Graphics 33(4):143). The operation count is the same
+/// (two cross products, four dot products), but:
+///   * n depends on the triangle alone, so shade::triangle_batch stores it and each of its
+///     lanes does a quarter fewer operations than with P and Q (and bitwise the same);
+///   * a degenerate triangle (n exactly zero) gives det exactly zero, and a non-finite
+///     vertex, direction or origin gives a NaN or infinite det, U or V (an infinity
+///     times anything is infinite or NaN), so no separate check is needed: the tests
+///     below reject all of them, as they reject an overflowing product.
+/// det > 0 exactly when the ray hits the front face (d·n < 0).
+///
+/// The decision is made on the numerators, before any division: with a = |det| and
+/// U, V flipped by the sign of det (exact), the ray hits when
+///     U >= 0,  V >= 0,  W = a - (U + V) >= 0,  0 < a <= max,
+/// i.e. all three barycentric numerators are >= 0 (NaN fails every comparison). Only then
+/// is anything divided: t = T/a, b0 = W/a, b1 = U/a, b2 = V/a, each correctly rounded
+/// and >= 0. The paper's epsilon on det is dropped, so tiny triangles are not lost.
 struct moller_trumbore {
     static constexpr std::string_view name = "moller_trumbore"; ///< for test and benchmark output
 
-    /// The hit of r with tri, or nothing (see the header comment for the common rules).
+    /// Where r meets tri, or nothing (see the header comment for the common rules).
     template <std::floating_point T>
-    [[nodiscard]] static std::optional<triangle_hit<T>>
-    intersect(const ray<T>& r, const triangle<T>& tri, culling cull = culling::none) noexcept {
+    [[nodiscard]] static std::optional<triangle_intersection<T>>
+    find(const ray<T>& r, const triangle<T>& tri, culling cull = culling::none) noexcept {
         const vec3<T> e1 = tri.v1 - tri.v0;
         const vec3<T> e2 = tri.v2 - tri.v0;
-        const vec3<T> p_vec = glm::cross(r.direction, e2);
-        const T det = glm::dot(e1, p_vec);
-        if (det == T(0)) return std::nullopt;
-        if (cull == culling::back_faces && !(det > T(0))) return std::nullopt;
-        // Division-free early outs on the numerators U = T·P and V = d·Q: the candidate
-        // test of shade::intersect(ray, triangle_batch) (triangle_batch.hpp, where the
-        // slacks are derived): with a = |det| and s = sign(det),
-        //     s U >= -a 2^-20,  s V >= -a 2^-20,  a - s (U + V) >= -a 2^-10.
-        // It accepts every (U, V) the divided tests below accept (a superset: the slacks
-        // cover a quotient underflowing to -0 and the roundings of 1 - u - v), so the
-        // results are exactly those of dividing first; NaN fails every comparison.
+        const vec3<T> s = r.origin - tri.v0;
+        const vec3<T> c = glm::cross(r.direction, s);
+        const T u_raw = -glm::dot(e2, c);
+        const T v_raw = glm::dot(e1, c);
+        // Before n and det: U and V of strictly opposite signs can never both be >= 0 once
+        // flipped by sign(det), so the ray misses (it passes outside the edge v0 v1 or
+        // v0 v2); this cheap exit is taken before the normal is computed. An underflowing
+        // product (-0) or a NaN goes on to the full test below, which decides.
+        if (u_raw * v_raw < T(0)) return std::nullopt;
+        const vec3<T> n = glm::cross(e1, e2);
+        const T det = -glm::dot(r.direction, n);
         const T a = std::abs(det);
-        const T m = a * T(0x1p-20);
-        const vec3<T> t_vec = r.origin - tri.v0;
-        const T u_num = glm::dot(t_vec, p_vec);
-        const T s_u = det < T(0) ? -u_num : u_num;
-        if (!(s_u >= -m)) return std::nullopt;
-        const vec3<T> q_vec = glm::cross(t_vec, e1);
-        const T v_num = glm::dot(r.direction, q_vec);
-        const T s_v = det < T(0) ? -v_num : v_num;
-        if (!(s_v >= -m && a - (s_u + s_v) >= -(a * T(0x1p-10)))) return std::nullopt;
-        return candidate(r, tri, e1, e2, q_vec, det, u_num, v_num, cull);
-    }
-
-private:
-    /// The rest of intersect for a candidate: the divisions, the exact tests and the hit
-    /// record. Kept out of line so that the far more frequent misses above run with few
-    /// live values (no register spills) and no division.
-    template <std::floating_point T>
-    [[nodiscard]] SHADE_NOINLINE static std::optional<triangle_hit<T>>
-    candidate(const ray<T>& r, const triangle<T>& tri, const vec3<T>& e1, const vec3<T>& e2,
-              const vec3<T>& q_vec, T det, T u_num, T v_num, culling cull) noexcept {
-        // The ray's validity is checked only here, for candidates: misses never need it,
-        // and every bad ray still gets no hit, as before.
-        if (!r.valid()) return std::nullopt;
-        const T u = u_num / det;
-        const T v = v_num / det;
-        const T b0 = T(1) - u - v;
-        // u <= 1 follows from v >= 0 and b0 = (1 - u) - v >= 0 (a rounded difference is
-        // >= 0 exactly when the exact one is); NaN fails too.
-        if (!(u >= T(0) && v >= T(0) && b0 >= T(0))) return std::nullopt;
-        const T t = glm::dot(e2, q_vec) / det;
-        return detail::finish_triangle_hit(r, tri, t, vec3<T>(b0, u, v), det > T(0), cull,
-                                           glm::cross(e1, e2));
+        const T sign = std::copysign(T(1), det); // multiplying by it is exact
+        const T u_num = u_raw * sign;
+        const T v_num = v_raw * sign;
+        const T w_num = a - (u_num + v_num);
+        if (!(u_num >= T(0) && v_num >= T(0) && w_num >= T(0) && a > T(0) &&
+              a <= std::numeric_limits<T>::max()))
+            return std::nullopt;
+        if (cull == culling::back_faces && !(det > T(0))) return std::nullopt;
+        const T t = glm::dot(s, n) * sign / a;
+        // An invalid ray needs no test of its own: a non-finite origin or direction made
+        // U, V or det non-finite above, a zero direction made det zero, and t_accepted
+        // rejects a bad [t_min, t_max].
+        if (!detail::t_accepted(r, t)) return std::nullopt;
+        return triangle_intersection<T>{t, vec3<T>(w_num / a, u_num / a, v_num / a), det > T(0)};
     }
 };
 
@@ -229,10 +259,10 @@ private:
 struct plane_then_areas {
     static constexpr std::string_view name = "plane_then_areas"; ///< for test and benchmark output
 
-    /// The hit of r with tri, or nothing (see the header comment for the common rules).
+    /// Where r meets tri, or nothing (see the header comment for the common rules).
     template <std::floating_point T>
-    [[nodiscard]] static std::optional<triangle_hit<T>>
-    intersect(const ray<T>& r, const triangle<T>& tri, culling cull = culling::none) noexcept {
+    [[nodiscard]] static std::optional<triangle_intersection<T>>
+    find(const ray<T>& r, const triangle<T>& tri, culling cull = culling::none) noexcept {
         if (!r.valid()) return std::nullopt;
         const vec3<T> n = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
         const vec3<T> n_hat = detail::normalize_or_zero(n);
@@ -242,7 +272,7 @@ struct plane_then_areas {
         const bool front_face = n_dot_d < T(0);
         if (cull == culling::back_faces && !front_face) return std::nullopt;
         const T t = glm::dot(n_hat, tri.v0 - r.origin) / n_dot_d;
-        if (!detail::in_interval(t, r.t_min, r.t_max)) return std::nullopt;
+        if (!detail::t_accepted(r, t)) return std::nullopt;
         const vec3<T> p = r.at(t);
         const T area2 = glm::dot(n_hat, n); // |n|, twice the triangle's area
         const T b0 = glm::dot(n_hat, glm::cross(tri.v2 - tri.v1, p - tri.v1)) / area2;
@@ -250,7 +280,8 @@ struct plane_then_areas {
         const T b1 = glm::dot(n_hat, glm::cross(tri.v0 - tri.v2, p - tri.v2)) / area2;
         if (!(b1 >= T(0))) return std::nullopt;
         const T b2 = glm::dot(n_hat, glm::cross(tri.v1 - tri.v0, p - tri.v0)) / area2;
-        return detail::finish_triangle_hit(r, tri, t, vec3<T>(b0, b1, b2), front_face, cull, n);
+        if (!(b2 >= T(0))) return std::nullopt;
+        return triangle_intersection<T>{t, vec3<T>(b0, b1, b2), front_face};
     }
 };
 
@@ -275,11 +306,13 @@ struct plane_then_areas {
 struct watertight {
     static constexpr std::string_view name = "watertight"; ///< for test and benchmark output
 
-    /// The hit of r with tri, or nothing (see the header comment for the common rules).
+    /// Where r meets tri, or nothing (see the header comment for the common rules).
     template <std::floating_point T>
-    [[nodiscard]] static std::optional<triangle_hit<T>>
-    intersect(const ray<T>& r, const triangle<T>& tri, culling cull = culling::none) noexcept {
+    [[nodiscard]] static std::optional<triangle_intersection<T>>
+    find(const ray<T>& r, const triangle<T>& tri, culling cull = culling::none) noexcept {
         if (!r.valid()) return std::nullopt;
+        if (!detail::usable_cross(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0)))
+            return std::nullopt; // degenerate or not finite
         const vec3<T>& d = r.direction;
         const vec3<T> abs_d(std::abs(d.x), std::abs(d.y), std::abs(d.z));
         int k_z = 0;
@@ -324,19 +357,22 @@ struct watertight {
         const T b_z = s_z * b[k_z];
         const T c_z = s_z * c[k_z];
         const T t = (u * a_z + v * b_z + w * c_z) / det;
-        return detail::finish_triangle_hit(r, tri, t, vec3<T>(u / det, v / det, w / det),
-                                           det > T(0), cull,
-                                           glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
+        if (!detail::t_accepted(r, t)) return std::nullopt;
+        const vec3<T> bary(u / det, v / det, w / det);
+        // All >= 0 mathematically (same signs); checked again for NaN.
+        if (!(bary.x >= T(0) && bary.y >= T(0) && bary.z >= T(0))) return std::nullopt;
+        return triangle_intersection<T>{t, bary, det > T(0)};
     }
 };
 
-/// An algorithm tag A usable with intersect<A>: a static intersect(ray, triangle, culling)
-/// returning std::optional<triangle_hit<T>> and a name.
+/// An algorithm tag A usable with find_intersection<A> and intersect<A>: a static
+/// find(ray, triangle, culling) returning std::optional<triangle_intersection<T>> and a
+/// name.
 template <class A, class T>
 concept triangle_algorithm =
     std::floating_point<T> &&
     requires(const ray<T>& r, const triangle<T>& tri, culling cull) {
-        { A::intersect(r, tri, cull) } -> std::same_as<std::optional<triangle_hit<T>>>;
+        { A::find(r, tri, cull) } -> std::same_as<std::optional<triangle_intersection<T>>>;
         { A::name } -> std::convertible_to<std::string_view>;
     };
 
@@ -344,13 +380,27 @@ concept triangle_algorithm =
 /// (std::apply on a value, or doctest's TEST_CASE_TEMPLATE_APPLY).
 using triangle_algorithms = std::tuple<moller_trumbore, plane_then_areas, watertight>;
 
+/// Where ray r meets triangle tri (t, barycentrics, front_face) using Algorithm
+/// (Möller-Trumbore by default), or nothing. The lean test for hot loops: build the full
+/// record with make_hit only for the intersection you keep. Double-sided unless cull is
+/// culling::back_faces.
+template <class Algorithm = moller_trumbore, std::floating_point T>
+    requires triangle_algorithm<Algorithm, T>
+[[nodiscard]] std::optional<triangle_intersection<T>>
+find_intersection(const ray<T>& r, const triangle<T>& tri, culling cull = culling::none) noexcept {
+    return Algorithm::find(r, tri, cull);
+}
+
 /// The hit of ray r with triangle tri using Algorithm (Möller-Trumbore by default), or
-/// nothing. Double-sided unless cull is culling::back_faces.
+/// nothing: find_intersection followed by make_hit. Double-sided unless cull is
+/// culling::back_faces.
 template <class Algorithm = moller_trumbore, std::floating_point T>
     requires triangle_algorithm<Algorithm, T>
 [[nodiscard]] std::optional<triangle_hit<T>> intersect(const ray<T>& r, const triangle<T>& tri,
                                                        culling cull = culling::none) noexcept {
-    return Algorithm::intersect(r, tri, cull);
+    const std::optional<triangle_intersection<T>> x = Algorithm::find(r, tri, cull);
+    if (!x) return std::nullopt;
+    return make_hit(tri, *x);
 }
 
 } // namespace shade
