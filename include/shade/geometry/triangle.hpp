@@ -311,8 +311,6 @@ struct watertight {
     [[nodiscard]] static std::optional<triangle_intersection<T>>
     find(const ray<T>& r, const triangle<T>& tri, culling cull = culling::none) noexcept {
         if (!r.valid()) return std::nullopt;
-        if (!detail::usable_cross(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0)))
-            return std::nullopt; // degenerate or not finite
         const vec3<T>& d = r.direction;
         const vec3<T> abs_d(std::abs(d.x), std::abs(d.y), std::abs(d.z));
         int k_z = 0;
@@ -352,6 +350,11 @@ struct watertight {
             return std::nullopt;
         const T det = u + v + w;
         if (det == T(0)) return std::nullopt; // parallel ray or degenerate triangle
+        // The common rule for degenerate and non-finite triangles, checked only for rays
+        // that passed the edge tests (rounded edge functions of a zero-area triangle need
+        // not sum to exactly zero).
+        if (!detail::usable_cross(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0)))
+            return std::nullopt;
 
         const T a_z = s_z * a[k_z];
         const T b_z = s_z * b[k_z];
