@@ -31,11 +31,8 @@
 //     intermediate product overflows (coordinates beyond about 1e18 in float, 1e150 in
 //     double).
 // They differ on rays through edges and vertices: only `watertight` guarantees that such a
-// ray hits at least one of the triangles sharing the edge or vertex.
-//
-// Watertightness also needs the compiler not to fuse a*b - c*d into a fused multiply-add
-// (which makes the shared edge's two evaluations differ by more than a sign); x86-64
-// without -mfma never does, elsewhere compile with -ffp-contract=off.
+// ray hits at least one of the triangles sharing the edge or vertex, also when the
+// compiler fuses multiply-adds (tests/robustness builds its tests with -mfma).
 
 #include <algorithm>
 #include <cmath>
@@ -171,6 +168,23 @@ template <>
 struct wider<float> {
     using type = double;
 };
+
+/// The 2D edge function p_x q_y - p_y q_x of the watertight test, evaluated over the two
+/// points in a canonical (lexicographic) order and negated when that order swaps them.
+/// So the two triangles sharing an edge, which pass its end points in opposite orders,
+/// run the very same operations and get results of exactly opposite sign, even when the
+/// compiler fuses a*b - c*d into a fused multiply-add (which rounds the two products
+/// differently, so that a x b - c x d and c x d - a x b need not be opposite).
+template <std::floating_point T>
+[[nodiscard]] inline T edge_function(T p_x, T p_y, T q_x, T q_y) noexcept {
+    const bool swap = q_x < p_x || (q_x == p_x && q_y < p_y);
+    const T lo_x = swap ? q_x : p_x;
+    const T lo_y = swap ? q_y : p_y;
+    const T hi_x = swap ? p_x : q_x;
+    const T hi_y = swap ? p_y : q_y;
+    const T e = lo_x * hi_y - lo_y * hi_x;
+    return swap ? -e : e;
+}
 
 } // namespace detail
 
@@ -334,9 +348,9 @@ struct watertight {
         const T c_x = c[k_x] - s_x * c[k_z];
         const T c_y = c[k_y] - s_y * c[k_z];
 
-        T u = c_x * b_y - c_y * b_x;
-        T v = a_x * c_y - a_y * c_x;
-        T w = b_x * a_y - b_y * a_x;
+        T u = detail::edge_function(c_x, c_y, b_x, b_y); // c_x b_y - c_y b_x
+        T v = detail::edge_function(a_x, a_y, c_x, c_y); // a_x c_y - a_y c_x
+        T w = detail::edge_function(b_x, b_y, a_x, a_y); // b_x a_y - b_y a_x
         if (u == T(0) || v == T(0) || w == T(0)) {
             using W = typename detail::wider<T>::type;
             u = static_cast<T>(W(c_x) * W(b_y) - W(c_y) * W(b_x));
