@@ -295,7 +295,10 @@ struct plane_then_areas {
         if (!(b1 >= T(0))) return std::nullopt;
         const T b2 = glm::dot(n_hat, glm::cross(tri.v1 - tri.v0, p - tri.v0)) / area2;
         if (!(b2 >= T(0))) return std::nullopt;
-        return triangle_intersection<T>{t, vec3<T>(b0, b1, b2), front_face};
+        // A subnormal |n| (a sliver of a triangle) can overflow a quotient to infinity.
+        const vec3<T> b(b0, b1, b2);
+        if (!is_finite(b)) return std::nullopt;
+        return triangle_intersection<T>{t, b, front_face};
     }
 };
 
