@@ -140,20 +140,26 @@ template <std::floating_point T>
 
 namespace detail {
 
-/// True when t is an accepted ray parameter of r: finite and in [t_min, t_max], with
-/// t_min >= 0 (a ray with a negative or NaN t_min is invalid and hits nothing). NaN fails,
-/// and so does an infinite t even when t_max is +infinity (a hit must be a point).
+/// True when t is an accepted ray parameter of r: finite and in [t_min, t_max]
+/// (detail::in_interval), with t_min >= 0 (a ray with a negative or NaN t_min is invalid
+/// and hits nothing; Möller-Trumbore relies on this instead of calling ray::valid()).
 template <std::floating_point T>
 [[nodiscard]] inline bool t_accepted(const ray<T>& r, T t) noexcept {
-    return r.t_min >= T(0) && t >= r.t_min && t <= r.t_max &&
-           t <= std::numeric_limits<T>::max();
+    return r.t_min >= T(0) && in_interval(t, r.t_min, r.t_max);
 }
 
-/// True when the cross product of a triangle's edges makes a usable normal: finite and
-/// not exactly zero (the triangle is not degenerate and its vertices are finite).
+/// The shared last step of the algorithms whose arithmetic can produce anything (a NaN or
+/// infinite t or barycentric from a sliver triangle or extreme input): the intersection
+/// (t, b, front_face), or nothing unless t_accepted and every barycentric is finite and
+/// >= 0. Keeping these rules in one place makes "bad input never hits" the same for all.
+/// (Möller-Trumbore's barycentrics are finite and >= 0 by construction; it needs only
+/// t_accepted.)
 template <std::floating_point T>
-[[nodiscard]] inline bool usable_cross(const vec3<T>& n) noexcept {
-    return is_finite(n) && (n.x != T(0) || n.y != T(0) || n.z != T(0));
+[[nodiscard]] inline std::optional<triangle_intersection<T>>
+accept_intersection(const ray<T>& r, T t, const vec3<T>& b, bool front_face) noexcept {
+    if (!t_accepted(r, t)) return std::nullopt;
+    if (!(is_finite(b) && b.x >= T(0) && b.y >= T(0) && b.z >= T(0))) return std::nullopt;
+    return triangle_intersection<T>{t, b, front_face};
 }
 
 /// The next wider floating-point type, used by the watertight test's fallback: double for
@@ -286,7 +292,7 @@ struct plane_then_areas {
         const bool front_face = n_dot_d < T(0);
         if (cull == culling::back_faces && !front_face) return std::nullopt;
         const T t = glm::dot(n_hat, tri.v0 - r.origin) / n_dot_d;
-        if (!detail::t_accepted(r, t)) return std::nullopt;
+        if (!detail::t_accepted(r, t)) return std::nullopt; // before p = r.at(t) is used
         const vec3<T> p = r.at(t);
         const T area2 = glm::dot(n_hat, n); // |n|, twice the triangle's area
         const T b0 = glm::dot(n_hat, glm::cross(tri.v2 - tri.v1, p - tri.v1)) / area2;
@@ -294,11 +300,9 @@ struct plane_then_areas {
         const T b1 = glm::dot(n_hat, glm::cross(tri.v0 - tri.v2, p - tri.v2)) / area2;
         if (!(b1 >= T(0))) return std::nullopt;
         const T b2 = glm::dot(n_hat, glm::cross(tri.v1 - tri.v0, p - tri.v0)) / area2;
-        if (!(b2 >= T(0))) return std::nullopt;
-        // A subnormal |n| (a sliver of a triangle) can overflow a quotient to infinity.
-        const vec3<T> b(b0, b1, b2);
-        if (!is_finite(b)) return std::nullopt;
-        return triangle_intersection<T>{t, b, front_face};
+        // A subnormal |n| (a sliver of a triangle) can overflow a quotient to infinity,
+        // which the shared step rejects.
+        return detail::accept_intersection(r, t, vec3<T>(b0, b1, b2), front_face);
     }
 };
 
@@ -367,21 +371,17 @@ struct watertight {
             return std::nullopt;
         const T det = u + v + w;
         if (det == T(0)) return std::nullopt; // parallel ray or degenerate triangle
-        // The common rule for degenerate and non-finite triangles, checked only for rays
-        // that passed the edge tests (rounded edge functions of a zero-area triangle need
-        // not sum to exactly zero).
-        if (!detail::usable_cross(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0)))
-            return std::nullopt;
+        // The common rule for degenerate and non-finite triangles (triangle::normal is zero
+        // for them), checked only for rays that passed the edge tests: rounded edge
+        // functions of a zero-area triangle need not sum to exactly zero.
+        if (!detail::is_unit_normal(tri.normal())) return std::nullopt;
 
         const T a_z = s_z * a[k_z];
         const T b_z = s_z * b[k_z];
         const T c_z = s_z * c[k_z];
         const T t = (u * a_z + v * b_z + w * c_z) / det;
-        if (!detail::t_accepted(r, t)) return std::nullopt;
-        const vec3<T> bary(u / det, v / det, w / det);
-        // All >= 0 mathematically (same signs); checked again for NaN.
-        if (!(bary.x >= T(0) && bary.y >= T(0) && bary.z >= T(0))) return std::nullopt;
-        return triangle_intersection<T>{t, bary, det > T(0)};
+        return detail::accept_intersection(r, t, vec3<T>(u / det, v / det, w / det),
+                                           det > T(0));
     }
 };
 
