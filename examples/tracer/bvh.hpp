@@ -88,57 +88,25 @@ public:
     template <class H, class F>
     [[nodiscard]] std::optional<H> closest(shade::ray<real> r, F&& hit_primitive) const {
         std::optional<H> best;
-        if (nodes_.empty()) return best;
-        const vec3 inv_dir = real(1) / r.direction;
-        std::array<std::uint32_t, 64> stack{};
-        std::size_t top = 0;
-        stack[top++] = 0;
-        while (top > 0) {
-            const node& nd = nodes_[stack[--top]];
-            if (!nd.box.enter(r, inv_dir, r.t_max)) continue;
-            if (nd.count > 0) {
-                for (std::uint32_t i = nd.first; i < nd.first + nd.count; ++i) {
-                    if (auto h = hit_primitive(order_[i], r)) {
-                        r.t_max = h->t;
-                        best = h;
-                    }
-                }
-                continue;
+        traverse<true>(r, [&](std::uint32_t primitive) {
+            if (auto h = hit_primitive(primitive, r)) {
+                r.t_max = h->t;
+                best = h;
             }
-            // Visit the nearer child first so that t_max shrinks early.
-            std::uint32_t a = nd.first;
-            std::uint32_t b = nd.first + 1;
-            const auto ta = nodes_[a].box.enter(r, inv_dir, r.t_max);
-            const auto tb = nodes_[b].box.enter(r, inv_dir, r.t_max);
-            if (ta && tb && *tb < *ta) std::swap(a, b);
-            if (tb || ta) {
-                stack[top++] = b;
-                stack[top++] = a;
-            }
-        }
+            return false; // keep looking for a nearer hit
+        });
         return best;
     }
 
     /// True when any primitive is hit within the ray's interval (for shadow rays).
     template <class F>
     [[nodiscard]] bool any(const shade::ray<real>& r, F&& hit_primitive) const {
-        if (nodes_.empty()) return false;
-        const vec3 inv_dir = real(1) / r.direction;
-        std::array<std::uint32_t, 64> stack{};
-        std::size_t top = 0;
-        stack[top++] = 0;
-        while (top > 0) {
-            const node& nd = nodes_[stack[--top]];
-            if (!nd.box.enter(r, inv_dir, r.t_max)) continue;
-            if (nd.count > 0) {
-                for (std::uint32_t i = nd.first; i < nd.first + nd.count; ++i)
-                    if (hit_primitive(order_[i], r)) return true;
-                continue;
-            }
-            stack[top++] = nd.first;
-            stack[top++] = nd.first + 1;
-        }
-        return false;
+        bool found = false;
+        traverse<false>(r, [&](std::uint32_t primitive) {
+            found = static_cast<bool>(hit_primitive(primitive, r));
+            return found; // the first hit ends the search
+        });
+        return found;
     }
 
     /// Number of nodes (for tests and statistics).
@@ -148,6 +116,39 @@ public:
     [[nodiscard]] aabb bounds() const { return nodes_.empty() ? aabb{} : nodes_[0].box; }
 
 private:
+    /// Depth-first walk over the nodes whose boxes r enters within [t_min, t_max]: calls
+    /// visit(primitive) for each primitive of each leaf reached, and stops as soon as visit
+    /// returns true. visit may shrink r.t_max (r is re-read at every node), which prunes
+    /// the rest. NearFirst visits the nearer child first (worth two extra box tests per
+    /// node when t_max shrinks, as for closest hits; not for any-hit queries).
+    template <bool NearFirst, class Visit>
+    void traverse(const shade::ray<real>& r, Visit&& visit) const {
+        if (nodes_.empty()) return;
+        const vec3 inv_dir = real(1) / r.direction;
+        std::array<std::uint32_t, 64> stack{};
+        std::size_t top = 0;
+        stack[top++] = 0;
+        while (top > 0) {
+            const node& nd = nodes_[stack[--top]];
+            if (!nd.box.enter(r, inv_dir, r.t_max)) continue;
+            if (nd.count > 0) {
+                for (std::uint32_t i = nd.first; i < nd.first + nd.count; ++i)
+                    if (visit(order_[i])) return;
+                continue;
+            }
+            std::uint32_t a = nd.first;
+            std::uint32_t b = nd.first + 1;
+            if constexpr (NearFirst) {
+                const auto ta = nodes_[a].box.enter(r, inv_dir, r.t_max);
+                const auto tb = nodes_[b].box.enter(r, inv_dir, r.t_max);
+                if (!ta && !tb) continue;
+                if (ta && tb && *tb < *ta) std::swap(a, b);
+            }
+            stack[top++] = b; // a is popped first
+            stack[top++] = a;
+        }
+    }
+
     struct node {
         aabb box;
         std::uint32_t first = 0; ///< leaf: first index into order_; inner: left child
