@@ -51,16 +51,25 @@ template <class T, std::size_t N>
 void check_against_scalar(const shade::ray<T>& r, const shade::triangle_batch<T, N>& batch,
                           shade::culling cull, tally& count) {
     const auto all = shade::intersect(r, batch, cull);
-    // The portable one-lane-at-a-time kernel (used by compilers without GNU vector
-    // extensions) must give the same bits as the vector kernel used here.
-    const auto portable = shade::detail::intersect_batch<shade::detail::scalar_lanes<T>>(r, batch, cull);
-    for (std::size_t i = 0; i < N; ++i) {
-        CHECK(portable.hit(i) == all.hit(i));
-        CHECK(bits(portable.t[i]) == bits(all.t[i]));
-        CHECK(bits(portable.b0[i]) == bits(all.b0[i]));
-        CHECK(bits(portable.b1[i]) == bits(all.b1[i]));
-        CHECK(bits(portable.b2[i]) == bits(all.b2[i]));
-        CHECK(portable.front_face(i) == all.front_face(i));
+    // Every form of the kernel must give the same bits as the one intersect chose here:
+    // the portable one-lane-at-a-time kernel (compilers without GNU vector extensions),
+    // the kernel for the build's own target and, where this CPU has AVX, the AVX kernel
+    // that intersect selects at run time in builds without -mavx.
+    std::vector<shade::triangle_batch_hits<T, N>> forms{
+        shade::detail::intersect_batch<shade::detail::scalar_lanes<T>>(r, batch, cull),
+        shade::detail::intersect_batch<shade::detail::default_lanes<T, N>>(r, batch, cull)};
+#if defined(SHADE_DETAIL_BATCH_AVX_DISPATCH)
+    if (shade::detail::cpu_has_avx) forms.push_back(shade::detail::intersect_batch_avx(r, batch, cull));
+#endif
+    for (const auto& form : forms) {
+        CHECK(form.hit_bits == all.hit_bits);
+        CHECK(form.front_bits == all.front_bits);
+        for (std::size_t i = 0; i < N; ++i) {
+            CHECK(bits(form.t[i]) == bits(all.t[i]));
+            CHECK(bits(form.b0[i]) == bits(all.b0[i]));
+            CHECK(bits(form.b1[i]) == bits(all.b1[i]));
+            CHECK(bits(form.b2[i]) == bits(all.b2[i]));
+        }
     }
     std::optional<std::size_t> nearest;
     std::optional<shade::triangle_hit<T>> nearest_hit;
@@ -367,4 +376,19 @@ TEST_CASE_TEMPLATE("triangle_batch: degenerate, non-finite, tiny and huge triang
     CHECK(down.hit(7));
     CHECK(down.t[7] == T(7));
     CHECK(down.closest() == std::optional<std::size_t>(7));
+}
+
+TEST_CASE("triangle_batch: the kernel name says which form intersect runs") {
+    const std::string name = shade::triangle_batch_kernel();
+#if defined(SHADE_DETAIL_BATCH_AVX_DISPATCH)
+    // A build without -mavx on x86-64: AVX when the CPU has it, else the SSE2 baseline.
+    CHECK(name == (shade::detail::cpu_has_avx ? std::string("avx (selected at run time)")
+                                              : std::string("vector 16 bytes")));
+#elif defined(__AVX__)
+    CHECK(name == "vector 32 bytes");
+#elif defined(__GNUC__)
+    CHECK(name == "vector 16 bytes");
+#else
+    CHECK(name == "scalar");
+#endif
 }

@@ -34,6 +34,13 @@
 // turns a comparison mask into lane bits with the x86 movmsk builtins (a loop
 // elsewhere). Other compilers get the same kernel one lane at a time
 // (detail::scalar_lanes, also tested).
+//
+// Run-time dispatch: on x86-64 built without -mavx (the default target), the kernel is
+// also compiled for AVX (detail::intersect_batch_avx, 8 floats or 4 doubles per step,
+// through gnu::target) and shade::intersect calls it when the CPU and OS support AVX;
+// shade::triangle_batch_kernel() says which form runs. AVX does not include FMA, so
+// both forms give the same bits. Define SHADE_NO_RUNTIME_DISPATCH to always use the
+// build's own target.
 // Plain loops over the arrays were tried first: g++ 12 vectorized only part of them
 // (not under its default -ftrapping-math) and clang++ 14 none.
 // Compile every translation unit that calls it with the same target flags (as for any
@@ -216,21 +223,25 @@ struct batch_access {
 
 /// One lane at a time: the portable form of the batch kernel (any compiler), and the
 /// reference the vector form is tested against.
+///
+/// The lane operations of both forms write their result to their first argument instead
+/// of returning it: a 32-byte vector returned by value from code compiled without AVX
+/// would make g++ warn about the calling convention (-Wpsabi), see intersect_batch_avx.
 template <std::floating_point T>
 struct scalar_lanes {
     static constexpr std::size_t width = 1; ///< lanes per step
     using vec = T;                          ///< one value per lane
     using mask = bool;                      ///< one flag per lane
-    static vec load(const T* p) noexcept { return *p; }
+    static void load(vec& out, const T* p) noexcept { out = *p; }
     static void store(T* p, vec v) noexcept { *p = v; }
-    static vec splat(T x) noexcept { return x; }
-    static vec select(mask m, vec a, vec b) noexcept { return m ? a : b; }
-    static vec keep(mask m, vec a) noexcept { return m ? a : T(0); }
-    static vec abs(vec a) noexcept { return std::abs(a); }
-    static vec flip_sign(vec a, vec s) noexcept { return std::signbit(s) ? -a : a; }
-    static mask none() noexcept { return false; }
-    static bool any(mask m) noexcept { return m; }
+    static void splat(vec& out, T x) noexcept { out = x; }
+    static void select(vec& out, mask m, vec a, vec b) noexcept { out = m ? a : b; }
+    static void keep(vec& out, mask m, vec a) noexcept { out = m ? a : T(0); }
+    static void abs(vec& out, vec a) noexcept { out = std::abs(a); }
+    static void flip_sign(vec& out, vec a, vec s) noexcept { out = std::signbit(s) ? -a : a; }
     static std::uint64_t bits(mask m) noexcept { return m ? 1u : 0u; }
+    static std::uint64_t sign_bits(vec v) noexcept { return std::signbit(v) ? 1u : 0u; }
+    static bool any(mask m) noexcept { return m; }
 };
 
 #if defined(__GNUC__) // g++ and clang++
@@ -244,11 +255,11 @@ inline constexpr std::size_t native_vector_bytes = 32;
 inline constexpr std::size_t native_vector_bytes = 16;
 #endif
 
-/// The largest power-of-two number of bytes <= native_vector_bytes that divides N
-/// scalars of T: the step of the vector kernel.
-template <std::floating_point T, std::size_t N>
+/// The largest power-of-two number of bytes <= MaxBytes that divides N scalars of T: the
+/// step of the vector kernel.
+template <std::floating_point T, std::size_t N, std::size_t MaxBytes = native_vector_bytes>
 [[nodiscard]] constexpr std::size_t step_bytes() noexcept {
-    std::size_t bytes = native_vector_bytes;
+    std::size_t bytes = MaxBytes;
     while (bytes > N * sizeof(T) || (N * sizeof(T)) % bytes != 0) bytes /= 2;
     return bytes;
 }
@@ -262,47 +273,42 @@ struct vector_lanes {
     using mask_int = std::conditional_t<sizeof(T) == 4, std::int32_t, std::int64_t>;
     using vec [[gnu::vector_size(Bytes)]] = T;         ///< width values
     using mask [[gnu::vector_size(Bytes)]] = mask_int; ///< width flags (0 or -1)
-    static vec load(const T* p) noexcept {
-        vec v;
-        std::memcpy(&v, p, sizeof v);
-        return v;
+    [[gnu::always_inline]] static void load(vec& out, const T* p) noexcept {
+        std::memcpy(&out, p, sizeof out);
     }
-    static void store(T* p, const vec& v) noexcept { std::memcpy(p, &v, sizeof v); }
-    static vec splat(T x) noexcept {
-        vec v;
-        for (std::size_t i = 0; i < width; ++i) v[i] = x;
-        return v;
+    [[gnu::always_inline]] static void store(T* p, const vec& v) noexcept {
+        std::memcpy(p, &v, sizeof v);
     }
-    /// a where m is set, b elsewhere, bit for bit.
-    static vec select(const mask& m, const vec& a, const vec& b) noexcept {
-        return reinterpret_cast<vec>((reinterpret_cast<mask>(a) & m) |
-                                     (reinterpret_cast<mask>(b) & ~m));
+    [[gnu::always_inline]] static void splat(vec& out, T x) noexcept {
+        for (std::size_t i = 0; i < width; ++i) out[i] = x;
     }
-    /// a where m is set, +0 elsewhere.
-    static vec keep(const mask& m, const vec& a) noexcept {
-        return reinterpret_cast<vec>(reinterpret_cast<mask>(a) & m);
+    /// out = a where m is set, b elsewhere, bit for bit.
+    [[gnu::always_inline]] static void select(vec& out, const mask& m, const vec& a,
+                                              const vec& b) noexcept {
+        out = reinterpret_cast<vec>((reinterpret_cast<mask>(a) & m) |
+                                    (reinterpret_cast<mask>(b) & ~m));
     }
-    /// |a| (sign bit cleared), as std::abs.
-    static vec abs(const vec& a) noexcept {
-        return reinterpret_cast<vec>(reinterpret_cast<mask>(a) & ~sign_bits());
+    /// out = a where m is set, +0 elsewhere.
+    [[gnu::always_inline]] static void keep(vec& out, const mask& m, const vec& a) noexcept {
+        out = reinterpret_cast<vec>(reinterpret_cast<mask>(a) & m);
     }
-    /// a with its sign flipped where s has its sign bit set (a times sign(s), exactly).
-    static vec flip_sign(const vec& a, const vec& s) noexcept {
-        return reinterpret_cast<vec>(reinterpret_cast<mask>(a) ^
-                                     (reinterpret_cast<mask>(s) & sign_bits()));
+    /// out = |a| (sign bit cleared), as std::abs.
+    [[gnu::always_inline]] static void abs(vec& out, const vec& a) noexcept {
+        out = reinterpret_cast<vec>(reinterpret_cast<mask>(a) & ~sign_bit());
     }
-    static mask sign_bits() noexcept {
-        return reinterpret_cast<mask>(splat(-T(0)));
+    /// out = a with its sign flipped where s has its sign bit set (a times sign(s),
+    /// exactly).
+    [[gnu::always_inline]] static void flip_sign(vec& out, const vec& a, const vec& s) noexcept {
+        out = reinterpret_cast<vec>(reinterpret_cast<mask>(a) ^
+                                    (reinterpret_cast<mask>(s) & sign_bit()));
     }
-    static mask none() noexcept { return mask{}; }
-    static bool any(const mask& m) noexcept {
-        mask_int bits = 0;
-        for (std::size_t i = 0; i < width; ++i) bits |= m[i];
-        return bits != 0;
+    /// The sign bit of each lane as an integer: -0 reinterpreted (0x8000... per lane).
+    [[gnu::always_inline]] static mask_int sign_bit() noexcept {
+        return std::bit_cast<mask_int>(-T(0));
     }
     /// Bit i set where lane i of m is set: one movmsk instruction on x86 (these builtins
     /// are g++'s and clang++'s), a loop elsewhere.
-    static std::uint64_t bits(const mask& m) noexcept {
+    [[gnu::always_inline]] static std::uint64_t bits(const mask& m) noexcept {
 #if defined(__SSE2__)
         if constexpr (Bytes == 16 && sizeof(T) == 4) {
             using f4 [[gnu::vector_size(16)]] = float;
@@ -320,10 +326,38 @@ struct vector_lanes {
             using d4 [[gnu::vector_size(32)]] = double;
             return static_cast<std::uint32_t>(__builtin_ia32_movmskpd256(reinterpret_cast<d4>(m)));
         }
+#elif defined(__SSE2__)
+        // 32-byte steps without a global -mavx: the kernel compiled for AVX at run time
+        // (intersect_batch_avx). The AVX builtins are not allowed in code that is also
+        // compiled for the baseline, so each 16-byte half goes through the SSE form.
+        if constexpr (Bytes == 32) {
+            using half_lanes = vector_lanes<T, 16>;
+            typename half_lanes::mask lo, hi;
+            std::memcpy(&lo, &m, sizeof lo);
+            std::memcpy(&hi, reinterpret_cast<const char*>(&m) + sizeof lo, sizeof hi);
+            return half_lanes::bits(lo) | (half_lanes::bits(hi) << half_lanes::width);
+        }
 #endif
         std::uint64_t out = 0;
-        for (std::size_t i = 0; i < width; ++i) out |= std::uint64_t(m[i] != 0) << i;
+        for (std::size_t i = 0; i < width; ++i) out |= std::uint64_t(m[i] < 0) << i;
         return out;
+    }
+    /// Bit i set where lane i of v has its sign bit set (movmsk reads exactly that).
+    [[gnu::always_inline]] static std::uint64_t sign_bits(const vec& v) noexcept {
+        return bits(reinterpret_cast<mask>(v));
+    }
+    /// True when any lane of m is set.
+    [[gnu::always_inline]] static bool any(const mask& m) noexcept {
+#if !defined(__AVX__) && defined(__SSE2__)
+        if constexpr (Bytes == 32) { // one movmsk on the two halves or-ed (see bits)
+            using half_lanes = vector_lanes<T, 16>;
+            typename half_lanes::mask lo, hi;
+            std::memcpy(&lo, &m, sizeof lo);
+            std::memcpy(&hi, reinterpret_cast<const char*>(&m) + sizeof lo, sizeof hi);
+            return half_lanes::bits(lo | hi) != 0;
+        }
+#endif
+        return bits(m) != 0;
     }
 };
 
@@ -336,14 +370,21 @@ template <std::floating_point T, std::size_t N>
 using default_lanes = scalar_lanes<T>;
 #endif
 
+#if defined(__GNUC__)
+// Forced inline, so that the kernel is compiled for the instruction set of its caller:
+// intersect_batch_avx below is compiled for AVX while the rest of the program may not be.
+#define SHADE_DETAIL_BATCH_INLINE [[gnu::always_inline]] inline
+#else
+#define SHADE_DETAIL_BATCH_INLINE inline
+#endif
+
 /// The batch kernel behind shade::intersect(ray, triangle_batch) (see there), L::width
 /// lanes per step with the lane operations of L (scalar_lanes or vector_lanes). Each
 /// lane goes through the same IEEE operations whatever L is, so every L gives the same
 /// bits.
 template <class L, std::floating_point T, std::size_t N>
-[[nodiscard]] triangle_batch_hits<T, N> intersect_batch(const ray<T>& r,
-                                                        const triangle_batch<T, N>& batch,
-                                                        culling cull) noexcept {
+[[nodiscard]] SHADE_DETAIL_BATCH_INLINE triangle_batch_hits<T, N>
+intersect_batch(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull) noexcept {
     static_assert(N % L::width == 0, "the lane step must divide the batch width");
     using vec = typename L::vec;
     using mask = typename L::mask;
@@ -358,17 +399,21 @@ template <class L, std::floating_point T, std::size_t N>
     const auto& e2 = access::e2(batch);
     const auto& nv = access::n(batch);
 
-    const vec o_x = L::splat(r.origin.x), o_y = L::splat(r.origin.y), o_z = L::splat(r.origin.z);
-    const vec d_x = L::splat(r.direction.x), d_y = L::splat(r.direction.y),
-              d_z = L::splat(r.direction.z);
-    const vec zero = L::splat(T(0));
-    const vec largest = L::splat(std::numeric_limits<T>::max());
+    vec o_x, o_y, o_z, d_x, d_y, d_z, zero, largest, t_lo, t_hi, inf;
+    L::splat(o_x, r.origin.x);
+    L::splat(o_y, r.origin.y);
+    L::splat(o_z, r.origin.z);
+    L::splat(d_x, r.direction.x);
+    L::splat(d_y, r.direction.y);
+    L::splat(d_z, r.direction.z);
+    L::splat(zero, T(0));
+    L::splat(largest, std::numeric_limits<T>::max());
     const bool front_only = cull == culling::back_faces;
 
     // t finite in [t_min, t_max] is t >= t_min and t <= min(t_max, max); NaN fails both.
-    const vec t_lo = L::splat(r.t_min);
-    const vec t_hi = L::splat(std::min(r.t_max, std::numeric_limits<T>::max()));
-    const vec inf = L::splat(infinity<T>);
+    L::splat(t_lo, r.t_min);
+    L::splat(t_hi, std::min(r.t_max, std::numeric_limits<T>::max()));
+    L::splat(inf, infinity<T>);
     // Fully unrolled (at most 16 steps): measured 1.5x faster for 16 floats under SSE2,
     // where the rolled loop reloads the ray's splats; both compilers read this pragma.
 #if defined(__GNUC__)
@@ -379,25 +424,34 @@ template <class L, std::floating_point T, std::size_t N>
         // The scalar code's dot and cross products in GLM's order,
         // cross(a, b) = (a.y b.z - b.y a.z, a.z b.x - b.z a.x, a.x b.y - b.x a.y) and
         // dot(a, b) = (a.x b.x + a.y b.y) + a.z b.z; flip_sign(x, det) is x * sign(det).
-        const vec s_x = o_x - L::load(&v0.x[i]);
-        const vec s_y = o_y - L::load(&v0.y[i]);
-        const vec s_z = o_z - L::load(&v0.z[i]);
+        vec p_x, p_y, p_z, n_x, n_y, n_z, f_x, f_y, f_z, g_x, g_y, g_z;
+        L::load(p_x, &v0.x[i]);
+        L::load(p_y, &v0.y[i]);
+        L::load(p_z, &v0.z[i]);
+        L::load(n_x, &nv.x[i]);
+        L::load(n_y, &nv.y[i]);
+        L::load(n_z, &nv.z[i]);
+        L::load(f_x, &e1.x[i]);
+        L::load(f_y, &e1.y[i]);
+        L::load(f_z, &e1.z[i]);
+        L::load(g_x, &e2.x[i]);
+        L::load(g_y, &e2.y[i]);
+        L::load(g_z, &e2.z[i]);
+        const vec s_x = o_x - p_x;
+        const vec s_y = o_y - p_y;
+        const vec s_z = o_z - p_z;
         const vec c_x = d_y * s_z - s_y * d_z;
         const vec c_y = d_z * s_x - s_z * d_x;
         const vec c_z = d_x * s_y - s_x * d_y;
-        const vec n_x = L::load(&nv.x[i]), n_y = L::load(&nv.y[i]), n_z = L::load(&nv.z[i]);
         const vec det = -(d_x * n_x + d_y * n_y + d_z * n_z);
-        const vec a = L::abs(det);
-        const vec un = L::flip_sign(-(L::load(&e2.x[i]) * c_x + L::load(&e2.y[i]) * c_y +
-                                      L::load(&e2.z[i]) * c_z),
-                                    det);
-        const vec vn = L::flip_sign(L::load(&e1.x[i]) * c_x + L::load(&e1.y[i]) * c_y +
-                                        L::load(&e1.z[i]) * c_z,
-                                    det);
+        vec a, un, vn;
+        L::abs(a, det);
+        L::flip_sign(un, -(g_x * c_x + g_y * c_y + g_z * c_z), det);
+        L::flip_sign(vn, f_x * c_x + f_y * c_y + f_z * c_z, det);
         const vec wn = a - (un + vn);
         mask candidate = (un >= zero) & (vn >= zero) & (wn >= zero) & (a > zero) & (a <= largest);
         if (front_only) candidate = candidate & (det > zero);
-        if (L::bits(candidate) == 0) {
+        if (!L::any(candidate)) {
             // No lane of this step is hit: no division.
             L::store(&out.t[i], inf);
             L::store(&out.b0[i], zero);
@@ -406,19 +460,74 @@ template <class L, std::floating_point T, std::size_t N>
             continue;
         }
 
-        const vec t = L::flip_sign(s_x * n_x + s_y * n_y + s_z * n_z, det) / a;
+        vec t_num, t_out, b0, b1, b2;
+        L::flip_sign(t_num, s_x * n_x + s_y * n_y + s_z * n_z, det);
+        const vec t = t_num / a;
         const mask ok = candidate & (t >= t_lo) & (t <= t_hi);
-        L::store(&out.t[i], L::select(ok, t, inf));
-        L::store(&out.b0[i], L::keep(ok, wn / a));
-        L::store(&out.b1[i], L::keep(ok, un / a));
-        L::store(&out.b2[i], L::keep(ok, vn / a));
-        out.hit_bits |= L::bits(ok) << i;
-        out.front_bits |= L::bits(ok & (det > zero)) << i;
+        L::select(t_out, ok, t, inf);
+        L::keep(b0, ok, wn / a);
+        L::keep(b1, ok, un / a);
+        L::keep(b2, ok, vn / a);
+        L::store(&out.t[i], t_out);
+        L::store(&out.b0[i], b0);
+        L::store(&out.b1[i], b1);
+        L::store(&out.b2[i], b2);
+        // A hit lane has 0 < |det| <= max, so det > 0 exactly where its sign bit is clear.
+        const std::uint64_t hit = L::bits(ok);
+        out.hit_bits |= hit << i;
+        out.front_bits |= (hit & ~L::sign_bits(det)) << i;
     }
     return out;
 }
 
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__AVX__) && \
+    !defined(SHADE_NO_RUNTIME_DISPATCH)
+#define SHADE_DETAIL_BATCH_AVX_DISPATCH 1
+/// The kernel with 32-byte steps (8 floats or 4 doubles), compiled for AVX whatever the
+/// flags of the including file: the x86-64 baseline (SSE2) holds only 4 floats per step.
+/// Called only where the CPU and the OS support AVX (cpu_has_avx). Without FMA (AVX does
+/// not imply it) every lane performs the same IEEE operations as the SSE2 and scalar
+/// forms, so the results are the same bits.
+template <std::floating_point T, std::size_t N>
+[[gnu::target("avx")]] [[nodiscard]] triangle_batch_hits<T, N>
+intersect_batch_avx(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull) noexcept {
+    return intersect_batch<vector_lanes<T, step_bytes<T, N, 32>()>>(r, batch, cull);
+}
+
+/// The baseline kernel as a function of its own, so that shade::intersect stays a small
+/// dispatcher that jumps to one kernel or the other.
+template <std::floating_point T, std::size_t N>
+[[gnu::noinline]] [[nodiscard]] triangle_batch_hits<T, N>
+intersect_batch_baseline(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull) noexcept {
+    return intersect_batch<default_lanes<T, N>>(r, batch, cull);
+}
+
+/// True when this CPU and its OS support AVX (libgcc's or compiler-rt's CPU model, which
+/// also checks that the OS saves the 256-bit registers). Set once, when the program
+/// starts. A batch intersected before that (from another file's static initialiser)
+/// reads false and takes the baseline kernel, which gives the same results.
+inline const bool cpu_has_avx = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx") != 0;
+}();
+#endif
+
 } // namespace detail
+
+/// Which form of the batch kernel shade::intersect(ray, triangle_batch) runs on this CPU
+/// with this build: "avx (selected at run time)", "vector <bytes> bytes" (the vector
+/// width of the build's target) or "scalar" (one lane at a time). For reports and
+/// benchmarks; every form gives the same bits.
+[[nodiscard]] inline std::string triangle_batch_kernel() {
+#if defined(SHADE_DETAIL_BATCH_AVX_DISPATCH)
+    if (detail::cpu_has_avx) return "avx (selected at run time)";
+#endif
+#if defined(__GNUC__)
+    return "vector " + std::to_string(detail::native_vector_bytes) + " bytes";
+#else
+    return "scalar";
+#endif
+}
 
 /// Intersects r with every lane of batch: Möller and Trumbore's algorithm exactly as in
 /// shade::moller_trumbore (Möller, Trumbore 1997, "Fast, Minimum Storage Ray-Triangle
@@ -435,7 +544,12 @@ template <class L, std::floating_point T, std::size_t N>
 template <std::floating_point T, std::size_t N>
 [[nodiscard]] triangle_batch_hits<T, N> intersect(const ray<T>& r, const triangle_batch<T, N>& batch,
                                                   culling cull = culling::none) noexcept {
+#if defined(SHADE_DETAIL_BATCH_AVX_DISPATCH)
+    if (detail::cpu_has_avx) return detail::intersect_batch_avx(r, batch, cull);
+    return detail::intersect_batch_baseline(r, batch, cull);
+#else
     return detail::intersect_batch<detail::default_lanes<T, N>>(r, batch, cull);
+#endif
 }
 
 /// The nearest hit of r among the lanes of batch (the lowest lane on equal t), with the
