@@ -233,7 +233,7 @@ def main():
     time_runs, context = {}, {}
     for path in sorted(glob.glob(os.path.join(args.time_dir, "*.json"))):
         ctx, runs = load_json(path)
-        context = context or ctx
+        context = {**ctx, **context}  # keys of every file; the first file's win
         time_runs.update(runs)
     if not time_runs:
         sys.exit("report.py: no benchmark results in " + args.time_dir)
@@ -246,6 +246,8 @@ def main():
              f"- Flags: `{args.flags}`",
              f"- Google Benchmark: {args.benchmark_version or context.get('library_version', '?')}"
              f"{' (a debug build of the library, as Debian ships it: it warns, the ratios still hold)' if context.get('library_build_type') == 'debug' else ''}",
+             f"- Batch kernel (`shade::triangle_batch_kernel()`): "
+             f"{context.get('triangle_batch_kernel', '?')}",
              f"- Run: {context.get('date', '?')}, load average at start "
              f"{', '.join(f'{x:.2f}' for x in context.get('load_avg', [])) or '?'}",
              "",
@@ -274,7 +276,10 @@ def main():
              "- The batch (`shade::triangle_batch`, include/shade/geometry/triangle_batch.hpp) "
              "gives bitwise the scalar Möller-Trumbore's results "
              "(tests/geometry/test_triangle_batch.cpp). It uses GNU vector extensions: 4 "
-             "floats per step with the default x86-64 flags (SSE2), 8 with AVX.",
+             "floats or 2 doubles per step with the x86-64 baseline (SSE2), 8 or 4 with AVX. "
+             "Built for the baseline (the default flags, as here), it also carries a copy "
+             "compiled for AVX and selects it at run time when the CPU has AVX (see "
+             "\"Batch kernel\" above).",
              ""]
 
     lines += ["## Targets (timed run)", ""]
@@ -293,19 +298,24 @@ def main():
               "one reciprocal (the batch reproduces those bits). Those comparisons and "
               "divisions are the measured gap.",
               "- Batch vs GLM: a lane does 18 multiplications and 14 additions (the normal is "
-              "stored at packing) before any division, and a vector step holds 4 floats or 2 "
-              "doubles with the default x86-64 target (SSE2), 8 floats or 4 doubles with AVX "
-              "(the -march=native build below). Four lanes cannot give five times the "
-              "throughput of a scalar test that leaves early on most misses; eight can, for "
-              "float.",
+              "stored at packing) before any division, and a vector step holds 8 floats or 4 "
+              "doubles with AVX (selected at run time in the default build, compiled in with "
+              "-march=native), 4 floats or 2 doubles on a CPU without AVX. Eight float lanes "
+              "give about five times the throughput of a scalar test that leaves early on "
+              "most misses; four double lanes cannot. The default build also pays a function "
+              "call per batch (an AVX function is not inlined into code built for the "
+              "baseline).",
               ""]
 
-    native_runs = {}
+    native_runs, native_context = {}, {}
     if args.native_dir:
         for path in sorted(glob.glob(os.path.join(args.native_dir, "*.json"))):
-            native_runs.update(load_json(path)[1])
+            ctx, runs = load_json(path)
+            native_context = {**ctx, **native_context}
+            native_runs.update(runs)
         if native_runs:
-            lines += [f"With `{args.native_flags}` (triangle benchmarks only, separate build):", ""]
+            lines += [f"With `{args.native_flags}` (triangle benchmarks only, separate build; "
+                      f"batch kernel: {native_context.get('triangle_batch_kernel', '?')}):", ""]
             nat = per_op(native_runs)
             rows = target_rows(nat, "ratio of times")
             lines += [r for r in rows if "Oren-Nayar" not in r]

@@ -237,6 +237,9 @@ void register_batch(const char* type) {
 }
 
 const bool registered = [] {
+    // Which form of the batch kernel runs here (the build's target, or AVX selected at run
+    // time); bench/report.py prints it with the machine description.
+    benchmark::AddCustomContext("triangle_batch_kernel", shade::triangle_batch_kernel());
     register_scalar<float>("float");
     register_scalar<double>("double");
     register_batch<float>("float");
