@@ -172,6 +172,25 @@ template <std::floating_point T>
     return in.vector<T>();
 }
 
+/// The body of the targets of models with forms (Phong, Blinn-Phong): a form byte picks
+/// one of Models (the same model in each of its forms), then k_d, k_s, shininess and a
+/// situation are decoded, and the model built from them, if valid, is checked.
+template <std::floating_point T, class... Models>
+void run_forms(input& in) {
+    const unsigned form = in.choice(static_cast<unsigned>(sizeof...(Models)));
+    const rgb<T> k_d = decode_rgb<T>(in);
+    const rgb<T> k_s = decode_rgb<T>(in);
+    const T shininess = in.scalar<T>();
+    const auto s = decode_situation<T>(in);
+    unsigned index = 0;
+    const auto check_if_chosen = [&]<class B>() {
+        if (form != index++) return;
+        const auto b = build<B>(k_d, k_s, shininess);
+        if (b && s) check_brdf(*b, *s);
+    };
+    (check_if_chosen.template operator()<Models>(), ...);
+}
+
 /// The common entry of the BRDF targets: byte 0 picks double (bit 0 set) or float and the
 /// rest of the input goes to run_float or run_double. Returns 0.
 inline int dispatch(const std::uint8_t* data, std::size_t size, void (*run_float)(input&),

@@ -1,11 +1,10 @@
-// libFuzzer target: shade::phong in its three forms (classic, modified, normalized). Input: byte 0 float/double, a form byte, k_d,
-// k_s, shininess, then a
-// situation (brdf_target.hpp, which also says what is checked).
+// libFuzzer target: shade::phong in its three forms (classic, modified, normalized).
+// Input: byte 0 float/double, a form byte, k_d, k_s, shininess, then a situation
+// (brdf_target.hpp, which also says what is checked).
 
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
-#include <optional>
 
 #include <shade/brdf/phong.hpp>
 
@@ -13,27 +12,11 @@
 
 namespace {
 
-using namespace shade;
-using fuzz::build;
-using fuzz::decode_rgb;
-
-template <class B, std::floating_point T>
-void check(const rgb<T>& k_d, const rgb<T>& k_s, T shininess,
-           const std::optional<fuzz::brdf_situation<T>>& s) {
-    const auto b = build<B>(k_d, k_s, shininess);
-    if (b && s) fuzz::check_brdf(*b, *s);
-}
-
 template <std::floating_point T>
-void run(fuzz::input& in) {
-    const unsigned form = in.choice(3);
-    const rgb<T> k_d = decode_rgb<T>(in);
-    const rgb<T> k_s = decode_rgb<T>(in);
-    const T shininess = in.scalar<T>();
-    const auto s = fuzz::decode_situation<T>(in);
-    if (form == 0) check<phong<T, phong_form::classic>>(k_d, k_s, shininess, s);
-    if (form == 1) check<phong<T, phong_form::modified>>(k_d, k_s, shininess, s);
-    if (form == 2) check<phong<T, phong_form::normalized>>(k_d, k_s, shininess, s);
+void run(shade::fuzz::input& in) {
+    using namespace shade;
+    fuzz::run_forms<T, phong<T, phong_form::classic>, phong<T, phong_form::modified>,
+                    phong<T, phong_form::normalized>>(in);
 }
 
 } // namespace

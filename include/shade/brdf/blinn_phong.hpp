@@ -10,17 +10,14 @@
 // Every form adds the diffuse part k_d / pi. h = normalize(l + v); (n·h) is clamped to
 // [0, 1] before the power (0^0 = 1, so shininess 0 gives a constant lobe).
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 
-#include <glm/geometric.hpp>
-
 #include <shade/brdf/brdf.hpp>
 #include <shade/brdf/detail/directions.hpp>
+#include <shade/brdf/detail/power_lobe.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
-#include <shade/core/surface_point.hpp>
 #include <shade/core/types.hpp>
 
 namespace shade {
@@ -106,84 +103,26 @@ struct normalized_exact {
 
 /// F is one of the shade::blinn_phong_form types (or a user type with the same members).
 template <class F, class T>
-concept blinn_phong_lobe_form = std::floating_point<T> && requires(T x) {
-    { F::template normalization<T>(x) } -> std::same_as<T>;
-    { F::divides_by_n_dot_l } -> std::convertible_to<bool>;
-    { F::reciprocal } -> std::convertible_to<bool>;
-};
+concept blinn_phong_lobe_form = detail::power_lobe_form<F, T>;
 
 /// Blinn-Phong reflection: Lambertian base k_d / pi plus the lobe in the form `Form` (see
 /// shade::blinn_phong_form for the formulas, citations and properties of each):
 ///
-///     f = k_d / pi + k_s c (n·h)^n [/ (n·l) for blinn_phong_form::classic]
+///     f = k_d / pi + k_s c (n·h)^n [/ (n·l) for blinn_phong_form::classic]     (1/sr)
 ///
 /// h = normalize(l + v), c = Form::normalization(n), n = shininess. Returns 0 unless
 /// n·l > 0 and n·v > 0. Satisfies shade::split_brdf.
+///
+/// Constructors, accessors (k_d, k_s, shininess, normalization = c) and f, f_diffuse,
+/// f_specular are those of detail::power_lobe_brdf (shade/brdf/detail/power_lobe.hpp),
+/// which Phong shares: blinn_phong(k_d, k_s, shininess) validates and throws
+/// shade::invalid_parameter naming the offending parameter; blinn_phong(unchecked, ...)
+/// does not.
 template <std::floating_point T, class Form = blinn_phong_form::normalized_exact>
     requires blinn_phong_lobe_form<Form, T>
-class blinn_phong {
+class blinn_phong : public detail::power_lobe_brdf<T, Form, detail::half_vector_cosine> {
 public:
-    using scalar_type = T;
-    using form_type = Form;
-
-    /// Validating constructor. Throws shade::invalid_parameter naming
-    ///   "k_d" or "k_s" unless every channel is finite and >= 0,
-    ///   "shininess" unless it is finite and >= 0 (or if the form's factor overflows T),
-    ///   "k_s" / "k_d" if the peak value of f overflows T.
-    blinn_phong(const rgb<T>& k_d, const rgb<T>& k_s, T shininess)
-        : k_d_(require_non_negative("k_d", k_d)), k_s_(require_non_negative("k_s", k_s)),
-          shininess_(require_non_negative("shininess", shininess)),
-          c_(Form::template normalization<T>(shininess)) {
-        detail::require_finite_peak("shininess", c_);
-        T peak = detail::max_channel(k_s_) * c_;
-        if constexpr (Form::divides_by_n_dot_l) peak /= detail::cos_floor<T>;
-        detail::require_finite_peak("k_s", peak);
-        detail::require_finite_peak("k_d", detail::max_channel(k_d_) * inv_pi<T> + peak);
-    }
-
-    /// Unchecked: the caller guarantees the rules of the validating constructor.
-    blinn_phong(unchecked_t, const rgb<T>& k_d, const rgb<T>& k_s, T shininess) noexcept
-        : k_d_(k_d), k_s_(k_s), shininess_(shininess),
-          c_(Form::template normalization<T>(shininess)) {}
-
-    [[nodiscard]] constexpr const rgb<T>& k_d() const noexcept { return k_d_; } ///< diffuse reflectance
-    [[nodiscard]] constexpr const rgb<T>& k_s() const noexcept { return k_s_; } ///< specular coefficient
-    [[nodiscard]] constexpr T shininess() const noexcept { return shininess_; } ///< exponent n
-    /// The form's constant c.
-    [[nodiscard]] constexpr T normalization() const noexcept { return c_; }
-
-    /// Diffuse part k_d / pi (1/sr), 0 unless n·l > 0 and n·v > 0.
-    [[nodiscard]] rgb<T> f_diffuse(const vec3<T>& l, const vec3<T>& v,
-                                   const surface_point<T>& at) const noexcept {
-        if (!(glm::dot(at.n(), l) > T(0)) || !(glm::dot(at.n(), v) > T(0))) return rgb<T>(0);
-        return k_d_ * inv_pi<T>;
-    }
-
-    /// Specular lobe k_s c (n·h)^n [/ (n·l)] (1/sr), 0 unless n·l > 0 and n·v > 0.
-    [[nodiscard]] rgb<T> f_specular(const vec3<T>& l, const vec3<T>& v,
-                                    const surface_point<T>& at) const noexcept {
-        const vec3<T>& n = at.n();
-        const T n_dot_l = glm::dot(n, l);
-        if (!(n_dot_l > T(0)) || !(glm::dot(n, v) > T(0))) return rgb<T>(0);
-        const vec3<T> h = detail::half_vector(l, v);
-        // n·h may exceed 1 by rounding; capped at 1 so a large exponent cannot overflow.
-        const T n_dot_h = std::min(clamped_dot(n, h), T(1));
-        T lobe = c_ * std::pow(n_dot_h, shininess_);
-        if constexpr (Form::divides_by_n_dot_l) lobe /= detail::floored_cos(n_dot_l);
-        return k_s_ * lobe;
-    }
-
-    /// BRDF value in 1/sr without the cosine: f_diffuse + f_specular.
-    [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v,
-                           const surface_point<T>& at) const noexcept {
-        return f_diffuse(l, v, at) + f_specular(l, v, at);
-    }
-
-private:
-    rgb<T> k_d_;
-    rgb<T> k_s_;
-    T shininess_;
-    T c_;
+    using detail::power_lobe_brdf<T, Form, detail::half_vector_cosine>::power_lobe_brdf;
 };
 
 } // namespace shade

@@ -10,17 +10,14 @@
 // Every form adds the diffuse part k_d / pi. r = 2 (n·l) n - l is l mirrored about n, and
 // (r·v) is clamped to >= 0 before the power (0^0 = 1, so shininess 0 gives a constant lobe).
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 
-#include <glm/geometric.hpp>
-
 #include <shade/brdf/brdf.hpp>
 #include <shade/brdf/detail/directions.hpp>
+#include <shade/brdf/detail/power_lobe.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
-#include <shade/core/surface_point.hpp>
 #include <shade/core/types.hpp>
 
 namespace shade {
@@ -98,91 +95,28 @@ struct normalized {
 } // namespace phong_form
 
 /// F is one of the shade::phong_form types (or a user type with the same members).
+/// F is one of the shade::phong_form types (or a user type with the same members).
 template <class F, class T>
-concept phong_lobe_form = std::floating_point<T> && requires(T x) {
-    { F::template normalization<T>(x) } -> std::same_as<T>;
-    { F::divides_by_n_dot_l } -> std::convertible_to<bool>;
-    { F::reciprocal } -> std::convertible_to<bool>;
-};
+concept phong_lobe_form = detail::power_lobe_form<F, T>;
 
 /// Phong reflection: Lambertian base k_d / pi plus the Phong specular lobe in the form
 /// `Form` (see shade::phong_form for the formulas, citations and properties of each):
 ///
-///     f = k_d / pi + k_s c (max(r·v, 0))^n [/ (n·l) for phong_form::classic]
+///     f = k_d / pi + k_s c (max(r·v, 0))^n [/ (n·l) for phong_form::classic]     (1/sr)
 ///
 /// with r = 2 (n·l) n - l, c = Form::normalization(n), n = shininess. Returns 0 unless
 /// n·l > 0 and n·v > 0. Satisfies shade::split_brdf (f_diffuse = k_d / pi, f_specular = the
 /// lobe), so shade::lit lights the lobe with the light's specular colour.
+///
+/// Constructors, accessors (k_d, k_s, shininess, normalization = c) and f, f_diffuse,
+/// f_specular are those of detail::power_lobe_brdf (shade/brdf/detail/power_lobe.hpp),
+/// which Blinn-Phong shares: phong(k_d, k_s, shininess) validates and throws
+/// shade::invalid_parameter naming the offending parameter; phong(unchecked, ...) does not.
 template <std::floating_point T, class Form = phong_form::normalized>
     requires phong_lobe_form<Form, T>
-class phong {
+class phong : public detail::power_lobe_brdf<T, Form, detail::mirror_cosine> {
 public:
-    using scalar_type = T;
-    using form_type = Form;
-
-    /// Validating constructor. Throws shade::invalid_parameter naming
-    ///   "k_d" or "k_s" unless every channel is finite and >= 0,
-    ///   "shininess" unless it is finite and >= 0,
-    ///   "k_s" if k_s times the form's peak factor overflows T.
-    phong(const rgb<T>& k_d, const rgb<T>& k_s, T shininess)
-        : k_d_(require_non_negative("k_d", k_d)), k_s_(require_non_negative("k_s", k_s)),
-          shininess_(require_non_negative("shininess", shininess)),
-          c_(Form::template normalization<T>(shininess)) {
-        detail::require_finite_peak("shininess", c_);
-        T peak = detail::max_channel(k_s_) * c_;
-        if constexpr (Form::divides_by_n_dot_l) peak /= detail::cos_floor<T>;
-        detail::require_finite_peak("k_s", peak);
-        detail::require_finite_peak("k_d", detail::max_channel(k_d_) * inv_pi<T> + peak);
-    }
-
-    /// Unchecked: the caller guarantees the rules of the validating constructor.
-    phong(unchecked_t, const rgb<T>& k_d, const rgb<T>& k_s, T shininess) noexcept
-        : k_d_(k_d), k_s_(k_s), shininess_(shininess),
-          c_(Form::template normalization<T>(shininess)) {}
-
-    [[nodiscard]] constexpr const rgb<T>& k_d() const noexcept { return k_d_; } ///< diffuse reflectance
-    [[nodiscard]] constexpr const rgb<T>& k_s() const noexcept { return k_s_; } ///< specular coefficient
-    [[nodiscard]] constexpr T shininess() const noexcept { return shininess_; } ///< Phong exponent n
-    /// The form's constant c (1/pi, 1, or (n+2)/(2 pi)).
-    [[nodiscard]] constexpr T normalization() const noexcept { return c_; }
-
-    /// Diffuse part k_d / pi (1/sr), 0 unless n·l > 0 and n·v > 0.
-    [[nodiscard]] rgb<T> f_diffuse(const vec3<T>& l, const vec3<T>& v,
-                                   const surface_point<T>& at) const noexcept {
-        if (!above(l, v, at)) return rgb<T>(0);
-        return k_d_ * inv_pi<T>;
-    }
-
-    /// Specular lobe k_s c max(r·v, 0)^n [/ (n·l)] (1/sr), 0 unless n·l > 0 and n·v > 0.
-    [[nodiscard]] rgb<T> f_specular(const vec3<T>& l, const vec3<T>& v,
-                                    const surface_point<T>& at) const noexcept {
-        if (!above(l, v, at)) return rgb<T>(0);
-        const vec3<T>& n = at.n();
-        const T n_dot_l = glm::dot(n, l);
-        const vec3<T> r = T(2) * n_dot_l * n - l;
-        // r·v may exceed 1 by rounding; capped at 1 so a large exponent cannot overflow.
-        const T r_dot_v = std::min(clamped_dot(r, v), T(1));
-        T lobe = c_ * std::pow(r_dot_v, shininess_);
-        if constexpr (Form::divides_by_n_dot_l) lobe /= detail::floored_cos(n_dot_l);
-        return k_s_ * lobe;
-    }
-
-    /// BRDF value in 1/sr without the cosine: f_diffuse + f_specular.
-    [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v,
-                           const surface_point<T>& at) const noexcept {
-        return f_diffuse(l, v, at) + f_specular(l, v, at);
-    }
-
-private:
-    [[nodiscard]] static bool above(const vec3<T>& l, const vec3<T>& v,
-                                    const surface_point<T>& at) noexcept {
-        return glm::dot(at.n(), l) > T(0) && glm::dot(at.n(), v) > T(0);
-    }
-
-    rgb<T> k_d_;
-    rgb<T> k_s_;
-    T shininess_;
-    T c_;
+    using detail::power_lobe_brdf<T, Form, detail::mirror_cosine>::power_lobe_brdf;
 };
 
 /// The classic Phong lighting model as a BRDF (divides by n·l; not reciprocal).
