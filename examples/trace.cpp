@@ -15,6 +15,10 @@
 #include <string_view>
 #include <system_error>
 
+#if defined(__unix__) || defined(__APPLE__)
+#include <unistd.h>
+#endif
+
 #include "support/image.hpp"
 #include "tracer/render.hpp"
 #include "tracer/scenes.hpp"
@@ -37,9 +41,19 @@ options:
   --exposure X     exposure multiplier before tone mapping (default 1)
   --seed N         seed of the per-pixel random numbers (default 1)
   --out FILE       output PNG (default <scene>.png)
-  --quiet          no progress bar
+  --quiet          no progress bar (it is drawn only when stderr is a terminal)
   --help           this text
 )";
+
+// True when stderr is a terminal, where a redrawn progress bar belongs (in a log file or a
+// pipe it would only add lines of carriage returns).
+bool stderr_is_terminal() {
+#if defined(__unix__) || defined(__APPLE__)
+    return isatty(STDERR_FILENO) == 1;
+#else
+    return false;
+#endif
+}
 
 struct arguments {
     std::string scene = "gallery";
@@ -118,7 +132,7 @@ int main(int argc, char** argv) {
         const double aspect = double(args.render.width) / double(args.render.height);
         const tracer::scene scene = tracer::make_scene(args.scene, aspect);
         tracer::render_options options = args.render;
-        options.progress = !args.quiet;
+        options.progress = !args.quiet && stderr_is_terminal();
         const auto radiance = tracer::render(scene, options);
         shade::examples::save_png(args.out, tracer::to_srgb8(radiance, args.exposure));
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
