@@ -14,9 +14,7 @@
 #include <concepts>
 
 #include <shade/brdf/brdf.hpp>
-#include <shade/brdf/detail/directions.hpp>
 #include <shade/brdf/detail/power_lobe.hpp>
-#include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
 

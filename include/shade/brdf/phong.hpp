@@ -10,13 +10,10 @@
 // Every form adds the diffuse part k_d / pi. r = 2 (n·l) n - l is l mirrored about n, and
 // (r·v) is clamped to >= 0 before the power (0^0 = 1, so shininess 0 gives a constant lobe).
 
-#include <cmath>
 #include <concepts>
 
 #include <shade/brdf/brdf.hpp>
-#include <shade/brdf/detail/directions.hpp>
 #include <shade/brdf/detail/power_lobe.hpp>
-#include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
 

@@ -34,6 +34,10 @@
 // turns a comparison mask into lane bits with the x86 movmsk builtins (a loop
 // elsewhere). Other compilers get the same kernel one lane at a time
 // (detail::scalar_lanes, also tested).
+// Plain loops over the arrays were tried first: g++ 12 vectorized only part of them
+// (not under its default -ftrapping-math) and clang++ 14 none.
+// Compile every translation unit that calls it with the same target flags (as for any
+// inline code specialised per target).
 //
 // Run-time dispatch: on x86-64 built without -mavx (the default target), the kernel is
 // also compiled for AVX (detail::intersect_batch_avx, 8 floats or 4 doubles per step,
@@ -41,10 +45,6 @@
 // shade::triangle_batch_kernel() says which form runs. AVX does not include FMA, so
 // both forms give the same bits. Define SHADE_NO_RUNTIME_DISPATCH to always use the
 // build's own target.
-// Plain loops over the arrays were tried first: g++ 12 vectorized only part of them
-// (not under its default -ftrapping-math) and clang++ 14 none.
-// Compile every translation unit that calls it with the same target flags (as for any
-// inline code specialised per target).
 
 #include <algorithm>
 #include <array>
@@ -331,10 +331,7 @@ struct vector_lanes {
         // (intersect_batch_avx). The AVX builtins are not allowed in code that is also
         // compiled for the baseline, so each 16-byte half goes through the SSE form.
         if constexpr (Bytes == 32) {
-            using half_lanes = vector_lanes<T, 16>;
-            typename half_lanes::mask lo, hi;
-            std::memcpy(&lo, &m, sizeof lo);
-            std::memcpy(&hi, reinterpret_cast<const char*>(&m) + sizeof lo, sizeof hi);
+            const auto [lo, hi] = halves(m);
             return half_lanes::bits(lo) | (half_lanes::bits(hi) << half_lanes::width);
         }
 #endif
@@ -350,14 +347,24 @@ struct vector_lanes {
     [[gnu::always_inline]] static bool any(const mask& m) noexcept {
 #if !defined(__AVX__) && defined(__SSE2__)
         if constexpr (Bytes == 32) { // one movmsk on the two halves or-ed (see bits)
-            using half_lanes = vector_lanes<T, 16>;
-            typename half_lanes::mask lo, hi;
-            std::memcpy(&lo, &m, sizeof lo);
-            std::memcpy(&hi, reinterpret_cast<const char*>(&m) + sizeof lo, sizeof hi);
+            const auto [lo, hi] = halves(m);
             return half_lanes::bits(lo | hi) != 0;
         }
 #endif
         return bits(m) != 0;
+    }
+
+private:
+    using half_lanes = vector_lanes<T, Bytes / 2>;
+    struct mask_halves {
+        typename half_lanes::mask lo, hi;
+    };
+    /// The low and high halves of m (lanes 0 .. width/2-1 and the rest).
+    [[gnu::always_inline]] static mask_halves halves(const mask& m) noexcept {
+        mask_halves h;
+        std::memcpy(&h.lo, &m, sizeof h.lo);
+        std::memcpy(&h.hi, reinterpret_cast<const char*>(&m) + sizeof h.lo, sizeof h.hi);
+        return h;
     }
 };
 
@@ -479,6 +486,7 @@ intersect_batch(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull
     }
     return out;
 }
+#undef SHADE_DETAIL_BATCH_INLINE
 
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(__AVX__) && \
     !defined(SHADE_NO_RUNTIME_DISPATCH)
