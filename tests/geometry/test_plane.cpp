@@ -90,6 +90,14 @@ TEST_CASE_TEMPLATE("plane: bad input never produces a hit", T, float, double) {
     CHECK(miss({o, d, T(3.5), inf}));      // hit before t_min
     CHECK(miss({o, d, T(-1), inf}));       // t_min < 0: invalid ray
     CHECK(miss({o, d, nan, inf}));
+    CHECK(miss({o, d, T(4), T(2)}));       // t_max < t_min
+    CHECK(miss({o, d, inf, inf}));
+    CHECK(miss({o, d, 0, nan}));
+    // A direction with an infinite component: n·d = -inf gives t = -3 / -inf = +0, and
+    // the point o + 0 d is NaN; an infinity across the normal makes n·d NaN.
+    CHECK(miss({o, {0, 0, -inf}}));
+    CHECK(miss({o, {inf, 0, -1}}));
+    CHECK(miss({{1, 1, inf}, {0, 0, -inf}}));
     CHECK_FALSE(miss({o, d, 3, 3}));       // closed interval keeps t = 3
     // Nearly parallel rays are not rejected by an epsilon: direction (1, 0, -1e-30) from
     // height 3 meets the plane at t = 3e30 (finite in float: max 3.4e38).

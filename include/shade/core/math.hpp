@@ -1,10 +1,14 @@
 #pragma once
 // Scalar constants and small numeric helpers shared by all of shade.
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <concepts>
+#include <cstdint>
 #include <limits>
 #include <numbers>
+#include <type_traits>
 
 #include <glm/geometric.hpp>
 
@@ -55,5 +59,71 @@ template <std::floating_point T>
     const T d = glm::dot(a, b);
     return d > T(0) ? d : T(0);
 }
+
+namespace detail {
+
+/// True when T is IEEE 754 binary32 or binary64 (float and double on every platform shade
+/// targets), whose bit layout the power-of-two helpers below read directly. For other
+/// types (long double) they call the C library instead.
+template <std::floating_point T>
+inline constexpr bool ieee_binary32_or_64 =
+    std::numeric_limits<T>::is_iec559 && std::numeric_limits<T>::radix == 2 &&
+    ((sizeof(T) == 4 && std::numeric_limits<T>::digits == 24) ||
+     (sizeof(T) == 8 && std::numeric_limits<T>::digits == 53));
+
+/// Layout of an IEEE binary32/binary64 T: sign, biased exponent field, fraction.
+template <std::floating_point T>
+struct ieee_layout {
+    using bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+    static constexpr int fraction_bits = std::numeric_limits<T>::digits - 1;    // 23, 52
+    static constexpr int bias = std::numeric_limits<T>::max_exponent - 1;       // 127, 1023
+    static constexpr int max_field = 2 * std::numeric_limits<T>::max_exponent - 1; // 255, 2047
+    /// Smallest k with 2^k a T (the smallest subnormal): -149, -1074.
+    static constexpr int min_power = std::numeric_limits<T>::min_exponent - std::numeric_limits<T>::digits;
+    /// The biased exponent field of x (0: zero or subnormal, max_field: inf or NaN).
+    [[nodiscard]] static int exponent_field(T x) noexcept {
+        return static_cast<int>((std::bit_cast<bits>(x) >> fraction_bits) & bits(max_field));
+    }
+};
+
+/// x * 2^k rounded once, exactly as std::ldexp(x, k) (a power of two only shifts the
+/// exponent; a result in the subnormal range is rounded to nearest by both, one past the
+/// largest T is infinity for both). For float and double, when 2^k is itself a T, this is
+/// a multiplication by 2^k built from its bits (no library call); otherwise std::ldexp.
+template <std::floating_point T>
+[[nodiscard]] inline T times_power_of_two(T x, int k) noexcept {
+    if constexpr (ieee_binary32_or_64<T>) {
+        using L = ieee_layout<T>;
+        using B = typename L::bits;
+        if (k >= 1 - L::bias && k <= L::bias) // a normal power of two
+            return x * std::bit_cast<T>(B(k + L::bias) << L::fraction_bits);
+        if (k >= L::min_power && k < 1 - L::bias) // a subnormal power of two
+            return x * std::bit_cast<T>(B(1) << (k - L::min_power));
+    }
+    return std::ldexp(x, k);
+}
+
+/// -e for the e with max|v_i| = m 2^e, m in [0.5, 1) (std::frexp's exponent of the largest
+/// component): times_power_of_two(v_i, that) rescales v so its largest component lies in
+/// [0.5, 1) without any rounding, so that v·v can neither overflow nor underflow. Returned
+/// as an exponent, not as the factor 2^-e, because that factor overflows to infinity when
+/// m is subnormal (float: m < 2^-126 has e down to -148, and 2^148 is not a float).
+/// Read from m's exponent bits for float and double when m is normal, else from
+/// std::frexp. Precondition: v finite and non-zero.
+template <std::floating_point T>
+[[nodiscard]] inline int power_of_two_rescale_exponent(const vec3<T>& v) noexcept {
+    const T m = std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
+    if constexpr (ieee_binary32_or_64<T>) {
+        using L = ieee_layout<T>;
+        // m = 1.f 2^(field - bias) = 0.1f 2^(field - bias + 1): e = field - bias + 1.
+        if (const int field = L::exponent_field(m); field != 0 && field != L::max_field)
+            return L::bias - 1 - field;
+    }
+    int e = 0;
+    (void)std::frexp(m, &e);
+    return -e;
+}
+
+} // namespace detail
 
 } // namespace shade

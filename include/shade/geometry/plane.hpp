@@ -49,7 +49,13 @@ private:
 template <std::floating_point T>
 [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, const plane<T>& pl,
                                               culling cull = culling::none) noexcept {
-    if (!r.valid()) return std::nullopt;
+    // The one test of the ray itself: valid() would also check that origin and direction
+    // are finite and the direction non-zero, but those need no test of their own here. A
+    // zero direction makes n·d zero; a non-finite origin makes t infinite or NaN; a
+    // non-finite direction makes n·d infinite or NaN, so t is NaN or ±0, and at t = ±0 the
+    // point o + t d is NaN. Each case is rejected below. t_max < t_min or a NaN bound
+    // leaves no t in [t_min, t_max].
+    if (!(r.t_min >= T(0))) return std::nullopt;
     const vec3<T>& n = pl.normal();
     const T n_dot_d = glm::dot(n, r.direction);
     if (n_dot_d == T(0)) return std::nullopt;

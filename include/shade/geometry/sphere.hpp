@@ -38,23 +38,6 @@ private:
     T radius_;
 };
 
-namespace detail {
-
-/// -e for the e with max|v_i| = m * 2^e, m in [0.5, 1): std::ldexp(v_i, -e) rescales v so
-/// its largest component lies in [0.5, 1) without any rounding (a power of two), so that
-/// v·v can neither overflow nor underflow. Returned as an exponent, not as the factor
-/// 2^-e, because that factor overflows to infinity when m is subnormal (float: m < 2^-126
-/// has e down to -148, and 2^148 is not a float). Precondition: v finite and non-zero.
-template <std::floating_point T>
-[[nodiscard]] inline int power_of_two_rescale_exponent(const vec3<T>& v) noexcept {
-    const T m = std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
-    int e = 0;
-    (void)std::frexp(m, &e);
-    return -e;
-}
-
-} // namespace detail
-
 /// The first hit of ray r with sphere s inside [t_min, t_max], or nothing.
 ///
 /// With f = o - c, substituting o + t d into |x - c|^2 = R^2 gives
@@ -75,16 +58,22 @@ template <std::floating_point T>
 /// Returns the nearer root in [t_min, t_max] (front_face = true: the ray enters), else the
 /// farther one (front_face = false: the ray leaves, e.g. when the origin is inside).
 /// A tangent ray (discriminant exactly 0) returns its single touching point as an
-/// entering hit. The normal is the outward unit normal (p - c) / R, normalised again.
+/// entering hit. The normal is the outward unit normal: p - c normalised (its length is
+/// R up to rounding).
 /// No hit for an invalid ray, a negative discriminant or roots outside [t_min, t_max].
 template <std::floating_point T>
 [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, const sphere<T>& s) noexcept {
-    if (!r.valid()) return std::nullopt;
+    // Every return below returns `out`, so that it is built in the caller's storage (named
+    // return value optimisation). A hit<double> returned as a temporary was copied with
+    // `rep movs` by g++ -O3, which cost more than the whole intersection test.
+    std::optional<hit<T>> out;
+    if (!r.valid()) return out;
     const int scale = detail::power_of_two_rescale_exponent(r.direction);
     // d = direction * 2^scale, exact (a component more than the exponent range below the
     // largest may underflow, far below rounding); t for d is t_user / 2^scale.
-    const vec3<T> d(std::ldexp(r.direction.x, scale), std::ldexp(r.direction.y, scale),
-                    std::ldexp(r.direction.z, scale));
+    const vec3<T> d(detail::times_power_of_two(r.direction.x, scale),
+                    detail::times_power_of_two(r.direction.y, scale),
+                    detail::times_power_of_two(r.direction.z, scale));
     const vec3<T> f = r.origin - s.center();
     const T radius = s.radius();
 
@@ -92,7 +81,7 @@ template <std::floating_point T>
     const T b = -glm::dot(f, d);
     const vec3<T> l = f + (b / a) * d;
     const T delta = sqr(radius) - glm::dot(l, l); // = (b^2 - a c_0) / a
-    if (!(delta >= T(0))) return std::nullopt;      // also rejects NaN
+    if (!(delta >= T(0))) return out; // also rejects NaN
 
     const T c0 = glm::dot(f, f) - sqr(radius);
     const T q = b + std::copysign(std::sqrt(a * delta), b);
@@ -100,8 +89,8 @@ template <std::floating_point T>
     // are 0; c_0 / q would be 0/0.
     const T root_a = q / a;
     const T root_b = q != T(0) ? c0 / q : T(0);
-    const T t_near = std::ldexp(std::min(root_a, root_b), scale);
-    const T t_far = std::ldexp(std::max(root_a, root_b), scale);
+    const T t_near = detail::times_power_of_two(std::min(root_a, root_b), scale);
+    const T t_far = detail::times_power_of_two(std::max(root_a, root_b), scale);
 
     T t;
     bool entering;
@@ -112,12 +101,17 @@ template <std::floating_point T>
         t = t_far;
         entering = false;
     } else {
-        return std::nullopt;
+        return out;
     }
     const vec3<T> p = r.at(t);
-    const vec3<T> n = detail::normalize_or_zero((p - s.center()) / radius);
-    if (!is_finite(p) || !detail::is_unit_normal(n)) return std::nullopt;
-    return hit<T>{t, p, n, entering};
+    const vec3<T> n = detail::normalize_or_zero(p - s.center());
+    if (!is_finite(p) || !detail::is_unit_normal(n)) return out;
+    out.emplace();
+    out->t = t;
+    out->p = p;
+    out->n = n;
+    out->front_face = entering;
+    return out;
 }
 
 } // namespace shade
