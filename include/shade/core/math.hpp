@@ -109,7 +109,8 @@ template <std::floating_point T>
 /// as an exponent, not as the factor 2^-e, because that factor overflows to infinity when
 /// m is subnormal (float: m < 2^-126 has e down to -148, and 2^148 is not a float).
 /// Read from m's exponent bits for float and double when m is normal, else from
-/// std::frexp. Precondition: v finite and non-zero.
+/// std::frexp. For a zero or non-finite v the result is some int (no undefined
+/// behaviour), meaningless as a scale.
 template <std::floating_point T>
 [[nodiscard]] inline int power_of_two_rescale_exponent(const vec3<T>& v) noexcept {
     const T m = std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));

@@ -67,7 +67,14 @@ template <std::floating_point T>
     // return value optimisation). A hit<double> returned as a temporary was copied with
     // `rep movs` by g++ -O3, which cost more than the whole intersection test.
     std::optional<hit<T>> out;
-    if (!r.valid()) return out;
+    // The one test of the ray itself. valid() would also check that origin and direction
+    // are finite and the direction non-zero; the arithmetic below rejects those rays on
+    // its own. A zero direction gives a = 0, so b / a is NaN. A non-finite direction gives
+    // a = inf (or NaN), and b is then infinite or NaN too (a product inf * f_i or
+    // inf * 0), so b / a is NaN. A non-finite origin gives an infinite or NaN f, and l
+    // with it. Each way delta is NaN or -inf and fails the test delta >= 0. A NaN bound or
+    // t_max < t_min leaves no root in [t_min, t_max].
+    if (!(r.t_min >= T(0))) return out;
     const int scale = detail::power_of_two_rescale_exponent(r.direction);
     // d = direction * 2^scale, exact (a component more than the exponent range below the
     // largest may underflow, far below rounding); t for d is t_user / 2^scale.
