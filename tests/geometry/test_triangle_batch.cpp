@@ -392,3 +392,32 @@ TEST_CASE("triangle_batch: the kernel name says which form intersect runs") {
     CHECK(name == "scalar");
 #endif
 }
+
+// The arrays are aligned to the largest power of two up to 64 dividing their size in
+// bytes (N * sizeof(T)), worked out by hand here: 8 floats = 32 bytes -> 32; 8 doubles =
+// 64 -> 64; 16 floats = 64 -> 64; 4 floats = 16 -> 16; 3 floats = 12 -> 4; 3 doubles =
+// 24 -> 8; 24 floats = 96 -> 32.
+static_assert(shade::detail::batch_array_alignment<float, 8>() == 32);
+static_assert(shade::detail::batch_array_alignment<double, 8>() == 64);
+static_assert(shade::detail::batch_array_alignment<float, 16>() == 64);
+static_assert(shade::detail::batch_array_alignment<float, 4>() == 16);
+static_assert(shade::detail::batch_array_alignment<float, 3>() == 4);
+static_assert(shade::detail::batch_array_alignment<double, 3>() == 8);
+static_assert(shade::detail::batch_array_alignment<float, 24>() == 32);
+static_assert(alignof(shade::triangle_batch<float, 8>) == 32);
+static_assert(alignof(shade::triangle_batch_hits<double, 8>) == 64);
+
+TEST_CASE_TEMPLATE("triangle_batch: the lane arrays of batches and results are aligned", T, float, double) {
+    constexpr std::size_t align = shade::detail::batch_array_alignment<T, 8>();
+    const auto aligned = [](const void* p) { return reinterpret_cast<std::uintptr_t>(p) % align == 0; };
+    // In a std::vector (over-aligned new) and on the stack.
+    const std::vector<shade::triangle_batch<T, 8>> batches(3);
+    for (const auto& b : batches) CHECK(aligned(&b));
+    const shade::ray<T> r{{0, 0, 1}, {0, 0, -1}};
+    const auto hits = shade::intersect(r, batches[1]);
+    CHECK(aligned(hits.t.data()));
+    CHECK(aligned(hits.b0.data()));
+    CHECK(aligned(hits.b1.data()));
+    CHECK(aligned(hits.b2.data()));
+    CHECK(hits.count() == 0u);
+}
