@@ -1,12 +1,13 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <utility>
 
 #include <doctest/doctest.h>
 #include <glm/geometric.hpp>
 
 #include <shade/geometry/plane.hpp>
+
+#include "geometry/special_rays.hpp"
 
 namespace {
 
@@ -142,48 +143,13 @@ TEST_CASE_TEMPLATE("plane: constructor rejects bad parameters by name", T, float
 
 TEST_CASE_TEMPLATE("plane: no ray that is not valid() hits, over a sweep of special values", T, float, double) {
     // intersect tests only t_min >= 0 of the ray and relies on a non-finite or zero origin
-    // or direction turning its arithmetic into NaN or infinity (see include/shade/geometry/plane.hpp). This sweep
-    // checks that on every combination of special values in one coordinate of the origin,
-    // one of the direction and the interval, against planes the valid version of the
-    // ray hits.
+    // or direction turning its arithmetic into NaN or infinity (see the comment in
+    // include/shade/geometry/plane.hpp); geometry/special_rays.hpp checks that.
     using std::array;
-    const T inf = std::numeric_limits<T>::infinity();
-    const T nan = std::numeric_limits<T>::quiet_NaN();
-    const T max = std::numeric_limits<T>::max();
-    const array<T, 10> specials{T(0), T(-0.0), T(0.25), T(-1), inf, -inf, nan, max, -max,
-                                std::numeric_limits<T>::denorm_min()};
     // Across the unmodified ray's path, one per axis and one oblique.
     const array<shade::plane<T>, 4> shapes{shade::plane<T>({0, 0, -1}, {0, 0, 1}),
                                            shade::plane<T>({-1, 0, 0}, {1, 0, 0}),
                                            shade::plane<T>({0, -1, 0}, {0, 1, 0}),
                                            shade::plane<T>({0, 0, 0}, {1, 2, 3})};
-    std::size_t tested = 0, valid_hits = 0;
-    for (int ko = 0; ko < 3; ++ko)
-        for (int kd = 0; kd < 3; ++kd)
-            for (const T so : specials)
-                for (const T sd : specials)
-                    for (const auto& [t_min, t_max] : array<std::pair<T, T>, 6>{
-                             {{0, inf}, {T(-1), inf}, {nan, inf}, {0, nan}, {2, 1}, {T(-0.0), inf}}}) {
-                        v3<T> o(T(0.5), T(0.25), T(0.125));
-                        v3<T> d(T(-0.1), T(-0.2), T(-0.3));
-                        o[ko] = so;
-                        d[kd] = sd;
-                        const shade::ray<T> r{o, d, t_min, t_max};
-                        for (const auto& shape : shapes) {
-                            const auto h = shade::intersect(r, shape);
-                            ++tested;
-                            if (!r.valid()) {
-                                CHECK_FALSE(h.has_value());
-                            } else if (h) {
-                                ++valid_hits;
-                                CHECK(std::isfinite(h->t));
-                                CHECK(h->t >= r.t_min);
-                                CHECK(h->t <= r.t_max);
-                                CHECK(shade::is_finite(h->p));
-                                CHECK(std::abs(glm::length(h->n) - T(1)) <= 4 * std::numeric_limits<T>::epsilon());
-                            }
-                        }
-                    }
-    CHECK(tested == 3u * 3u * 10u * 10u * 6u * shapes.size());
-    CHECK(valid_hits > 100); // the sweep also contains rays that do hit
+    geometry_test::check_special_rays<T>(shapes);
 }

@@ -15,6 +15,8 @@
 
 #include <shade/geometry/triangle.hpp>
 
+#include "geometry/special_rays.hpp"
+
 namespace {
 
 template <class T>
@@ -723,45 +725,29 @@ TEST_CASE_TEMPLATE("triangle: make_hit keeps the point on the triangle's boundin
 TEST_CASE_TEMPLATE("triangle: no ray that is not valid() hits, over a sweep of special values", C,
                    SHADE_TEST_ALL_COMBOS) {
     // Möller-Trumbore has no explicit ray::valid() test: it relies on a non-finite or zero
-    // origin or direction turning det, U or V into NaN, infinity or zero. This sweep
-    // checks that claim (and the others' explicit test) on every combination of special
-    // values in one coordinate of the origin, one of the direction and the interval,
-    // against triangles the valid version of the ray hits.
+    // origin or direction turning det, U or V into NaN, infinity or zero. The sweep of
+    // geometry/special_rays.hpp checks that claim (and the others' explicit test) against
+    // triangles the valid version of the ray hits.
     using T = typename C::scalar;
     using A = typename C::algorithm;
-    const T inf = std::numeric_limits<T>::infinity();
-    const T nan = std::numeric_limits<T>::quiet_NaN();
-    const T max = std::numeric_limits<T>::max();
-    const std::array<T, 10> specials{T(0), T(-0.0), T(0.25), T(-1), inf, -inf, nan, max, -max,
-                                     std::numeric_limits<T>::denorm_min()};
     const std::array<shade::triangle<T>, 3> tris{
         shade::triangle<T>{{-4, -4, 0}, {4, -4, 0}, {0, 4, 0}},
         shade::triangle<T>{{0, -4, -4}, {0, 4, -4}, {0, 0, 4}},
         shade::triangle<T>{{-4, 0, -4}, {4, 0, -4}, {0, 0, 4}}};
-    std::size_t tested = 0, valid_hits = 0;
-    for (int ko = 0; ko < 3; ++ko)
-        for (int kd = 0; kd < 3; ++kd)
-            for (const T so : specials)
-                for (const T sd : specials)
-                    for (const auto& [t_min, t_max] : std::array<std::pair<T, T>, 6>{
-                             {{0, inf}, {T(-1), inf}, {nan, inf}, {0, nan}, {2, 1}, {T(-0.0), inf}}}) {
-                        v3<T> o(T(0.5), T(0.25), T(0.125));
-                        v3<T> d(T(-0.1), T(-0.2), T(-0.3));
-                        o[ko] = so;
-                        d[kd] = sd;
-                        const shade::ray<T> r{o, d, t_min, t_max};
-                        for (const auto& tri : tris) {
-                            const auto x = shade::find_intersection<A>(r, tri);
-                            ++tested;
-                            if (!r.valid()) {
-                                CHECK_FALSE(x.has_value());
-                            } else if (x) {
-                                ++valid_hits;
-                                CHECK(std::isfinite(x->t));
-                                CHECK(x->t >= r.t_min);
-                            }
-                        }
-                    }
-    CHECK(tested == 3u * 3u * 10u * 10u * 6u * 3u);
+    std::size_t rays = 0, valid_hits = 0;
+    geometry_test::for_each_special_ray<T>([&](const shade::ray<T>& r) {
+        ++rays;
+        for (const auto& tri : tris) {
+            const auto x = shade::find_intersection<A>(r, tri);
+            if (!r.valid()) {
+                CHECK_FALSE(x.has_value());
+            } else if (x) {
+                ++valid_hits;
+                CHECK(std::isfinite(x->t));
+                CHECK(x->t >= r.t_min);
+            }
+        }
+    });
+    CHECK(rays == geometry_test::special_ray_count);
     CHECK(valid_hits > 100); // the sweep also contains rays that do hit
 }
