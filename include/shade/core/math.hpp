@@ -71,7 +71,10 @@ inline constexpr bool ieee_binary32_or_64 =
     ((sizeof(T) == 4 && std::numeric_limits<T>::digits == 24) ||
      (sizeof(T) == 8 && std::numeric_limits<T>::digits == 53));
 
-/// Layout of an IEEE binary32/binary64 T: sign, biased exponent field, fraction.
+/// Layout of an IEEE binary32/binary64 T: sign bit, biased exponent field, fraction
+/// (IEEE 754-2019, "Standard for Floating-Point Arithmetic", §3.4, binary interchange
+/// format encodings: a field E in 1 .. 2 bias is the normal number 1.f 2^(E - bias); E = 0
+/// encodes zero and the subnormals 0.f 2^(1 - bias); E = 2 bias + 1 infinities and NaNs).
 template <std::floating_point T>
 struct ieee_layout {
     using bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;

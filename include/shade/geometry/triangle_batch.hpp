@@ -399,6 +399,16 @@ using default_lanes = scalar_lanes<T>;
 #define SHADE_DETAIL_BATCH_INLINE inline
 #endif
 
+/// x, y, z = lanes i .. i + L::width - 1 of the x, y and z arrays of a (one of the
+/// batch's structure-of-arrays vectors).
+template <class L, class Arrays>
+SHADE_DETAIL_BATCH_INLINE void load_xyz(typename L::vec& x, typename L::vec& y, typename L::vec& z,
+                                        const Arrays& a, std::size_t i) noexcept {
+    L::load(x, &a.x[i]);
+    L::load(y, &a.y[i]);
+    L::load(z, &a.z[i]);
+}
+
 /// The batch kernel behind shade::intersect(ray, triangle_batch) (see there), L::width
 /// lanes per step with the lane operations of L (scalar_lanes or vector_lanes). Each
 /// lane goes through the same IEEE operations whatever L is, so every L gives the same
@@ -446,18 +456,10 @@ intersect_batch(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull
         // cross(a, b) = (a.y b.z - b.y a.z, a.z b.x - b.z a.x, a.x b.y - b.x a.y) and
         // dot(a, b) = (a.x b.x + a.y b.y) + a.z b.z; flip_sign(x, det) is x * sign(det).
         vec p_x, p_y, p_z, n_x, n_y, n_z, f_x, f_y, f_z, g_x, g_y, g_z;
-        L::load(p_x, &v0.x[i]);
-        L::load(p_y, &v0.y[i]);
-        L::load(p_z, &v0.z[i]);
-        L::load(n_x, &nv.x[i]);
-        L::load(n_y, &nv.y[i]);
-        L::load(n_z, &nv.z[i]);
-        L::load(f_x, &e1.x[i]);
-        L::load(f_y, &e1.y[i]);
-        L::load(f_z, &e1.z[i]);
-        L::load(g_x, &e2.x[i]);
-        L::load(g_y, &e2.y[i]);
-        L::load(g_z, &e2.z[i]);
+        load_xyz<L>(p_x, p_y, p_z, v0, i);
+        load_xyz<L>(n_x, n_y, n_z, nv, i);
+        load_xyz<L>(f_x, f_y, f_z, e1, i);
+        load_xyz<L>(g_x, g_y, g_z, e2, i);
         const vec s_x = o_x - p_x;
         const vec s_y = o_y - p_y;
         const vec s_z = o_z - p_z;
