@@ -210,6 +210,41 @@ TEST_CASE_TEMPLATE("triangle: bad input never produces a hit", C, SHADE_TEST_ALL
     }
 }
 
+// The triangle v0 = 0, v1 = (2L, 0, 0), v2 = (L, 2L, 0) in the plane z = 0 and a ray from
+// (1, 1, z0) along (0, 0, -z0 D), z0 = ±1, toward the corner v0. With s = o - v0 = (1, 1, z0)
+// and d = (0, 0, -z0 D):
+//     n = e1 × e2 = (0, 0, 4 L^2),   c = d × s = (z0 D, -z0 D, 0),
+//     U = -e2·c = z0 L D,  V = e1·c = 2 z0 L D,  T = s·n = 4 z0 L^2,  det = -d·n = 4 z0 D L^2,
+// so the true t = T/det = 1/D, b1 = 1/(4L), b2 = 1/(2L). L = 1e15, D = 1e10 (float) or
+// L = 1e150, D = 1e10 (double): n, U, V and T are finite, but det = ±4e40 (±4e310)
+// overflows to ±infinity. Then W = det - (U + V) is infinite with the sign of det, t = T/det
+// rounds to +0, and b0 = W/det would be NaN: Möller-Trumbore must report no hit (its
+// documented rule for an overflowing product) rather than a hit at t = 0.
+TEST_CASE_TEMPLATE("triangle: an overflowing det, with U, V and T finite, is no Möller-Trumbore hit",
+                   T, float, double) {
+    const T L = std::is_same_v<T, float> ? T(1e15) : T(1e150);
+    const T D = T(1e10);
+    const shade::triangle<T> tri{{0, 0, 0}, {2 * L, 0, 0}, {L, 2 * L, 0}};
+    REQUIRE(std::isfinite(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0).z));
+    for (const T z0 : {T(1), T(-1)}) { // front face, then back face
+        CAPTURE(z0);
+        const shade::ray<T> r{{1, 1, z0}, {0, 0, -z0 * D}};
+        REQUIRE(std::isinf(glm::dot(r.direction, glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0))));
+        CHECK_FALSE(shade::find_intersection<shade::moller_trumbore>(r, tri).has_value());
+        // The other algorithms may find the hit at t = 1/D; whatever they report must be a
+        // valid record.
+        for_each_algorithm([&](auto algorithm) {
+            using A = decltype(algorithm);
+            CAPTURE(A::name);
+            if (const auto x = shade::find_intersection<A>(r, tri)) {
+                CHECK(std::isfinite(x->t));
+                CHECK(x->t >= T(0));
+                CHECK(shade::is_finite(x->barycentric));
+            }
+        });
+    }
+}
+
 TEST_CASE_TEMPLATE("triangle: tiny triangles at distance 1 are hit (no absolute epsilon)", C,
                    SHADE_TEST_ALL_COMBOS) {
     using T = typename C::scalar;

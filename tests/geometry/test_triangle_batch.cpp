@@ -365,6 +365,20 @@ TEST_CASE_TEMPLATE("triangle_batch: degenerate, non-finite, tiny and huge triang
     MESSAGE("near-max triangle: " << clamped << " of 2000 hit points clamped to the bounding box");
     CHECK(clamped > 0);
 
+    // det overflowing while U, V and T stay finite (derived in test_triangle.cpp's "an
+    // overflowing det" case): no hit in any form, front or back.
+    {
+        const T L = std::is_same_v<T, float> ? T(1e15) : T(1e150);
+        const std::array<shade::triangle<T>, 1> huge{
+            shade::triangle<T>{{0, 0, 0}, {2 * L, 0, 0}, {L, 2 * L, 0}}};
+        const shade::triangle_batch<T, 8> one(huge);
+        for (const T z0 : {T(1), T(-1)}) {
+            const shade::ray<T> r{{1, 1, z0}, {0, 0, -z0 * T(1e10)}};
+            check_against_scalar(r, one, shade::culling::none, count);
+            CHECK_FALSE(shade::intersect(r, one).hit(0));
+        }
+    }
+
     // Hand-checked outcomes: the ray down the z axis from z = 10 hits the ordinary
     // triangle at t = 7 (z = 3) and the tiny one at t = 10 (in its vertex v0 = 0, which
     // counts as inside; all products are exact powers of two); the degenerate, non-finite

@@ -463,6 +463,8 @@ intersect_batch(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull
         const vec c_x = d_y * s_z - s_y * d_z;
         const vec c_y = d_z * s_x - s_z * d_x;
         const vec c_z = d_x * s_y - s_x * d_y;
+        // The scalar code's two branches on the sign of det in one, on the numerators
+        // multiplied by sign(det) (see moller_trumbore for why the bits agree).
         const vec det = -(d_x * n_x + d_y * n_y + d_z * n_z);
         vec a, un, vn;
         L::abs(a, det);
@@ -560,8 +562,10 @@ inline const bool cpu_has_avx = [] {
 /// A lane is hit when, with a = |det| and U, V multiplied by sign(det),
 ///     U >= 0,  V >= 0,  W = a - (U + V) >= 0,  0 < a <= max
 /// (and det > 0 under back-face culling) and t = sign(det) s·n / a is finite and in
-/// [t_min, t_max]. These are the scalar code's tests on the same values. Where no lane
-/// of a vector step passes the first line, the step costs no division.
+/// [t_min, t_max]. These are the scalar code's tests (its two branches on the sign of
+/// det, made branch-free) on the same values, and the quotients t, W/a, U/a, V/a are
+/// its bits. Where no lane of a vector step passes the first line, the step costs no
+/// division.
 template <std::floating_point T, std::size_t N>
 [[nodiscard]] triangle_batch_hits<T, N> intersect(const ray<T>& r, const triangle_batch<T, N>& batch,
                                                   culling cull = culling::none) noexcept {
