@@ -49,17 +49,26 @@ void for_each_special_ray(F&& f) {
                     }
 }
 
-/// The sweep against every shape with shade::intersect(ray, shape) returning
-/// std::optional<hit>: no hit for a ray that is not valid(); for a valid ray, every hit
-/// has a finite t inside [t_min, t_max], a finite point and a unit normal. The shapes
-/// should be placed so that the unmodified ray hits them (checked: over 100 hits).
-template <class T, class Shape, std::size_t M>
-void check_special_rays(const std::array<Shape, M>& shapes) {
+/// Calls shade::intersect(ray, shape) with the shape's default algorithm.
+struct default_intersect {
+    template <class Ray, class Shape>
+    auto operator()(const Ray& r, const Shape& shape) const {
+        return shade::intersect(r, shape);
+    }
+};
+
+/// The sweep against every shape with intersect(ray, shape) returning
+/// std::optional<hit> (shade::intersect by default; the triangle tests pass
+/// shade::intersect<Algorithm>): no hit for a ray that is not valid(); for a valid ray,
+/// every hit has a finite t inside [t_min, t_max], a finite point and a unit normal. The
+/// shapes should be placed so that the unmodified ray hits them (checked: over 100 hits).
+template <class T, class Shape, std::size_t M, class Intersect = default_intersect>
+void check_special_rays(const std::array<Shape, M>& shapes, Intersect intersect = {}) {
     std::size_t rays = 0, valid_hits = 0;
     for_each_special_ray<T>([&](const shade::ray<T>& r) {
         ++rays;
         for (const Shape& shape : shapes) {
-            const auto h = shade::intersect(r, shape);
+            const auto h = intersect(r, shape);
             if (!r.valid()) {
                 CHECK_FALSE(h.has_value());
             } else if (h) {
