@@ -3,9 +3,9 @@
 // 16 triangles) against the same GLM test, per test. See bench/support.hpp for names,
 // counters and the callgrind mode; script/bench turns the output into docs/benchmarks.md.
 //
-// Data: 512 precomputed (ray, triangle) pairs per benchmark, so that in float (68 bytes
-// a pair) they stay in a 48 KiB L1 data cache; double takes twice that (L2, streamed in
-// order). Every variant of a group runs over the same arrays.
+// Data: precomputed (ray, triangle) pairs, 512 in float (68 bytes a pair) and 256 in
+// double (136 bytes), about 35 KB either way, so that they stay in a 48 KiB L1 data cache
+// as the issue asks. Every variant of a group runs over the same arrays.
 
 #include <array>
 #include <cstddef>
@@ -27,7 +27,9 @@ namespace {
 
 using shade_bench::outcome;
 
-constexpr std::size_t pair_count = 512;
+// Pairs per data set: the same number of bytes for float and double.
+template <class T>
+constexpr std::size_t pair_count = 512 * sizeof(float) / sizeof(T);
 
 template <class T>
 using v3 = shade::vec3<T>;
@@ -66,7 +68,7 @@ template <class T>
 pair_data<T> make_pairs(double hit_fraction, std::uint64_t seed) {
     shade::rng g(seed);
     pair_data<T> data;
-    for (std::size_t i = 0; i < pair_count; ++i) {
+    for (std::size_t i = 0; i < pair_count<T>; ++i) {
         const v3<T> centre = random_in_cube<T>(g, T(2));
         const shade::triangle<T> tri{centre + random_in_cube<T>(g, T(1)),
                                      centre + random_in_cube<T>(g, T(1)),
@@ -118,16 +120,16 @@ outcome<T> run_glm(const shade::ray<T>& r, const shade::triangle<T>& tri) {
 template <class T, class Run>
 double hit_rate(const pair_data<T>& data, Run run) {
     std::size_t hits = 0;
-    for (std::size_t i = 0; i < pair_count; ++i) hits += static_cast<std::size_t>(run(data.rays[i], data.tris[i]).hit);
-    return static_cast<double>(hits) / static_cast<double>(pair_count);
+    for (std::size_t i = 0; i < pair_count<T>; ++i) hits += static_cast<std::size_t>(run(data.rays[i], data.tris[i]).hit);
+    return static_cast<double>(hits) / static_cast<double>(pair_count<T>);
 }
 
 template <class T, class Run>
 void add_pairs(const std::string& name, const pair_data<T>& data, Run run) {
     shade_bench::add(
-        name, double(pair_count),
+        name, double(pair_count<T>),
         [&data, run] {
-            for (std::size_t i = 0; i < pair_count; ++i) {
+            for (std::size_t i = 0; i < pair_count<T>; ++i) {
                 outcome<T> o = run(data.rays[i], data.tris[i]);
                 benchmark::DoNotOptimize(o);
             }
@@ -155,7 +157,8 @@ void register_scalar(const char* type) {
 // ---- batch: one ray against 16 triangles placed along it ------------------------------
 
 constexpr std::size_t lanes = 16;
-constexpr std::size_t ray_count = pair_count / lanes;
+template <class T>
+constexpr std::size_t ray_count = pair_count<T> / lanes;
 
 template <class T>
 struct batch_data {
@@ -170,7 +173,7 @@ template <class T>
 batch_data<T> make_batches(double hit_fraction, std::uint64_t seed) {
     shade::rng g(seed);
     batch_data<T> data;
-    for (std::size_t k = 0; k < ray_count; ++k) {
+    for (std::size_t k = 0; k < ray_count<T>; ++k) {
         const v3<T> origin = random_in_cube<T>(g, T(4));
         v3<T> direction = random_in_cube<T>(g, T(1));
         direction /= std::max(glm::length(direction), T(0.1));
@@ -200,7 +203,7 @@ double batch_hit_rate(const shade::ray<T>* rays, const std::vector<shade::triang
                       std::size_t per_ray) {
     std::size_t hits = 0;
     for (std::size_t b = 0; b < batches.size(); ++b) hits += shade::intersect(rays[(b / per_ray) * lanes], batches[b]).count();
-    return static_cast<double>(hits) / static_cast<double>(pair_count);
+    return static_cast<double>(hits) / static_cast<double>(pair_count<T>);
 }
 
 template <class T>
@@ -215,7 +218,7 @@ void register_batch(const char* type) {
         add_pairs<T>(group + "moller_trumbore", data.pairs, run_shade<shade::moller_trumbore, T>);
         shade_bench::add(
             group + "batch8",
-            double(pair_count),
+            double(pair_count<T>),
             [&data] {
                 for (std::size_t b = 0; b < data.batches8.size(); ++b) {
                     auto all = shade::intersect(data.pairs.rays[(b / 2) * lanes], data.batches8[b]);
@@ -225,7 +228,7 @@ void register_batch(const char* type) {
             batch_hit_rate<T, 8>(data.pairs.rays.data(), data.batches8, 2));
         shade_bench::add(
             group + "batch16",
-            double(pair_count),
+            double(pair_count<T>),
             [&data] {
                 for (std::size_t b = 0; b < data.batches16.size(); ++b) {
                     auto all = shade::intersect(data.pairs.rays[b * lanes], data.batches16[b]);
