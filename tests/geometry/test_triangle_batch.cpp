@@ -53,13 +53,17 @@ void check_against_scalar(const shade::ray<T>& r, const shade::triangle_batch<T,
     const auto all = shade::intersect(r, batch, cull);
     // Every form of the kernel must give the same bits as the one intersect chose here:
     // the portable one-lane-at-a-time kernel (compilers without GNU vector extensions),
-    // the kernel for the build's own target and, where this CPU has AVX, the AVX kernel
-    // that intersect selects at run time in builds without -mavx.
+    // the kernel for the build's own target and, where this CPU has AVX or AVX-512F, the
+    // AVX and AVX-512F kernels that intersect selects at run time in builds without -mavx.
     std::vector<shade::triangle_batch_hits<T, N>> forms{
         shade::detail::intersect_batch<shade::detail::scalar_lanes<T>>(r, batch, cull),
         shade::detail::intersect_batch<shade::detail::default_lanes<T, N>>(r, batch, cull)};
 #if defined(SHADE_DETAIL_BATCH_AVX_DISPATCH)
     if (shade::detail::cpu_has_avx) forms.push_back(shade::detail::intersect_batch_avx(r, batch, cull));
+    if constexpr (N * sizeof(T) % 64 == 0) {
+        if (shade::detail::cpu_has_avx512f)
+            forms.push_back(shade::detail::intersect_batch_avx512(r, batch, cull));
+    }
 #endif
     for (const auto& form : forms) {
         CHECK(form.hit_bits == all.hit_bits);
@@ -395,9 +399,14 @@ TEST_CASE_TEMPLATE("triangle_batch: degenerate, non-finite, tiny and huge triang
 TEST_CASE("triangle_batch: the kernel name says which form intersect runs") {
     const std::string name = shade::triangle_batch_kernel();
 #if defined(SHADE_DETAIL_BATCH_AVX_DISPATCH)
-    // A build without -mavx on x86-64: AVX when the CPU has it, else the SSE2 baseline.
-    CHECK(name == (shade::detail::cpu_has_avx ? std::string("avx (selected at run time)")
-                                              : std::string("vector 16 bytes")));
+    // A build without -mavx on x86-64: AVX-512F (64-byte batches) and AVX when the CPU
+    // has them, AVX alone, or else the SSE2 baseline.
+    const std::string expected =
+        shade::detail::cpu_has_avx512f
+            ? "avx512f for batches of 64 bytes (16 floats, 8 or 16 doubles), avx for the others "
+              "(selected at run time)"
+            : shade::detail::cpu_has_avx ? "avx (selected at run time)" : "vector 16 bytes";
+    CHECK(name == expected);
 #elif defined(__AVX__)
     CHECK(name == "vector 32 bytes");
 #elif defined(__GNUC__)
