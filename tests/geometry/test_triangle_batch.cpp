@@ -60,7 +60,7 @@ void check_against_scalar(const shade::ray<T>& r, const shade::triangle_batch<T,
         shade::detail::intersect_batch<shade::detail::default_lanes<T, N>>(r, batch, cull)};
 #if defined(SHADE_DETAIL_BATCH_AVX_DISPATCH)
     if (shade::detail::cpu_has_avx) forms.push_back(shade::detail::intersect_batch_avx(r, batch, cull));
-    if constexpr (N * sizeof(T) % 64 == 0) {
+    if constexpr (shade::detail::whole_avx512_steps<T, N>) {
         if (shade::detail::cpu_has_avx512f)
             forms.push_back(shade::detail::intersect_batch_avx512(r, batch, cull));
     }

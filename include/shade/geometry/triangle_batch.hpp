@@ -524,16 +524,6 @@ intersect_batch_avx(const ray<T>& r, const triangle_batch<T, N>& batch, culling 
     return intersect_batch<vector_lanes<T, step_bytes<T, N, 32>()>>(r, batch, cull);
 }
 
-/// 64-byte steps with AVX-512F intrinsics (16 floats or 8 doubles), for the run-time
-/// dispatch of the default build. GNU vector extensions of 64 bytes were measured 3x
-/// slower than 32 bytes (their comparisons give vector masks, converted to and from the
-/// mask registers); here a comparison writes a mask register that the next & and the
-/// lane bits use as it is. The arithmetic uses the embedded-rounding intrinsics (round
-/// to nearest, exceptions suppressed): the same IEEE operations as the other forms, but
-/// ones the compiler cannot contract into fused multiply-adds (AVX-512F has FMA, and
-/// g++'s default -ffp-contract=fast would fuse a * b - c * d), so every lane keeps the
-/// scalar code's bits. Each function is compiled for AVX-512F and called only from
-/// intersect_batch_avx512, into which g++ 12 and clang++ 14 inline them.
 /// The AVX-512 register types of T: 16 floats or 8 doubles, and a mask of as many bits.
 template <std::floating_point T>
 struct avx512_types;
@@ -548,6 +538,21 @@ struct avx512_types<double> {
     using mask = __mmask8;
 };
 
+/// True when a batch of N lanes of T is a whole number of 64-byte AVX-512 steps (16
+/// floats, 8 or 16 doubles): the batches shade::intersect sends to intersect_batch_avx512.
+template <std::floating_point T, std::size_t N>
+inline constexpr bool whole_avx512_steps = N * sizeof(T) % 64 == 0;
+
+/// 64-byte steps with AVX-512F intrinsics (16 floats or 8 doubles), for the run-time
+/// dispatch of the default build. GNU vector extensions of 64 bytes were measured 3x
+/// slower than 32 bytes (their comparisons give vector masks, converted to and from the
+/// mask registers); here a comparison writes a mask register that the next & and the
+/// lane bits use as it is. The arithmetic uses the embedded-rounding intrinsics (round
+/// to nearest, exceptions suppressed): the same IEEE operations as the other forms, but
+/// ones the compiler cannot contract into fused multiply-adds (AVX-512F has FMA, and
+/// g++'s default -ffp-contract=fast would fuse a * b - c * d), so every lane keeps the
+/// scalar code's bits. Each function is compiled for AVX-512F and called only from
+/// intersect_batch_avx512, into which g++ 12 and clang++ 14 inline them.
 template <std::floating_point T>
 struct avx512_lanes {
     static constexpr std::size_t width = 64 / sizeof(T); ///< lanes per step
@@ -667,8 +672,7 @@ struct avx512_lanes {
 };
 
 /// The kernel with 64-byte steps (avx512_lanes), compiled for AVX-512F. Called only where
-/// the CPU and the OS support AVX-512F (cpu_has_avx512f) and the batch holds a whole
-/// number of 64-byte steps (16 floats, or 8 or 16 doubles).
+/// the CPU and the OS support AVX-512F (cpu_has_avx512f) and whole_avx512_steps<T, N>.
 template <std::floating_point T, std::size_t N>
 [[gnu::target("avx512f")]] [[nodiscard]] triangle_batch_hits<T, N>
 intersect_batch_avx512(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull) noexcept {
@@ -739,7 +743,7 @@ template <std::floating_point T, std::size_t N>
 [[nodiscard]] triangle_batch_hits<T, N> intersect(const ray<T>& r, const triangle_batch<T, N>& batch,
                                                   culling cull = culling::none) noexcept {
 #if defined(SHADE_DETAIL_BATCH_AVX_DISPATCH)
-    if constexpr (N * sizeof(T) % 64 == 0) {
+    if constexpr (detail::whole_avx512_steps<T, N>) {
         if (detail::cpu_has_avx512f) return detail::intersect_batch_avx512(r, batch, cull);
     }
     if (detail::cpu_has_avx) return detail::intersect_batch_avx(r, batch, cull);
