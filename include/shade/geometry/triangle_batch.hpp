@@ -13,8 +13,8 @@
 // triangle.hpp) on each triangle: the same hit or miss, the same t, barycentrics and
 // front_face (and, from intersect_closest, the same p and n). This holds because every
 // lane performs exactly the scalar algorithm's floating-point operations in the same
-// order (GLM's cross and dot; e1 = v1 - v0, e2 = v2 - v0 and the normal n = e1 × e2
-// computed at packing with the very expressions the scalar code uses). Like the scalar
+// order (GLM's cross and dot; a = v0 - v1, e2 = v2 - v0 and m = a × e2, minus the
+// normal, computed at packing with the very expressions the scalar code uses). Like the scalar
 // code it needs the compiler not to contract a*b + c into a fused multiply-add
 // differently in the two (x86-64 without -mfma never contracts; elsewhere compile with
 // -ffp-contract=off). tests/geometry/test_triangle_batch.cpp checks it.
@@ -103,7 +103,7 @@ struct every_lane_written {};
 /// never hit. Degenerate or non-finite triangles may be packed; like the scalar test they
 /// never hit.
 ///
-/// Storage: the hot arrays v0, e1 = v1 - v0, e2 = v2 - v0 and n = e1 × e2 (12 N scalars)
+/// Storage: the hot arrays v0, a = v0 - v1, e2 = v2 - v0 and m = a × e2 (12 N scalars)
 /// are read by every intersection; v1 and v2 (6 N scalars) only by triangle_at and
 /// intersect_closest. The class is over-aligned (up to 64 bytes, see
 /// detail::batch_array_alignment) so that the kernel's vector loads stay within cache
@@ -132,12 +132,12 @@ public:
         for (std::size_t i = 0; i < count_; ++i) {
             const triangle<T>& tri = triangles[i];
             // The same operations as in moller_trumbore::find, so the same bits.
-            const vec3<T> e1 = tri.v1 - tri.v0;
+            const vec3<T> a = tri.v0 - tri.v1;
             const vec3<T> e2 = tri.v2 - tri.v0;
             set(v0_, i, tri.v0);
-            set(e1_, i, e1);
+            set(a_, i, a);
             set(e2_, i, e2);
-            set(n_, i, glm::cross(e1, e2));
+            set(m_, i, glm::cross(a, e2));
             set(v1_, i, tri.v1);
             set(v2_, i, tri.v2);
         }
@@ -166,7 +166,7 @@ private:
         return vec3<T>(a.x[i], a.y[i], a.z[i]);
     }
 
-    soa3 v0_, e1_, e2_, n_; // hot; empty lanes are all zero, so their det is 0: no hit
+    soa3 v0_, a_, e2_, m_; // hot; empty lanes are all zero, so their det is 0: no hit
     soa3 v1_, v2_;          // cold: triangle_at and hit points only
     std::size_t count_ = 0;
 
@@ -237,9 +237,9 @@ template <std::floating_point T, std::size_t N>
 struct batch_access {
     using batch = triangle_batch<T, N>;
     static const auto& v0(const batch& b) noexcept { return b.v0_; }
-    static const auto& e1(const batch& b) noexcept { return b.e1_; }
+    static const auto& a(const batch& b) noexcept { return b.a_; }
     static const auto& e2(const batch& b) noexcept { return b.e2_; }
-    static const auto& n(const batch& b) noexcept { return b.n_; }
+    static const auto& m(const batch& b) noexcept { return b.m_; }
 };
 
 /// One lane at a time: the portable form of the batch kernel (any compiler), and the
@@ -430,9 +430,9 @@ intersect_batch(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull
     triangle_batch_hits<T, N> out{every_lane_written{}}; // the loop below writes every lane
 
     const auto& v0 = access::v0(batch);
-    const auto& e1 = access::e1(batch);
+    const auto& av = access::a(batch);
     const auto& e2 = access::e2(batch);
-    const auto& nv = access::n(batch);
+    const auto& mv = access::m(batch);
 
     vec o_x, o_y, o_z, d_x, d_y, d_z, zero, largest, t_lo, t_hi, inf;
     L::splat(o_x, r.origin.x);
@@ -459,23 +459,23 @@ intersect_batch(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull
         // The scalar code's dot and cross products in GLM's order,
         // cross(a, b) = (a.y b.z - b.y a.z, a.z b.x - b.z a.x, a.x b.y - b.x a.y) and
         // dot(a, b) = (a.x b.x + a.y b.y) + a.z b.z; flip_sign(x, det) is x * sign(det).
-        vec p_x, p_y, p_z, n_x, n_y, n_z, f_x, f_y, f_z, g_x, g_y, g_z;
+        vec p_x, p_y, p_z, m_x, m_y, m_z, f_x, f_y, f_z, g_x, g_y, g_z;
         load_xyz<L>(p_x, p_y, p_z, v0, i);
-        load_xyz<L>(n_x, n_y, n_z, nv, i);
-        load_xyz<L>(f_x, f_y, f_z, e1, i);
+        load_xyz<L>(m_x, m_y, m_z, mv, i);
+        load_xyz<L>(f_x, f_y, f_z, av, i);
         load_xyz<L>(g_x, g_y, g_z, e2, i);
-        const vec s_x = o_x - p_x;
-        const vec s_y = o_y - p_y;
-        const vec s_z = o_z - p_z;
-        const vec c_x = d_y * s_z - s_y * d_z;
-        const vec c_y = d_z * s_x - s_z * d_x;
-        const vec c_z = d_x * s_y - s_x * d_y;
+        const vec q_x = p_x - o_x;
+        const vec q_y = p_y - o_y;
+        const vec q_z = p_z - o_z;
+        const vec c_x = d_y * q_z - q_y * d_z;
+        const vec c_y = d_z * q_x - q_z * d_x;
+        const vec c_z = d_x * q_y - q_x * d_y;
         // The scalar code's two branches on the sign of det in one, on the numerators
         // multiplied by sign(det) (see moller_trumbore for why the bits agree).
-        const vec det = -(d_x * n_x + d_y * n_y + d_z * n_z);
+        const vec det = d_x * m_x + d_y * m_y + d_z * m_z;
         vec a, un, vn;
         L::abs(a, det);
-        L::flip_sign(un, -(g_x * c_x + g_y * c_y + g_z * c_z), det);
+        L::flip_sign(un, g_x * c_x + g_y * c_y + g_z * c_z, det);
         L::flip_sign(vn, f_x * c_x + f_y * c_y + f_z * c_z, det);
         const vec wn = a - (un + vn);
         mask candidate = (un >= zero) & (vn >= zero) & (wn >= zero) & (a > zero) & (a <= largest);
@@ -490,7 +490,7 @@ intersect_batch(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull
         }
 
         vec t_num, t_out, b0, b1, b2;
-        L::flip_sign(t_num, s_x * n_x + s_y * n_y + s_z * n_z, det);
+        L::flip_sign(t_num, q_x * m_x + q_y * m_y + q_z * m_z, det);
         const vec t = t_num / a;
         const mask ok = candidate & (t >= t_lo) & (t <= t_hi);
         L::select(t_out, ok, t, inf);
@@ -593,10 +593,6 @@ struct avx512_lanes {
         [[gnu::target("avx512f")]] friend vec operator/(const vec& a, const vec& b) noexcept {
             if constexpr (is_float) return {_mm512_maskz_div_round_ps(all, a.v, b.v, nearest)};
             else return {_mm512_maskz_div_round_pd(all, a.v, b.v, nearest)};
-        }
-        /// -a: the sign bit flipped (exact, as the other forms' negation).
-        [[gnu::target("avx512f")]] friend vec operator-(const vec& a) noexcept {
-            return from_bits(to_bits(a) ^ sign_bit());
         }
         // Ordered, quiet comparisons: false where either side is NaN, as in C++.
         [[gnu::target("avx512f")]] friend mask operator>=(const vec& a, const vec& b) noexcept {
@@ -728,13 +724,13 @@ inline const bool cpu_has_avx512f = [] {
 /// Intersects r with every lane of batch: Möller and Trumbore's algorithm exactly as in
 /// shade::moller_trumbore (Möller, Trumbore 1997, "Fast, Minimum Storage Ray-Triangle
 /// Intersection", Journal of Graphics Tools 2(1):21-28, §2, in the arrangement around the
-/// stored normal n = e1 × e2 that triangle.hpp derives: det = -d·n, c = d × (o - v0),
-/// U = -e2·c, V = e1·c), lane by lane, with the same culling rule and the same rejection
+/// stored m = (v0 - v1) × e2 = -n that triangle.hpp derives: det = d·m, c = d × (v0 - o),
+/// U = e2·c, V = (v0 - v1)·c), lane by lane, with the same culling rule and the same rejection
 /// of invalid rays, degenerate triangles and t outside [t_min, t_max].
 ///
 /// A lane is hit when, with a = |det| and U, V multiplied by sign(det),
 ///     U >= 0,  V >= 0,  W = a - (U + V) >= 0,  0 < a <= max
-/// (and det > 0 under back-face culling) and t = sign(det) s·n / a is finite and in
+/// (and det > 0 under back-face culling) and t = sign(det) (v0 - o)·m / a is finite and in
 /// [t_min, t_max]. These are the scalar code's tests (its two branches on the sign of
 /// det, made branch-free) on the same values, and the quotients t, W/a, U/a, V/a are
 /// its bits. Where no lane of a vector step passes the first line, the step costs no
