@@ -55,16 +55,28 @@ template <std::floating_point T>
     // non-finite direction makes n·d infinite or NaN, so t is NaN or ±0, and at t = ±0 the
     // point o + t d is NaN. Each case is rejected below. t_max < t_min or a NaN bound
     // leaves no t in [t_min, t_max].
-    if (!(r.t_min >= T(0))) return std::nullopt;
+    //
+    // Every return below returns `out`, filled field by field, so that it is built in the
+    // caller's storage (named return value optimisation). Returning hit<T>{t, p, n, ...}
+    // instead made g++ 12 -O3 assemble the record on the stack with 4- and 8-byte stores
+    // and copy it with 16-byte loads, which the CPU cannot forward from those stores: the
+    // test took 1.5 times as long (bench_sphere_plane, float and double).
+    std::optional<hit<T>> out;
+    if (!(r.t_min >= T(0))) return out;
     const vec3<T>& n = pl.normal();
     const T n_dot_d = glm::dot(n, r.direction);
-    if (n_dot_d == T(0)) return std::nullopt;
-    if (cull == culling::back_faces && !(n_dot_d < T(0))) return std::nullopt;
+    if (n_dot_d == T(0)) return out;
+    if (cull == culling::back_faces && !(n_dot_d < T(0))) return out;
     const T t = glm::dot(n, pl.point() - r.origin) / n_dot_d;
-    if (!detail::in_interval(t, r.t_min, r.t_max)) return std::nullopt;
+    if (!detail::in_interval(t, r.t_min, r.t_max)) return out;
     const vec3<T> p = r.at(t);
-    if (!is_finite(p)) return std::nullopt;
-    return hit<T>{t, p, n, n_dot_d < T(0)};
+    if (!is_finite(p)) return out;
+    out.emplace();
+    out->t = t;
+    out->p = p;
+    out->n = n;
+    out->front_face = n_dot_d < T(0);
+    return out;
 }
 
 } // namespace shade
