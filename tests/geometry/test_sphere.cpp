@@ -110,6 +110,24 @@ TEST_CASE_TEMPLATE("sphere: a subnormal direction still hits (regression, found 
     CHECK(near_vec(h->p, v3<T>(0, 0, -1), 8 * eps<T>));
 }
 
+TEST_CASE_TEMPLATE("sphere: a subnormal radius still gives the unit normal", T, float, double) {
+    // The normal is normalised as (p - c) 2^k with R 2^k in [0.5, 1); for a subnormal R
+    // that 2^k is not a T (float: R = 2^-129 needs 2^128), and the general
+    // normalize_or_zero must take over. Sphere of radius R = min / 8 at the origin, ray
+    // from (0, 0, -4R) along +z. Every square here underflows to 0, so the quadratic sees
+    // a tangent ray: c_0 = |f|^2 - R^2 = 0 makes one root 0, and t = 0 puts p at the
+    // origin (0, 0, -4R), on the -z axis like the true hit at t = 3R: the outward normal
+    // is exactly (0, 0, -1) either way (p - c has only a z component).
+    const T radius = std::numeric_limits<T>::min() / 8;
+    REQUIRE(radius > T(0));
+    const shade::sphere<T> s({0, 0, 0}, radius);
+    const auto h = shade::intersect(shade::ray<T>{{0, 0, -4 * radius}, {0, 0, 1}}, s);
+    REQUIRE(h.has_value());
+    CHECK(h->front_face);
+    CHECK(h->n == v3<T>(0, 0, -1));
+    CHECK(shade::is_finite(h->p));
+}
+
 TEST_CASE_TEMPLATE("sphere: tangent ray touches once; a hair outside misses", T, float, double) {
     // Centre (0,0,-5), radius 2. The ray from (-5, 2, -5) along +x passes the centre at
     // distance exactly 2: f = o - c = (-5,2,0), l = f - (f·d/d·d) d = (0,2,0), so the
