@@ -261,7 +261,12 @@ def main():
              "- GLM's `intersectRayTriangle` is given the `t > 0` check it lacks (it reports "
              "hits behind the origin); its epsilon on det stays. Sphere: GLM's position-and-"
              "normal overload (unit directions, as it requires). Plane: GLM's distance plus the "
-             "hit point.",
+             "hit point. shade's sphere and plane do more than GLM's, which the ratios "
+             "include: the sphere solves the quadratic in the form without cancellation "
+             "(Haines, Günther, Akenine-Möller 2019; one division and one square root more), "
+             "rescales huge or tiny directions, normalises p - c (GLM divides by R, which is "
+             "not unit length once p is rounded) and rejects non-finite t, p or normals; the "
+             "plane tests t against [t_min, t_max] and p for finiteness.",
              "- Times are CPU time per operation, the median of 3 repetitions; a ratio is "
              "time(variant) / time(baseline) of the same group from the same run of the same "
              "binary (below 1: faster than the baseline). The machine is shared (2 cores, other "
