@@ -216,9 +216,9 @@ template <std::floating_point T>
 ///     det = d·m,  U = e2·c',  V = a·c',  T = q·m.
 /// IEEE rounding is symmetric (fl(-x) = -fl(x)), so each is bitwise the value of the
 /// first form, except that an exact zero may have the other sign, which no test below
-/// can see. Negating instead cost four instructions per hit (measured with callgrind,
-/// 143 against 134 per float test, and 3-6 % of the time at 50 and 100 % hits with
-/// g++ 12). The operation count of either form is that of the paper (two cross
+/// can see. With g++ 12 the negated form took 9 instructions more per float hit: four
+/// sign flips and the register moves around them (callgrind, 143 against 134 per test
+/// at 100 % hits; 3-6 % of the time at 50 and 100 % hits). The operation count of either form is that of the paper (two cross
 /// products, four dot products), but:
 ///   * n (here m) depends on the triangle alone, so shade::triangle_batch stores it and
 ///     each of its lanes does a quarter fewer operations than with P and Q (and bitwise
