@@ -1,8 +1,7 @@
 // Ray/sphere and ray/plane intersection: shade's routines against GLM 0.9.9.8's
 // glm::intersectRaySphere and glm::intersectRayPlane on the same precomputed pairs (512
 // in float, 256 in double: the same bytes, within the L1 data cache), about half of them
-// hits. See bench/support.hpp for names, counters and the callgrind
-// mode.
+// hits. See bench/support.hpp for names, counters and the callgrind mode.
 
 #include <cstddef>
 #include <string>

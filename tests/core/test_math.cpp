@@ -78,6 +78,7 @@ TEST_CASE_TEMPLATE("power_of_two_rescale_exponent is minus frexp's exponent of t
         CHECK(mantissa >= T(0.5));
         CHECK(mantissa < T(1));
         CHECK(shade::detail::power_of_two_rescale_exponent(x) == -e);
+        CHECK(shade::detail::power_of_two_rescale_exponent(m) == -e); // the scalar form
         // The rescaled largest component lies in [0.5, 1), exactly m * 2^-e.
         const int s = shade::detail::power_of_two_rescale_exponent(x);
         CHECK(shade::detail::times_power_of_two(m, s) == mantissa);

@@ -42,6 +42,29 @@ TEST_CASE_TEMPLATE("detail::normalize_or_zero: unit for tiny and huge vectors, z
     CHECK_FALSE(shade::detail::is_unit_normal(v(0, 0, 0)));
 }
 
+TEST_CASE_TEMPLATE("detail::normalize_expected_length: unit with a good scale, and with a bad one", T, float, double) {
+    using v = shade::vec3<T>;
+    const T inf = std::numeric_limits<T>::infinity();
+    const T tol = 4 * std::numeric_limits<T>::epsilon();
+    const auto is_0_6_0_0_8 = [&](const v& n) {
+        return std::abs(n.x - T(0.6)) <= tol && n.y == T(0) && std::abs(n.z - T(0.8)) <= tol;
+    };
+    // |(3, 0, 4)| = 5, and 5 * 2^-3 = 0.625 lies in [0.5, 1): the scaled path, and the
+    // same answer as normalize_or_zero.
+    CHECK(is_0_6_0_0_8(shade::detail::normalize_expected_length(v(3, 0, 4), T(0.125))));
+    // A scale far off: (3, 0, 4) 1e18 with scale 1 would square to 2.5e37 (fine) but
+    // 1e30 to 2.5e61, infinite in float and finite in double; either way the fallback
+    // (|w| > 4) gives the unit vector. A tiny scale (|w| < 1/4) and an infinite one
+    // (2^k not a T) fall back too.
+    CHECK(is_0_6_0_0_8(shade::detail::normalize_expected_length(v(3, 0, 4) * T(1e30), T(1))));
+    CHECK(is_0_6_0_0_8(shade::detail::normalize_expected_length(v(3, 0, 4), std::ldexp(T(1), -40))));
+    CHECK(is_0_6_0_0_8(shade::detail::normalize_expected_length(v(3, 0, 4), inf)));
+    // Zero and NaN stay "no normal".
+    CHECK_FALSE(shade::detail::is_unit_normal(shade::detail::normalize_expected_length(v(0, 0, 0), T(1))));
+    CHECK_FALSE(shade::detail::is_unit_normal(
+        shade::detail::normalize_expected_length(v(std::numeric_limits<T>::quiet_NaN(), 1, 0), T(1))));
+}
+
 TEST_CASE_TEMPLATE("detail::in_interval: closed, finite, NaN-proof", T, float, double) {
     const T inf = std::numeric_limits<T>::infinity();
     const T nan = std::numeric_limits<T>::quiet_NaN();

@@ -106,17 +106,15 @@ template <std::floating_point T>
     return std::ldexp(x, k);
 }
 
-/// -e for the e with max|v_i| = m 2^e, m in [0.5, 1) (std::frexp's exponent of the largest
-/// component): times_power_of_two(v_i, that) rescales v so its largest component lies in
-/// [0.5, 1) without any rounding, so that v·v can neither overflow nor underflow. Returned
-/// as an exponent, not as the factor 2^-e, because that factor overflows to infinity when
-/// m is subnormal (float: m < 2^-126 has e down to -148, and 2^148 is not a float).
-/// Read from m's exponent bits for float and double when m is normal, else from
-/// std::frexp. For a zero or non-finite v the result is some int (no undefined
-/// behaviour), meaningless as a scale.
+/// -e for the e with m = f 2^e, f in [0.5, 1) (std::frexp's exponent of m >= 0):
+/// times_power_of_two(x, that) rescales a number of size m into [0.5, 1) without any
+/// rounding. Returned as an exponent, not as the factor 2^-e, because that factor
+/// overflows to infinity when m is subnormal (float: m < 2^-126 has e down to -148, and
+/// 2^148 is not a float). Read from m's exponent bits for float and double when m is
+/// normal, else from std::frexp. For a zero or non-finite m the result is some int (no
+/// undefined behaviour), meaningless as a scale.
 template <std::floating_point T>
-[[nodiscard]] inline int power_of_two_rescale_exponent(const vec3<T>& v) noexcept {
-    const T m = std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
+[[nodiscard]] inline int power_of_two_rescale_exponent(T m) noexcept {
     if constexpr (ieee_binary32_or_64<T>) {
         using L = ieee_layout<T>;
         // m = 1.f 2^(field - bias) = 0.1f 2^(field - bias + 1): e = field - bias + 1.
@@ -126,6 +124,14 @@ template <std::floating_point T>
     int e = 0;
     (void)std::frexp(m, &e);
     return -e;
+}
+
+/// The scalar form's exponent for m = max|v_i|: times_power_of_two(v_i, that) rescales v
+/// so that its largest component lies in [0.5, 1), so v·v can neither overflow nor
+/// underflow.
+template <std::floating_point T>
+[[nodiscard]] inline int power_of_two_rescale_exponent(const vec3<T>& v) noexcept {
+    return power_of_two_rescale_exponent(std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z))));
 }
 
 } // namespace detail

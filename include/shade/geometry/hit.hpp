@@ -71,6 +71,21 @@ template <std::floating_point T>
     return w / glm::length(w);
 }
 
+/// v / |v| for a v whose length is known in advance up to a small factor: scale = 2^k
+/// with that length times 2^k in [0.5, 1) (times_power_of_two(T(1), k), +infinity when
+/// 2^k is not a T). Then w = v scale is exact and w·w cannot overflow or underflow, so
+/// w / |w| is the answer, each component correctly rounded, and the scale can be
+/// computed before v is known (ray/sphere takes it from the radius, off the dependency
+/// chain that ends in v). Where |w| is outside [1/4, 4] (v far from its expected
+/// length) or scale is infinite, normalize_or_zero decides instead.
+template <std::floating_point T>
+[[nodiscard]] inline vec3<T> normalize_expected_length(const vec3<T>& v, T scale) noexcept {
+    const vec3<T> w = v * scale;
+    const T w2 = glm::dot(w, w);
+    if (w2 >= T(0.0625) && w2 <= T(16)) return w / std::sqrt(w2);
+    return normalize_or_zero(v);
+}
+
 /// True when the zero-or-unit vector from normalize_or_zero is a usable unit normal.
 template <std::floating_point T>
 [[nodiscard]] inline bool is_unit_normal(const vec3<T>& n) noexcept {

@@ -67,7 +67,8 @@ private:
 /// the caller reread with wider loads than the stores, and the test took about 1.25 times
 /// as long (bench_sphere_plane).
 template <std::floating_point T>
-[[nodiscard]] inline std::optional<hit<T>> intersect(const ray<T>& r, const sphere<T>& s) noexcept {
+[[nodiscard]] inline std::optional<hit<T>> intersect(const ray<T>& r,
+                                                     const sphere<T>& s) noexcept {
     // Every return below returns `out`, so that it is built in the caller's storage (named
     // return value optimisation). A hit<double> returned as a temporary was copied with
     // `rep movs` by g++ -O3, which cost more than the whole intersection test.
@@ -88,10 +89,9 @@ template <std::floating_point T>
                     detail::times_power_of_two(r.direction.z, scale));
     const vec3<T> f = r.origin - s.center();
     const T radius = s.radius();
-    // 2^k with R 2^k in [0.5, 1) (+infinity for a subnormal R), for the normal below;
-    // computed here, where it waits for nothing, rather than from p - c at the end.
-    const T normal_scale =
-        detail::times_power_of_two(T(1), detail::power_of_two_rescale_exponent(vec3<T>(radius, 0, 0)));
+    // 2^k with R 2^k in [0.5, 1) (+infinity for a subnormal R), for the normal below
+    // (|p - c| is R up to the rounding of p); computed here, where it waits for nothing.
+    const T normal_scale = detail::times_power_of_two(T(1), detail::power_of_two_rescale_exponent(radius));
 
     const T a = glm::dot(d, d);
     const T b = -glm::dot(f, d);
@@ -120,15 +120,7 @@ template <std::floating_point T>
         return out;
     }
     const vec3<T> p = r.at(t);
-    // n = (p - c) / |p - c|. |p - c| is R up to the rounding of p, so w = (p - c) 2^k is
-    // exact (a power of two) with |w| near [0.5, 1), and w / |w| needs no further care.
-    // Only when rounding moved p far from the surface (|w| outside [1/4, 4]: a tiny
-    // sphere seen from far away) or R is subnormal (normal_scale infinite) does the
-    // general normalize_or_zero decide.
-    const vec3<T> v = p - s.center();
-    const vec3<T> w = v * normal_scale;
-    const T w2 = glm::dot(w, w);
-    const vec3<T> n = w2 >= T(0.0625) && w2 <= T(16) ? w / std::sqrt(w2) : detail::normalize_or_zero(v);
+    const vec3<T> n = detail::normalize_expected_length(p - s.center(), normal_scale);
     if (!is_finite(p) || !detail::is_unit_normal(n)) return out;
     out.emplace();
     out->t = t;

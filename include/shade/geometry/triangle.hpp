@@ -218,8 +218,8 @@ template <std::floating_point T>
 /// first form, except that an exact zero may have the other sign, which no test below
 /// can see. With g++ 12 the negated form took 9 instructions more per float hit: four
 /// sign flips and the register moves around them (callgrind, 143 against 134 per test
-/// at 100 % hits; 3-6 % of the time at 50 and 100 % hits). The operation count of either form is that of the paper (two cross
-/// products, four dot products), but:
+/// at 100 % hits; 3-6 % of the time at 50 and 100 % hits). The operation count of
+/// either form is that of the paper (two cross products, four dot products), but:
 ///   * n (here m) depends on the triangle alone, so shade::triangle_batch stores it and
 ///     each of its lanes does a quarter fewer operations than with P and Q (and bitwise
 ///     the same);

@@ -14,8 +14,8 @@
 // front_face (and, from intersect_closest, the same p and n). This holds because every
 // lane performs exactly the scalar algorithm's floating-point operations in the same
 // order (GLM's cross and dot; a = v0 - v1, e2 = v2 - v0 and m = a × e2, minus the
-// normal, computed at packing with the very expressions the scalar code uses). Like the scalar
-// code it needs the compiler not to contract a*b + c into a fused multiply-add
+// normal, computed at packing with the very expressions the scalar code uses). Like the
+// scalar code it needs the compiler not to contract a*b + c into a fused multiply-add
 // differently in the two (x86-64 without -mfma never contracts; elsewhere compile with
 // -ffp-contract=off). tests/geometry/test_triangle_batch.cpp checks it.
 //
@@ -724,14 +724,15 @@ inline const bool cpu_has_avx512f = [] {
 /// Intersects r with every lane of batch: Möller and Trumbore's algorithm exactly as in
 /// shade::moller_trumbore (Möller, Trumbore 1997, "Fast, Minimum Storage Ray-Triangle
 /// Intersection", Journal of Graphics Tools 2(1):21-28, §2, in the arrangement around the
-/// stored m = (v0 - v1) × e2 = -n that triangle.hpp derives: det = d·m, c = d × (v0 - o),
-/// U = e2·c, V = (v0 - v1)·c), lane by lane, with the same culling rule and the same rejection
-/// of invalid rays, degenerate triangles and t outside [t_min, t_max].
+/// stored m = (v0 - v1) × e2 = -n that triangle.hpp derives: det = d·m,
+/// c = d × (v0 - o), U = e2·c, V = (v0 - v1)·c), lane by lane, with the same culling rule
+/// and the same rejection of invalid rays, degenerate triangles and t outside
+/// [t_min, t_max].
 ///
 /// A lane is hit when, with a = |det| and U, V multiplied by sign(det),
 ///     U >= 0,  V >= 0,  W = a - (U + V) >= 0,  0 < a <= max
-/// (and det > 0 under back-face culling) and t = sign(det) (v0 - o)·m / a is finite and in
-/// [t_min, t_max]. These are the scalar code's tests (its two branches on the sign of
+/// (and det > 0 under back-face culling) and t = sign(det) (v0 - o)·m / a is finite and
+/// in [t_min, t_max]. These are the scalar code's tests (its two branches on the sign of
 /// det, made branch-free) on the same values, and the quotients t, W/a, U/a, V/a are
 /// its bits. Where no lane of a vector step passes the first line, the step costs no
 /// division.
