@@ -10,21 +10,29 @@
 //     viewer) given in world space, at the surface point `at` (position and shading frame).
 //     f is zero when l or v is not above the surface (dot(at.n(), w) <= 0).
 //
+// A BRDF that can also draw directions (shade::sampled_brdf) has
+//   * `sample(v, uc, u, at)` -> std::optional<brdf_sample<T>>: draws a direction l toward
+//     the light for the view v, using uc in [0,1) to choose a lobe and u in [0,1)^2 for the
+//     direction within it; nullopt when v is not above the surface or the drawn direction
+//     is not, and
+//   * `pdf(l, v, at)` -> T: the solid-angle density (1/sr) with which sample() draws l for
+//     this v (0 where it never does; for a mixture of lobes, the mixture density).
+// The pair follows pbrt-v4's BxDF interface (Pharr, Jakob, Humphreys 2023, "Physically
+// Based Rendering", 4th ed., sec. 9.1.2): f, Sample_f and PDF.
+//
 // A BRDF may also expose `f_diffuse(l, v, at)` and `f_specular(l, v, at)` with
 // f == f_diffuse + f_specular; the shader lift then lights the two parts with a light's
 // diffuse and specular colours respectively (shade::split_brdf).
 
 #include <concepts>
+#include <limits>
+#include <optional>
 
+#include <shade/core/scalar.hpp>
 #include <shade/core/surface_point.hpp>
 #include <shade/core/types.hpp>
 
 namespace shade {
-
-/// B names its scalar type as B::scalar_type, and that type is float or double.
-template <class B>
-concept has_scalar_type =
-    requires { typename B::scalar_type; } && std::floating_point<typename B::scalar_type>;
 
 /// B is a BRDF: `b.f(l, v, at)` returns the BRDF value (1/sr, no cosine) as linear RGB.
 template <class B>
@@ -33,6 +41,44 @@ concept brdf = has_scalar_type<B> &&
              const surface_point<typename B::scalar_type>& at) {
         { b.f(w, w, at) } -> std::same_as<rgb<typename B::scalar_type>>;
     };
+
+/// A direction drawn by a BRDF's sample(): everything an estimator of the reflected
+/// radiance needs, so that a path tracer never re-evaluates f at the sampled direction.
+template <std::floating_point T>
+struct brdf_sample {
+    using scalar_type = T;
+
+    vec3<T> l{0, 0, 1}; ///< sampled unit direction toward the light, world space
+    rgb<T> f{0};        ///< f(l, v, at), 1/sr, without the cosine
+    T pdf{0};           ///< solid-angle density of l (1/sr), > 0
+    rgb<T> weight{0};   ///< f * |n·l| / pdf: the Monte-Carlo weight of this sample
+};
+
+/// B is a BRDF that can also draw directions and report their density:
+/// `b.sample(v, uc, u, at)` returns std::optional<brdf_sample<T>> and `b.pdf(l, v, at)`
+/// the solid-angle density sample() draws l with (see the contract above).
+template <class B>
+concept sampled_brdf = brdf<B> &&
+    requires(const B& b, const vec3<typename B::scalar_type>& w, typename B::scalar_type uc,
+             const vec2<typename B::scalar_type>& u,
+             const surface_point<typename B::scalar_type>& at) {
+        { b.sample(w, uc, u, at) } -> std::same_as<std::optional<brdf_sample<typename B::scalar_type>>>;
+        { b.pdf(w, w, at) } -> std::same_as<typename B::scalar_type>;
+    };
+
+namespace detail {
+
+/// The brdf_sample for direction l with value f, density pdf and |n·l| = abs_n_dot_l:
+/// weight = f |n·l| / pdf. nullopt unless pdf is finite and > 0 (a direction the sampler
+/// cannot have drawn carries no usable weight).
+template <std::floating_point T>
+[[nodiscard]] inline std::optional<brdf_sample<T>> make_brdf_sample(const vec3<T>& l, const rgb<T>& f,
+                                                                    T pdf, T abs_n_dot_l) noexcept {
+    if (!(pdf > T(0)) || !(pdf <= std::numeric_limits<T>::max())) return std::nullopt;
+    return brdf_sample<T>{l, f, pdf, f * (abs_n_dot_l / pdf)};
+}
+
+} // namespace detail
 
 /// A BRDF that also reports its diffuse and specular parts separately (they sum to f).
 template <class B>
@@ -54,9 +100,5 @@ struct unchecked_t {
 
 /// The unchecked-construction tag value.
 inline constexpr unchecked_t unchecked{};
-
-/// The scalar type of a BRDF, shader or light.
-template <has_scalar_type X>
-using scalar_of = typename X::scalar_type;
 
 } // namespace shade

@@ -6,7 +6,7 @@
 #include <utility>
 #include <variant>
 
-#include <shade/brdf/brdf.hpp>
+#include <shade/core/scalar.hpp>
 #include <shade/core/types.hpp>
 #include <shade/light/area.hpp>
 #include <shade/light/directional.hpp>
