@@ -35,7 +35,7 @@
 
 #include <shade/brdf/blinn_phong.hpp>
 #include <shade/brdf/lambert.hpp>
-#include <shade/light/light.hpp>
+#include <shade/light/any_light.hpp>
 #include <shade/shading/checker.hpp>
 #include <shade/shading/gooch.hpp>
 #include <shade/shading/gradient.hpp>

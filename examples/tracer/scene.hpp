@@ -18,7 +18,7 @@
 #include <shade/geometry/plane.hpp>
 #include <shade/geometry/sphere.hpp>
 #include <shade/geometry/triangle.hpp>
-#include <shade/light/light.hpp>
+#include <shade/light/any_light.hpp>
 #include <shade/shading/shader.hpp>
 #include <shade/shading/sum_over_lights.hpp>
 

@@ -32,9 +32,11 @@
 #include <shade/brdf/oren_nayar.hpp>
 #include <shade/brdf/phong.hpp>
 
+#include <shade/light/any_light.hpp>
 #include <shade/light/area.hpp>
 #include <shade/light/directional.hpp>
 #include <shade/light/emission.hpp>
+#include <shade/light/falloff.hpp>
 #include <shade/light/light.hpp>
 #include <shade/light/light_sample.hpp>
 #include <shade/light/point.hpp>

@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include <shade/light/any_light.hpp>
 #include <shade/light/light.hpp>
 
 namespace {

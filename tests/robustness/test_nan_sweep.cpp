@@ -27,7 +27,7 @@
 #include <shade/brdf/microfacet.hpp>
 #include <shade/brdf/oren_nayar.hpp>
 #include <shade/brdf/phong.hpp>
-#include <shade/light/light.hpp>
+#include <shade/light/any_light.hpp>
 #include <shade/shading/checker.hpp>
 #include <shade/shading/gooch.hpp>
 #include <shade/shading/gradient.hpp>

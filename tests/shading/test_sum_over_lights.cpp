@@ -5,6 +5,7 @@
 
 #include <doctest/doctest.h>
 
+#include <shade/light/any_light.hpp>
 #include <shade/shading/sum_over_lights.hpp>
 
 #include "shading/local_models.hpp"

@@ -1,14 +1,50 @@
 #pragma once
-// Warps from the unit square [0,1)^2 to the disk and the hemisphere, in the local frame
-// (n = +z). Each returns a unit direction (or disk point) and documents its pdf.
+// Sample points of the unit square [0,1)^2: stratified grids (shade::stratified_u), and
+// warps from the square to the disk and the hemisphere in the local frame (n = +z), each
+// returning a unit direction (or disk point) and documenting its pdf.
 
 #include <cmath>
 #include <concepts>
+#include <string>
 
+#include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
 
 namespace shade {
+
+/// The jitter of a deterministic grid: every stratum is sampled at its centre (0.5, 0.5).
+/// Noise-free but can band; pass a random jitter in [0,1)^2 for jittered stratification.
+template <std::floating_point T>
+struct cell_centre {
+    [[nodiscard]] constexpr vec2<T> operator()(int i, int j) const noexcept {
+        (void)i;
+        (void)j;
+        return vec2<T>(T(0.5), T(0.5));
+    }
+};
+
+/// The sample pair of stratum (i, j) of an n x n grid over [0,1)^2, placed at `jitter`
+/// (in [0,1)^2) inside the stratum: ((i + jitter.x) / n, (j + jitter.y) / n). Averaging
+/// an integrand over the n^2 pairs of a jittered grid is stratified sampling (one sample
+/// per stratum), which never has more variance than n^2 independent uniform samples.
+/// Preconditions: 0 <= i, j < n.
+template <std::floating_point T>
+[[nodiscard]] constexpr vec2<T> stratified_u(int i, int j, int n, const vec2<T>& jitter) noexcept {
+    return vec2<T>((T(i) + jitter.x) / T(n), (T(j) + jitter.y) / T(n));
+}
+
+namespace detail {
+
+/// Returns n, the side of a stratified grid; throws invalid_parameter naming
+/// "samples_per_side" unless n >= 1.
+inline int require_samples_per_side(int n) {
+    if (n < 1)
+        throw invalid_parameter("samples_per_side", "must be >= 1", std::to_string(n));
+    return n;
+}
+
+} // namespace detail
 
 /// Maps u in [0,1)^2 to the unit disk with the concentric map of Shirley & Chiu 1997,
 /// "A Low Distortion Map Between Disk and Square", JGT 2(3). It keeps strata compact, so

@@ -1,6 +1,6 @@
 #pragma once
 // shade::area_light: a rectangular (parallelogram) emitter sampled by area for soft
-// shadows, and shade::stratified_u, the n x n stratified sample pairs to sample it with.
+// shadows (stratified with shade::stratified_u of shade/core/sampling.hpp).
 
 #include <cmath>
 #include <concepts>
@@ -12,6 +12,7 @@
 
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
+#include <shade/core/sampling.hpp>
 #include <shade/core/types.hpp>
 #include <shade/light/emission.hpp>
 #include <shade/light/light_sample.hpp>
@@ -21,36 +22,6 @@ namespace shade {
 /// Which side of an area light emits: the side its normal cross(edge_u, edge_v) points
 /// to, or both.
 enum class sidedness { one_sided, two_sided };
-
-/// The jitter of a deterministic grid: every stratum is sampled at its centre (0.5, 0.5).
-/// Noise-free but can band; pass a random jitter in [0,1)^2 for jittered stratification.
-template <std::floating_point T>
-struct cell_centre {
-    [[nodiscard]] constexpr vec2<T> operator()(int i, int j) const noexcept {
-        (void)i;
-        (void)j;
-        return vec2<T>(T(0.5), T(0.5));
-    }
-};
-
-/// The sample pair of stratum (i, j) of an n x n grid over [0,1)^2, placed at `jitter`
-/// (in [0,1)^2) inside the stratum: ((i + jitter.x) / n, (j + jitter.y) / n).
-/// Preconditions: 0 <= i, j < n.
-template <std::floating_point T>
-[[nodiscard]] constexpr vec2<T> stratified_u(int i, int j, int n, const vec2<T>& jitter) noexcept {
-    return vec2<T>((T(i) + jitter.x) / T(n), (T(j) + jitter.y) / T(n));
-}
-
-namespace detail {
-
-/// Throws invalid_parameter naming "samples_per_side" unless n >= 1.
-inline int require_samples_per_side(int n) {
-    if (n < 1)
-        throw invalid_parameter("samples_per_side", "must be >= 1", std::to_string(n));
-    return n;
-}
-
-} // namespace detail
 
 /// An area light: the parallelogram {corner + s edge_u + t edge_v : s, t in [0,1]}
 /// (usually a rectangle), emitting toward the side of n = normalize(cross(edge_u, edge_v)),

@@ -1,18 +1,13 @@
 #pragma once
-// The light contract (shade::light) and shade::any_light, one value that holds any of
-// shade's lights, for heterogeneous light lists.
+// The light contract: shade::light, what every light (shade's or yours) provides. The
+// lights themselves live in their own headers, and shade::any_light, the closed set of
+// shade's lights, in shade/light/any_light.hpp.
 
 #include <concepts>
-#include <utility>
-#include <variant>
 
 #include <shade/core/scalar.hpp>
 #include <shade/core/types.hpp>
-#include <shade/light/area.hpp>
-#include <shade/light/directional.hpp>
 #include <shade/light/light_sample.hpp>
-#include <shade/light/point.hpp>
-#include <shade/light/spot.hpp>
 
 namespace shade {
 
@@ -30,39 +25,5 @@ concept light = has_scalar_type<L> &&
         { l.sample(p, u) } -> std::same_as<light_sample<typename L::scalar_type>>;
         { l.is_delta() } -> std::convertible_to<bool>;
     };
-
-/// Any of shade's lights, held by value in a std::variant, so that a scene's lights fit in
-/// one std::vector<any_light<T>>. It is itself a shade::light; sample and is_delta
-/// dispatch to the held light with std::visit. Implicitly constructible from each light.
-template <std::floating_point T>
-class any_light {
-public:
-    using scalar_type = T;
-    /// The variant of all light types.
-    using variant_type =
-        std::variant<directional_light<T>, point_light<T>, spot_light<T>, area_light<T>>;
-
-    any_light(const directional_light<T>& l) : light_(l) {} // NOLINT: implicit by design
-    any_light(const point_light<T>& l) : light_(l) {}       // NOLINT
-    any_light(const spot_light<T>& l) : light_(l) {}        // NOLINT
-    any_light(const area_light<T>& l) : light_(l) {}        // NOLINT
-
-    /// The held light's sample at p for sample pair u (see shade::light).
-    [[nodiscard]] light_sample<T> sample(const vec3<T>& p, const vec2<T>& u) const {
-        return std::visit([&](const auto& l) { return l.sample(p, u); }, light_);
-    }
-
-    /// Whether the held light is a delta light.
-    [[nodiscard]] bool is_delta() const {
-        return std::visit([](const auto& l) { return l.is_delta(); }, light_);
-    }
-
-    /// The underlying variant, for std::visit with the concrete light type (e.g. to
-    /// sample an area light with its own stratification).
-    [[nodiscard]] const variant_type& get() const noexcept { return light_; }
-
-private:
-    variant_type light_;
-};
 
 } // namespace shade

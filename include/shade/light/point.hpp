@@ -1,53 +1,16 @@
 #pragma once
-// shade::point_light and shade::falloff: a light at a point whose light weakens with
-// distance by a selectable law.
+// shade::point_light: a light at a point whose light weakens with distance by a
+// selectable law (shade::falloff).
 
 #include <concepts>
-#include <string>
 
 #include <shade/core/error.hpp>
-#include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
 #include <shade/light/emission.hpp>
+#include <shade/light/falloff.hpp>
 #include <shade/light/light_sample.hpp>
 
 namespace shade {
-
-/// How a positional light's diffuse and specular colours decrease with the distance r from
-/// the light. The reference distance is 1 (one world unit): at r = 1 every law gives 1, so
-/// a light's intensity is the one measured at unit distance.
-///   none            1             (no attenuation; handy for stylised scenes)
-///   inverse_linear  1 / r
-///   inverse_square  1 / r^2       (physical: radiant intensity / r^2, the inverse-square
-///                                  law of photometry, e.g. Akenine-Moeller, Haines,
-///                                  Hoffman et al. 2018, Real-Time Rendering 4th ed.,
-///                                  Section 5.2.2)
-enum class falloff { none, inverse_linear, inverse_square };
-
-/// The attenuation factor of law f at distance r (see shade::falloff). Precondition:
-/// r > 0. For r so small that the factor overflows, the result is +inf; lights never pass
-/// it on (detail::make_sample then drops the directional part).
-template <std::floating_point T>
-[[nodiscard]] constexpr T falloff_factor(falloff f, T r) noexcept {
-    switch (f) {
-    case falloff::none: return T(1);
-    case falloff::inverse_linear: return T(1) / r;
-    case falloff::inverse_square: return T(1) / (r * r);
-    }
-    return T(1);
-}
-
-namespace detail {
-
-/// Throws invalid_parameter naming "falloff" unless f is one of the enumerators.
-inline falloff require_falloff(falloff f) {
-    if (f != falloff::none && f != falloff::inverse_linear && f != falloff::inverse_square)
-        throw invalid_parameter("falloff", "must be none, inverse_linear or inverse_square",
-                                std::to_string(static_cast<int>(f)));
-    return f;
-}
-
-} // namespace detail
 
 /// A point light at `position`. Its sample at p has l = (position - p) / r, distance
 /// r = |position - p|, ambient = intensity x ambient colour, and diffuse/specular =
@@ -81,9 +44,8 @@ public:
 
     /// The light's sample at point p (see the class comment).
     [[nodiscard]] light_sample<T> sample(const vec3<T>& p) const noexcept {
-        const auto [l, r] = detail::split_direction(vec3<T>(position_ - p));
-        if (!(r > T(0))) return detail::ambient_only_sample(emission_);
-        return detail::make_sample(emission_, l, r, falloff_factor(falloff_, r));
+        return detail::positional_sample(emission_, position_, falloff_, p,
+                                         [](const vec3<T>&) noexcept { return T(1); });
     }
 
     /// As sample(p); u is ignored (shade::light interface, shared with area lights).

@@ -10,8 +10,8 @@
 #include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
 #include <shade/light/emission.hpp>
+#include <shade/light/falloff.hpp>
 #include <shade/light/light_sample.hpp>
-#include <shade/light/point.hpp>
 
 namespace shade {
 
@@ -88,11 +88,12 @@ public:
 
     /// The light's sample at point p (see the class comment).
     [[nodiscard]] light_sample<T> sample(const vec3<T>& p) const noexcept {
-        const auto [l, r] = detail::split_direction(vec3<T>(position_ - p));
-        if (!(r > T(0))) return detail::ambient_only_sample(emission_);
         // -l points from the light to p; its cosine with the axis is cos_s.
-        const T cone = spot_cone_factor(-glm::dot(axis_, l), cos_inner_, cos_outer_);
-        return detail::make_sample(emission_, l, r, falloff_factor(falloff_, r) * cone);
+        return detail::positional_sample(emission_, position_, falloff_, p,
+                                         [this](const vec3<T>& l) noexcept {
+                                             return spot_cone_factor(-glm::dot(axis_, l),
+                                                                     cos_inner_, cos_outer_);
+                                         });
     }
 
     /// As sample(p); u is ignored (shade::light interface, shared with area lights).

@@ -9,9 +9,9 @@
 #include <type_traits>
 #include <utility>
 
+#include <shade/core/sampling.hpp>
 #include <shade/core/surface_point.hpp>
 #include <shade/core/types.hpp>
-#include <shade/light/area.hpp>
 #include <shade/light/light.hpp>
 #include <shade/light/light_sample.hpp>
 #include <shade/shading/shader.hpp>
