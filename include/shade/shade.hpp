@@ -1,7 +1,9 @@
 #pragma once
 // shade: header-only C++20 shading, BRDF and ray-intersection library on GLM.
 // This umbrella header includes every public header except shade/check/doctest.hpp (which
-// needs doctest). Conventions: shade/core/frame.hpp and docs/conventions.md.
+// needs doctest) and shade/geometry/triangle_batch.hpp (whose x86-64 backends bring in the
+// compiler's SIMD intrinsics headers: include it where you use the batch).
+// Conventions: shade/core/frame.hpp and docs/conventions.md.
 
 #include <shade/version.hpp>
 
@@ -20,7 +22,6 @@
 #include <shade/geometry/ray.hpp>
 #include <shade/geometry/sphere.hpp>
 #include <shade/geometry/triangle.hpp>
-#include <shade/geometry/triangle_batch.hpp>
 
 #include <shade/brdf/ashikhmin_shirley.hpp>
 #include <shade/brdf/blinn_phong.hpp>

@@ -53,15 +53,16 @@ void check_against_scalar(const shade::ray<T>& r, const shade::triangle_batch<T,
     const auto all = shade::intersect(r, batch, cull);
     // Every form of the kernel must give the same bits as the one intersect chose here:
     // the portable one-lane-at-a-time kernel (compilers without GNU vector extensions),
-    // the kernel for the build's own target and, where this CPU has AVX or AVX-512F, the
-    // AVX and AVX-512F kernels that intersect selects at run time in builds without -mavx.
+    // the kernel for the build's own target and, on x86-64 where this CPU has AVX or
+    // AVX-512F, the AVX and AVX-512F kernels that intersect selects at run time in builds
+    // without -mavx (compared in every build, -mavx and SHADE_NO_RUNTIME_DISPATCH included).
     std::vector<shade::triangle_batch_hits<T, N>> forms{
         shade::detail::intersect_batch<shade::detail::scalar_lanes<T>>(r, batch, cull),
         shade::detail::intersect_batch<shade::detail::default_lanes<T, N>>(r, batch, cull)};
-#if defined(SHADE_DETAIL_BATCH_AVX_DISPATCH)
-    if (shade::detail::cpu_has_avx) forms.push_back(shade::detail::intersect_batch_avx(r, batch, cull));
+#if defined(__GNUC__) && defined(__x86_64__)
+    if (shade::detail::cpu_has_avx()) forms.push_back(shade::detail::intersect_batch_avx(r, batch, cull));
     if constexpr (shade::detail::whole_avx512_steps<T, N>) {
-        if (shade::detail::cpu_has_avx512f)
+        if (shade::detail::cpu_has_avx512f())
             forms.push_back(shade::detail::intersect_batch_avx512(r, batch, cull));
     }
 #endif
@@ -398,16 +399,19 @@ TEST_CASE_TEMPLATE("triangle_batch: degenerate, non-finite, tiny and huge triang
 
 TEST_CASE("triangle_batch: the kernel name says which form intersect runs") {
     const std::string name = shade::triangle_batch_kernel();
-#if defined(SHADE_DETAIL_BATCH_AVX_DISPATCH)
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__AVX__) && \
+    !defined(SHADE_NO_RUNTIME_DISPATCH)
     // A build without -mavx on x86-64: AVX-512F (64-byte batches) and AVX when the CPU
     // has them, AVX alone, or else the SSE2 baseline.
+    static_assert(shade::detail::batch_dispatch_at_run_time);
     const std::string expected =
-        shade::detail::cpu_has_avx512f
+        shade::detail::cpu_has_avx512f()
             ? "avx512f for batches of 64 bytes (16 floats, 8 or 16 doubles), avx for the others "
               "(selected at run time)"
-            : shade::detail::cpu_has_avx ? "avx (selected at run time)" : "vector 16 bytes";
+            : shade::detail::cpu_has_avx() ? "avx (selected at run time)" : "vector 16 bytes";
     CHECK(name == expected);
 #elif defined(__AVX__)
+    static_assert(!shade::detail::batch_dispatch_at_run_time);
     CHECK(name == "vector 32 bytes");
 #elif defined(__GNUC__)
     CHECK(name == "vector 16 bytes");
