@@ -159,7 +159,8 @@ def hit_rates_of(runs):
 
 
 def target_rows(values, label_unit):
-    """The issue's targets, each as measured ratios per type and hit rate."""
+    """The performance targets (goal column) against the measured ratios, per type and
+    hit rate."""
     rows = []
 
     def get(name):
@@ -192,6 +193,32 @@ def target_rows(values, label_unit):
         out.append(f"| {label} | {r:.2f} | {goal} | {'yes' if ok else '**no**'} |")
     out.append("")
     return out
+
+
+def hit_rate_range(runs, subgroup):
+    """"lo-hi %" of the measured hit rates of the benchmarks in a subgroup (e.g. hit50)."""
+    rates = [r["hit_rate"] * 100 for n, r in runs.items()
+             if r.get("hit_rate") is not None and f"/{subgroup}/" in n]
+    if not rates:
+        return "?"
+    return f"{min(rates):.0f}-{max(rates):.0f} %"
+
+
+def l1d_size():
+    """This machine's level-1 data cache size as the kernel reports it (e.g. "48K")."""
+    base = "/sys/devices/system/cpu/cpu0/cache"
+    for index in sorted(glob.glob(os.path.join(base, "index*"))):
+        try:
+            with open(os.path.join(index, "level")) as f:
+                level = f.read().strip()
+            with open(os.path.join(index, "type")) as f:
+                kind = f.read().strip()
+            if level == "1" and kind == "Data":
+                with open(os.path.join(index, "size")) as f:
+                    return f.read().strip().replace("K", " KiB")
+        except OSError:
+            continue
+    return "(size unknown)"
 
 
 def cpu_model():
@@ -253,8 +280,9 @@ def main():
              "",
              "## Method", "",
              "- Every benchmark runs one routine over the same precomputed arrays (ray/shape "
-             "pairs: 512 in float, 256 in double, at most 35 KiB, so they stay in the 48 KiB "
-             "L1 data cache; 512 direction pairs for the BRDFs) and hands each result to "
+             "pairs: 512 in float, 256 in double, at most 35 KiB, so they stay in the "
+             f"{l1d_size()} L1 data cache; 512 direction pairs for the BRDFs) and hands each "
+             "result to "
              "`benchmark::DoNotOptimize`. Intersection routines "
              "are reduced to the same record (hit, t, two barycentrics or coordinates), so "
              "every routine does the same observable work.",
@@ -269,12 +297,13 @@ def main():
              "plane tests t against [t_min, t_max] and p for finiteness.",
              "- Times are CPU time per operation, the median of 3 repetitions; a ratio is "
              "time(variant) / time(baseline) of the same group from the same run of the same "
-             "binary (below 1: faster than the baseline). The machine is shared (2 cores, other "
-             "builds running), so single times are noisy; the ratios and the instruction "
+             "binary (below 1: faster than the baseline). On a shared machine (other work "
+             "running, see the load average above) single times are noisy; the ratios and "
+             "the instruction "
              "counts are the figures to compare.",
              "- Hit rates are measured with each routine on its own data and shown next to "
-             "its time (~0 %, ~50 %, ~100 % targeted; the random 50 % sets come out at "
-             "46-52 %).",
+             f"its time (~0 %, ~50 %, ~100 % targeted; the 50 % sets came out at "
+             f"{hit_rate_range(time_runs, 'hit50')} in this run).",
              "- Triangle rows `moller_trumbore`, `plane_then_areas`, `watertight` time the lean "
              "test `shade::find_intersection<A>` (t, barycentrics, face: GLM's job); "
              "`moller_trumbore_record` times `shade::intersect`, which also builds the hit "
@@ -293,7 +322,7 @@ def main():
     lines += ["## Targets (timed run)", ""]
     lines += target_rows(per_op(time_runs), "ratio of times")
 
-    lines += ["Where a target is missed, the structural reasons (the code, not this run):", "",
+    lines += ["What each routine does beyond GLM's (the code, not this run):", "",
               "- Default scalar test vs GLM: `find_intersection` does GLM's job with the same "
               "arithmetic on a hit (two cross products, four dot products, one division's "
               "worth of work per output) and leaves most misses before computing the normal, "
@@ -301,37 +330,22 @@ def main():
               "gets wrong: exact sign tests on the three barycentric numerators and a finite, "
               "non-zero det in place of GLM's absolute epsilon (which loses small "
               "triangles), the test that t is finite and inside [t_min, t_max] (GLM reports "
-              "hits behind the origin), rejection of degenerate triangles and of NaN or "
-              "infinite input, and three correctly rounded divisions where GLM multiplies by "
-              "one reciprocal (the batch reproduces those bits). With g++ 12 and the default "
-              "flags a float hit costs about 11 instructions more than GLM's (callgrind, "
-              "loop included: 134 against 123 per test at 100 % hits). In the disassembly, "
-              "9 of ours are the interval tests (t_min >= 0, t >= t_min, t <= t_max and "
-              "t < infinity against GLM's t > 0), 5 the early exit on U and V of opposite "
-              "signs (it pays back on misses: without it the 0 % hit rate was measured "
-              "13-30 % slower), 2 the det <= max test and 2 a spilled register (SSE2 has 16); "
-              "GLM's own extras (two epsilon tests on det, U <= det and U + V <= det) win "
-              "some of that back. The numbers are computed without negations (see "
-              "moller_trumbore), which saved 9 instructions per hit. At 100 % "
-              "hits the time ratio follows the instruction-count ratio (below), so the gap "
-              "is these rules, not the divisions: one reciprocal and three multiplications "
-              "in place of them was measured to change nothing.",
+              "hits behind the origin: t_min >= 0, t >= t_min, t <= t_max and t < infinity "
+              "against GLM's t > 0), an early exit when U and V have opposite signs, the "
+              "det <= max test, rejection of degenerate triangles and of NaN or infinite "
+              "input, and three correctly rounded divisions where GLM multiplies by one "
+              "reciprocal (the batch reproduces those bits). GLM's own extras (two epsilon "
+              "tests on det, U <= det and U + V <= det) win some of that back.",
               "- Batch vs GLM: a lane does 18 multiplications and 14 additions (the normal is "
               "stored at packing) before any division, and a vector step holds 8 floats or 4 "
               "doubles with AVX (selected at run time in the default build, compiled in with "
-              "-march=native), 4 floats or 2 doubles on a CPU without AVX. Eight float lanes "
-              "give about five times the throughput of a scalar test that leaves early on "
-              "most misses. Eight doubles take two AVX steps; on a CPU with AVX-512F the "
-              "default build runs them in one (16 floats too), which roughly halves the time "
-              "on misses. Where lanes hit, the double batch is bound by the divider: t and "
-              "the three barycentrics are four correctly rounded divisions (the scalar "
-              "code's bits), and 512-bit double divisions issue no faster per lane than "
-              "256-bit ones. Replacing the divisions by multiplications (a measurement only, "
-              "wrong results) cut the 8-double batch's time at 50 and 100 % hits by 40 %; "
-              "one reciprocal and four multiplications would give different bits from the "
-              "scalar test. With AVX alone one reciprocal was measured to change nothing. "
-              "The default build also pays a function call per batch (a function compiled "
-              "for AVX or AVX-512F is not inlined into code built for the baseline).",
+              "-march=native), 4 floats or 2 doubles on a CPU without AVX; on a CPU with "
+              "AVX-512F the default build runs batches of 64 bytes (16 floats, 8 doubles) in "
+              "16- or 8-lane steps. Where lanes hit, t and the three barycentrics are four "
+              "correctly rounded divisions (the scalar code's bits), which one reciprocal and "
+              "four multiplications would not give. The default build also pays a function "
+              "call per batch (a function compiled for AVX or AVX-512F is not inlined into "
+              "code built for the baseline).",
               ""]
 
     native_runs, native_context = {}, {}

@@ -54,7 +54,7 @@ struct named_pair {
     vec3<T> v;
 };
 
-/// The degenerate configurations of the issue, around `at`, in world space: grazing
+/// The degenerate configurations every model must survive, around `at`, in world space: grazing
 /// (n·l = 0 and n·v = 0, exactly on the horizon in the local frame), l = v, l = -v,
 /// l = n, h parallel to n (mirror pairs), and near-grazing pairs in both orders. Some have
 /// a direction on or below the horizon; those must give exactly 0.

@@ -8,9 +8,10 @@
 
 namespace {
 
-// L*a*b* tolerance: 1e-6 for double (issue), 1e-4 for float (8 ulps at 100; see
-// test_lab.cpp). Linear RGB tolerance: 1e-6 for double, 1e-5 for float (the chain
-// multiplies ~4 float roundings by the inverse matrix's gain of up to ~5).
+// L*a*b* tolerance: 1e-6 for double (a millionth of the just-noticeable Delta E of 1), 1e-4
+// for float (8 ulps at 100; see test_lab.cpp). Linear RGB tolerance: 1e-6 for double, 1e-5
+// for float (the chain multiplies ~4 float roundings by the inverse matrix's gain of up to
+// ~5).
 template <class T>
 constexpr T lab_tolerance = std::is_same_v<T, float> ? T(1e-4) : T(1e-6);
 template <class T>

@@ -57,10 +57,9 @@ template <std::floating_point T>
     // leaves no t in [t_min, t_max].
     //
     // Every return below returns `out`, filled field by field, so that it is built in the
-    // caller's storage (named return value optimisation). Returning hit<T>{t, p, n, ...}
-    // instead made g++ 12 -O3 assemble the record on the stack with 4- and 8-byte stores
-    // and copy it with 16-byte loads, which the CPU cannot forward from those stores: the
-    // test took 1.5 times as long (bench_sphere_plane, float and double).
+    // caller's storage (named return value optimisation). A returned temporary
+    // hit<T>{t, p, n, ...} is assembled by g++ 12 -O3 on the stack with 4- and 8-byte
+    // stores and copied with 16-byte loads, which the CPU cannot forward from those stores.
     std::optional<hit<T>> out;
     if (!(r.t_min >= T(0))) return out;
     const vec3<T>& n = pl.normal();

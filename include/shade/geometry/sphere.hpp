@@ -63,15 +63,14 @@ private:
 /// No hit for an invalid ray, a negative discriminant or roots outside [t_min, t_max].
 ///
 /// Declared inline (a hint a template does not otherwise carry) so that g++ 12 -O3 inlines
-/// it into callers: called out of line, its optional<hit> came back through memory that
-/// the caller reread with wider loads than the stores, and the test took about 1.25 times
-/// as long (bench_sphere_plane).
+/// it into callers: called out of line, its optional<hit> comes back through memory that
+/// the caller rereads with wider loads than the stores.
 template <std::floating_point T>
 [[nodiscard]] inline std::optional<hit<T>> intersect(const ray<T>& r,
                                                      const sphere<T>& s) noexcept {
     // Every return below returns `out`, so that it is built in the caller's storage (named
-    // return value optimisation). A hit<double> returned as a temporary was copied with
-    // `rep movs` by g++ -O3, which cost more than the whole intersection test.
+    // return value optimisation). A hit<double> returned as a temporary is copied with
+    // `rep movs` by g++ -O3, which costs more than the whole intersection test.
     std::optional<hit<T>> out;
     // The one test of the ray itself. valid() would also check that origin and direction
     // are finite and the direction non-zero; the arithmetic below rejects those rays on

@@ -145,7 +145,7 @@ namespace detail {
 /// is invalid and hits nothing; Möller-Trumbore relies on this instead of calling
 /// ray::valid()). Once t >= t_min >= 0 holds, t is neither NaN nor -infinity, so
 /// "finite" needs only t < +infinity: one comparison instead of std::isfinite's mask
-/// and compare (two instructions fewer on every hit, measured with callgrind).
+/// and compare.
 template <std::floating_point T>
 [[nodiscard]] inline bool t_accepted(const ray<T>& r, T t) noexcept {
     return r.t_min >= T(0) && t >= r.t_min && t <= r.t_max && t < infinity<T>;
@@ -215,11 +215,9 @@ template <std::floating_point T>
 /// m = a × e2 = -n and c' = d × q = -c,
 ///     det = d·m,  U = e2·c',  V = a·c',  T = q·m.
 /// IEEE rounding is symmetric (fl(-x) = -fl(x)), so each is bitwise the value of the
-/// first form, except that an exact zero may have the other sign, which no test below
-/// can see. With g++ 12 the negated form took 9 instructions more per float hit: four
-/// sign flips and the register moves around them (callgrind, 143 against 134 per test
-/// at 100 % hits; 3-6 % of the time at 50 and 100 % hits). The operation count of
-/// either form is that of the paper (two cross products, four dot products), but:
+/// first form (an exact zero may have the other sign, which no test below can see),
+/// without its sign flips. The operation count of either form is that of the paper (two
+/// cross products, four dot products), but:
 ///   * n (here m) depends on the triangle alone, so shade::triangle_batch stores it and
 ///     each of its lanes does a quarter fewer operations than with P and Q (and bitwise
 ///     the same);
@@ -240,9 +238,9 @@ template <std::floating_point T>
 /// b2 = V/det, each correctly rounded and >= 0; t must also be finite and in
 /// [t_min, t_max]. det = 0 (a degenerate triangle, or a ray in its plane) passes the
 /// second line only with U = V = 0 and then makes t infinite or NaN, so it never hits.
-/// The two branches on the sign of det cost less than multiplying U, V and T by it
-/// (measured 3-9 % with g++ 12 and 16-25 % with clang++ 14 at 50 and 100 % hits); a
-/// renderer's rays mostly strike front faces, so the branch is well predicted there.
+/// Two branches on the sign of det, rather than multiplying U, V and T by it: a
+/// renderer's rays mostly strike front faces, so the branch is well predicted there
+/// (docs/benchmarks.md has the timings).
 /// shade::triangle_batch makes the same decision branch-free, on a = |det| and the
 /// numerators multiplied by sign(det) (exact), with W' = a - (U' + V'). IEEE rounding
 /// is symmetric (fl(-x) = -fl(x)), so W' = W sign(det) and the quotients agree:

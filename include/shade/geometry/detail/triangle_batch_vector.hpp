@@ -45,8 +45,8 @@ using avx_double_mask [[gnu::vector_size(32)]] = std::int64_t;
 /// vmovmskpd. Only the kernel compiled for AVX (intersect_batch_avx, on a CPU with AVX)
 /// calls these. The AVX builtins are allowed only in a function compiled for AVX, hence a
 /// function of its own; once the kernel is inlined into intersect_batch_avx, g++ 12 and
-/// clang++ 14 inline this call too. One instruction per mask, where the generic 32-byte
-/// vector would take two 16-byte movmsk, one per half.
+/// clang++ 14 inline this call too. A single vmovmskps or vmovmskpd reads the whole
+/// mask, where the generic 32-byte vector would take two 16-byte movmsk, one per half.
 [[gnu::target("avx")]] inline std::uint64_t movemask_avx(const avx_float_mask& m) noexcept {
     using f8 [[gnu::vector_size(32)]] = float;
     return static_cast<std::uint32_t>(__builtin_ia32_movmskps256(reinterpret_cast<f8>(m)));
