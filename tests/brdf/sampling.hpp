@@ -28,6 +28,8 @@
 #include <shade/core/random.hpp>
 #include <shade/core/surface_point.hpp>
 
+#include "brdf/support.hpp"
+
 namespace brdf_test {
 
 inline constexpr double pi_d = std::numbers::pi;
