@@ -18,7 +18,8 @@ static_assert(shade::split_brdf<beckmann_v_groove<float>>);
 static_assert(shade::split_brdf<ggx_smith<double>>);
 static_assert(shade::split_brdf<shade::cook_torrance<shade::beckmann<float>, shade::dielectric_fresnel<float>,
                                                      shade::smith_beckmann<float>, form::paper_1982>>);
-static_assert(sizeof(beckmann_v_groove<float>) == sizeof(float) * 10); // stateless G takes no space
+// m_x, m_y, f0, k_s, k_d: the stateless G takes no space.
+static_assert(sizeof(beckmann_v_groove<float>) == sizeof(float) * 11);
 
 namespace {
 
@@ -137,4 +138,79 @@ TEST_CASE_TEMPLATE("cook-torrance: invalid parameters throw naming the parameter
     check_throws_naming([&] { (void)beckmann_v_groove<T>(d, f, rgb<T>(1), rgb<T>(0, std::numeric_limits<T>::quiet_NaN(), 0)); }, "k_d");
     check_throws_naming([&] { (void)beckmann_v_groove<T>(d, f, rgb<T>(std::numeric_limits<T>::max())); }, "k_s");
     CHECK_NOTHROW((void)beckmann_v_groove<T>(shade::unchecked, d, f, rgb<T>(-1)));
+}
+
+TEST_CASE_TEMPLATE("cook-torrance: an overflowing peak names the distribution's parameter (issue 22)", T, float, double) {
+    const shade::schlick<T> f(rgb<T>(T(0.04)));
+    // ggx(unchecked, 0): D(n) = 1/(pi 0) = inf: the fault is alpha's, not k_s's.
+    check_throws_naming([&] { (void)ggx_smith<T>(shade::ggx<T>(shade::unchecked, T(0)), f); }, "alpha");
+    check_throws_naming([&] { (void)ggx_smith<T>(shade::ggx<T>(shade::unchecked, T(0.5), T(0)), f); }, "alpha_y");
+    check_throws_naming([&] { (void)beckmann_v_groove<T>(shade::beckmann<T>(shade::unchecked, T(0)), f); }, "m");
+    check_throws_naming([&] { (void)beckmann_v_groove<T>(shade::beckmann<T>(shade::unchecked, std::numeric_limits<T>::quiet_NaN()), f); }, "m");
+    // A valid distribution with a huge k_s still names k_s.
+    check_throws_naming([&] { (void)ggx_smith<T>(shade::ggx<T>(T(0.3)), f, rgb<T>(std::numeric_limits<T>::max())); }, "k_s");
+}
+
+TEST_CASE_TEMPLATE("cook-torrance: anisotropic hand values follow the frame's tangent", T, float, double) {
+    // GGX (0.2, 0.5), Smith, F0 = 0.04, l = v = n: D = 1/(pi 0.1), G = 1:
+    // f = 0.04 D / 4 = 0.1/pi.
+    using model = shade::cook_torrance<shade::ggx<T>, shade::schlick<T>, shade::smith_separable<T>>;
+    const model aniso(shade::ggx<T>(T(0.2), T(0.5)), shade::schlick<T>(rgb<T>(T(0.04))));
+    for (const auto& at : {flat<T>(), tilted<T>()}) {
+        CHECK(close(aniso.f(at.n(), at.n(), at), rgb<T>(T(0.1) / shade::pi<T>), tol<T>));
+        // v = n, l at 2 theta_h in the t-n plane: h at theta_h along t, where
+        // D = (alpha_x/alpha_y) D_ggx(cos theta_h, alpha_x) (see test_ggx); in the b-n plane
+        // (alpha_y/alpha_x) D_ggx(cos theta_h, alpha_y). f = F(v.h) D G1(l) G1(v) / (4 n.l).
+        const T theta_h = T(0.3);
+        for (const T phi : {T(0), shade::pi<T> / 2}) {
+            const vec3<T> l = direction(at, T(2) * theta_h, phi);
+            const T alpha_along = phi == T(0) ? T(0.2) : T(0.5);
+            const T ratio = phi == T(0) ? T(0.4) : T(2.5);
+            const T D = ratio * shade::D_ggx(std::cos(theta_h), alpha_along);
+            const T g1_l = shade::G1_smith_ggx(std::cos(T(2) * theta_h), alpha_along);
+            const rgb<T> F = shade::F_schlick(rgb<T>(T(0.04)), std::cos(theta_h));
+            CAPTURE(phi);
+            CHECK(close(aniso.f(l, at.n(), at), F * (D * g1_l / (T(4) * std::cos(T(2) * theta_h))), T(20) * tol<T>));
+        }
+    }
+}
+
+namespace {
+
+// A distribution written against the cosine-only contract (user code from before the
+// local-frame terms): it must keep working in cook_torrance.
+template <class T>
+struct cosine_only_ggx {
+    using scalar_type = T;
+    [[nodiscard]] T D(T n_dot_h) const noexcept { return shade::D_ggx(n_dot_h, T(0.25)); }
+    [[nodiscard]] T peak() const noexcept { return T(16) / shade::pi<T>; }
+};
+
+} // namespace
+
+TEST_CASE_TEMPLATE("cook-torrance: a cosine-only user distribution still works (no sampling)", T, float, double) {
+    using model = shade::cook_torrance<cosine_only_ggx<T>, shade::schlick<T>, shade::v_groove<T>>;
+    static_assert(shade::split_brdf<model>);
+    static_assert(!shade::sampled_brdf<model>);
+    const model b(cosine_only_ggx<T>{}, shade::schlick<T>(rgb<T>(T(0.04))));
+    // l = v = n: D = 16/pi, G = 1: f = 0.04 * 16/(4 pi) = 0.16/pi (as ggx_smith above).
+    const auto at = tilted<T>();
+    CHECK(close(b.f(at.n(), at.n(), at), rgb<T>(T(0.16) / shade::pi<T>), tol<T>));
+    check_throws_naming([&] { (void)shade::cook_torrance<cosine_only_ggx<T>, shade::schlick<T>, shade::v_groove<T>>(
+                            cosine_only_ggx<T>{}, shade::schlick<T>(rgb<T>(T(0.04))), rgb<T>(-1)); }, "k_s");
+}
+
+TEST_CASE_TEMPLATE("cook-torrance: height-correlated and separable Smith forms are reciprocal and finite", T, float, double) {
+    const auto at = tilted<T>();
+    const shade::cook_torrance<shade::beckmann<T>, shade::schlick<T>, shade::smith_height_correlated<T>> a(
+        shade::beckmann<T>(T(0.05), T(0.5)), shade::schlick<T>(rgb<T>(T(0.3))));
+    const shade::cook_torrance<shade::ggx<T>, shade::schlick<T>, shade::smith_separable<T>> b(
+        shade::ggx<T>(T(0.5), T(0.05)), shade::schlick<T>(rgb<T>(T(0.3))));
+    for (const auto& p : random_pairs(at, 1000)) {
+        CHECK(a.f(p.l, p.v, at) == a.f(p.v, p.l, at));
+        CHECK(b.f(p.l, p.v, at) == b.f(p.v, p.l, at));
+    }
+    check_finite_non_negative(a, at);
+    check_finite_non_negative(b, at);
+    check_zero_below(a, at);
 }

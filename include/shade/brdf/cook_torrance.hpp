@@ -11,7 +11,9 @@
 //   const shade::cook_torrance<shade::ggx<float>, shade::schlick<float>, shade::smith_ggx<float>>
 //       metal(shade::ggx<float>(0.3f), shade::schlick<float>({0.95f, 0.64f, 0.54f}));
 
+#include <algorithm>
 #include <concepts>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
@@ -21,6 +23,7 @@
 #include <shade/brdf/microfacet.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
+#include <shade/core/sampling.hpp>
 #include <shade/core/surface_point.hpp>
 #include <shade/core/types.hpp>
 
@@ -91,7 +94,7 @@ concept cook_torrance_normalization = std::floating_point<T> && requires {
 
 /// Cook-Torrance reflection: a Lambertian base plus a microfacet specular lobe.
 ///
-///     f = k_d / pi + k_s * scale * F(v·h) D(n·h) G(l, v, h) / ((n·l)(n·v))
+///     f = k_d / pi + k_s * scale * F(v·h) D(h) G(l, v, h) / ((n·l)(n·v))
 ///
 /// Cook, Torrance 1982, "A Reflectance Model for Computer Graphics", ACM ToG 1(1): the
 /// paper mixes a diffuse and a specular bidirectional reflectance as R = d R_d + s R_s with
@@ -101,13 +104,37 @@ concept cook_torrance_normalization = std::floating_point<T> && requires {
 /// energy conservation needs k_d + k_s * (specular albedo) <= 1 (e.g. k_d + k_s <= 1 with
 /// the walter form and a Smith G); the form constants are in shade::cook_torrance_form.
 ///
-/// h = normalize(l + v). Returns 0 unless n·l > 0 and n·v > 0. n·l and n·v are floored at
-/// machine epsilon in the denominator (detail::cos_floor) so f stays finite at grazing.
-/// Reciprocal: yes. Satisfies shade::split_brdf (f_diffuse = k_d / pi, f_specular = lobe).
+/// The terms are evaluated in the local frame of at.shading (t, b, n): l, v and
+/// h = normalize(l + v) become vectors with n = +z and t = +x, so an anisotropic
+/// distribution's alpha_x (m_x) runs along the frame's tangent. Returns 0 unless n·l > 0
+/// and n·v > 0. n·l and n·v are floored at machine epsilon in the denominator
+/// (detail::cos_floor) so f stays finite at grazing. Reciprocal: yes. Satisfies
+/// shade::split_brdf (f_diffuse = k_d / pi, f_specular = lobe), and shade::sampled_brdf
+/// when the distribution is a shade::sampled_microfacet_distribution (ggx, beckmann).
+///
+/// Sampling (sample, pdf): the specular lobe by the distribution's visible normals (the
+/// normal m drawn from D_v(m) = G1(v) max(0, v·m) D(m)/(n·v), l the mirror of v about m),
+/// whose density in l is
+///
+///     pdf_s(l) = D_v(h) / (4 v·h) = G1(v) D(h) / (4 n·v)
+///
+/// (Heitz 2018, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4), the
+/// density of the reflected direction; 1/(4 v·h) is the Jacobian of the reflection,
+/// Walter et al. 2007, eq. 14), with the
+/// distribution's own Smith G1 whatever masking term G the model uses; the diffuse lobe by
+/// the cosine, pdf_d(l) = (n·l)/pi. The lobe is chosen with uc: specular with probability
+/// P_s = w_s / (w_s + w_d), an estimate of the lobes' albedos from v alone:
+/// w_s = max channel of k_s F(n·v) times 4 * scale (1 for the walter form, whose specular
+/// albedo with a Smith G is at most F-weighted k_s), w_d = max channel of k_d; P_s is 1
+/// when k_d = 0, 0 when k_s = 0, and otherwise kept in [0.1, 0.9] so that neither lobe is
+/// starved where the estimate is poor (F(n·v) can be 0 where F(v·h) is not). pdf and the
+/// pdf a sample carries are the mixture P_s pdf_s + (1 - P_s) pdf_d.
 ///
 /// Distribution: beckmann<T> or ggx<T> (or any shade::microfacet_distribution).
-/// Fresnel: schlick<T> or dielectric_fresnel<T> (or any shade::fresnel_term).
-/// Masking: v_groove<T>, smith_beckmann<T> (with beckmann), smith_ggx<T> (with ggx);
+/// Fresnel: schlick<T>, dielectric_fresnel<T> or conductor_fresnel<T> (or any
+///          shade::fresnel_term).
+/// Masking: v_groove<T>, smith_beckmann<T> (with beckmann), smith_ggx<T> (with ggx),
+///          smith_separable<T>, smith_height_correlated<T> (with either);
 ///          default-constructed (the masking terms are stateless).
 template <class Distribution, class Fresnel, class Masking,
           class Form = cook_torrance_form::walter>
@@ -128,17 +155,20 @@ private:
 
 public:
     /// Validating constructor (the distribution and Fresnel term validated their own
-    /// parameters when they were built). Throws shade::invalid_parameter naming "k_s" or
-    /// "k_d" unless every channel is finite and >= 0, or if the peak value of f would
-    /// overflow T.
+    /// parameters when they were built). Throws shade::invalid_parameter if the peak value
+    /// of f would overflow T: naming the distribution's parameter ("alpha", "m", or the
+    /// anisotropic one that sets the peak) when the specular lobe overflows with k_s = 1,
+    /// else "k_s" or "k_d"; and naming "k_s" or "k_d" unless every channel is finite and
+    /// >= 0.
     cook_torrance(const Distribution& distribution, const Fresnel& fresnel,
                   const rgb<T>& k_s = rgb<T>(1), const rgb<T>& k_d = rgb<T>(0))
         : distribution_(distribution), fresnel_(fresnel),
           k_s_(require_non_negative("k_s", k_s)), k_d_(require_non_negative("k_d", k_d)) {
         // D <= peak, F <= 1, G <= 1, 1/((n·l)(n·v)) <= 1/cos_floor^2.
         const T floor2 = detail::cos_floor<T> * detail::cos_floor<T>;
-        const T peak = detail::max_channel(k_s_) * Form::template scale<T>() *
-                       (distribution_.peak() / floor2);
+        const T lobe_peak = Form::template scale<T>() * (distribution_.peak() / floor2);
+        detail::require_finite_peak(detail::peak_parameter_of(distribution_), lobe_peak);
+        const T peak = detail::max_channel(k_s_) * lobe_peak;
         detail::require_finite_peak("k_s", peak);
         detail::require_finite_peak("k_d", detail::max_channel(k_d_) * inv_pi<T> + peak);
     }
@@ -164,26 +194,116 @@ public:
     /// Specular part k_s scale F D G / ((n·l)(n·v)) (1/sr), 0 unless n·l > 0 and n·v > 0.
     [[nodiscard]] rgb<T> f_specular(const vec3<T>& l, const vec3<T>& v,
                                     const surface_point<T>& at) const noexcept {
-        const vec3<T>& n = at.n();
-        const T n_dot_l = glm::dot(n, l);
-        const T n_dot_v = glm::dot(n, v);
-        if (!(n_dot_l > T(0)) || !(n_dot_v > T(0))) return rgb<T>(0);
-        const auto [h, v_dot_h] = detail::half_vector_and_cos(l, v);
-        const T n_dot_h = glm::dot(n, h);
-        const T d = distribution_.D(n_dot_h);
-        const T g = masking_.G(distribution_, n_dot_l, n_dot_v, n_dot_h, v_dot_h);
-        const T lobe = Form::template scale<T>() * d * g /
-                       (detail::floored_cos(n_dot_l) * detail::floored_cos(n_dot_v));
-        return k_s_ * fresnel_.F(v_dot_h) * lobe;
+        const vec3<T> l_local = at.shading.to_local(l);
+        const vec3<T> v_local = at.shading.to_local(v);
+        if (!(l_local.z > T(0)) || !(v_local.z > T(0))) return rgb<T>(0);
+        const auto [h, v_dot_h] = detail::half_vector_and_cos(l_local, v_local);
+        return specular(l_local, v_local, h, v_dot_h, D_of(h));
     }
 
     /// BRDF value in 1/sr without the cosine: f_diffuse + f_specular.
     [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v,
                            const surface_point<T>& at) const noexcept {
-        return f_diffuse(l, v, at) + f_specular(l, v, at);
+        return evaluate<true, false>(l, v, at).f;
+    }
+
+    /// The solid-angle density (1/sr) with which sample() draws l for the view v: the
+    /// mixture P_s pdf_s(l) + (1 - P_s) pdf_d(l) of the class comment. 0 unless n·l > 0 and
+    /// n·v > 0.
+    [[nodiscard]] T pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept
+        requires sampled_microfacet_distribution<Distribution>
+    {
+        return evaluate<false, true>(l, v, at).pdf;
+    }
+
+    /// Draws a direction l toward the light for the view v: the lobe chosen with uc in
+    /// [0,1) (specular when uc < P_s), the direction within it from u in [0,1)^2 (see the
+    /// class comment). Returns l with f(l, v, at), pdf(l, v, at) and the weight
+    /// f (n·l) / pdf; nullopt when v is not above the surface or the drawn l is not.
+    [[nodiscard]] std::optional<brdf_sample<T>> sample(const vec3<T>& v, T uc, const vec2<T>& u,
+                                                       const surface_point<T>& at) const noexcept
+        requires sampled_microfacet_distribution<Distribution>
+    {
+        const vec3<T> v_local = at.shading.to_local(v);
+        if (!(v_local.z > T(0))) return std::nullopt;
+        vec3<T> l_local;
+        if (uc < specular_probability(v_local.z)) {
+            const vec3<T> m = distribution_.sample_visible_normal(v_local, u);
+            l_local = T(2) * glm::dot(v_local, m) * m - v_local;
+        } else {
+            l_local = square_to_cosine_hemisphere(u);
+        }
+        const vec3<T> l = at.shading.to_world(l_local);
+        const T n_dot_l = glm::dot(at.n(), l);
+        if (!(n_dot_l > T(0))) return std::nullopt;
+        const auto value = evaluate<true, true>(l, v, at);
+        return detail::make_brdf_sample(l, value.f, value.pdf, n_dot_l);
+    }
+
+    /// The probability P_s that sample() picks the specular lobe for a view with
+    /// cosine n_dot_v > 0 (see the class comment).
+    [[nodiscard]] T specular_probability(T n_dot_v) const noexcept {
+        const T w_d = detail::max_channel(k_d_);
+        if (!(w_d > T(0))) return T(1);
+        if (!(detail::max_channel(k_s_) > T(0))) return T(0);
+        const T w_s = detail::max_channel(k_s_ * fresnel_.F(n_dot_v)) *
+                      (T(4) * Form::template scale<T>());
+        // Divided by the larger weight first, so that huge (valid) weights cannot overflow
+        // the sum.
+        const T larger = std::max(w_s, w_d);
+        const T p = (w_s / larger) / (w_s / larger + w_d / larger);
+        return std::clamp(p, T(0.1), T(0.9));
     }
 
 private:
+    struct value_and_pdf {
+        rgb<T> f{0};
+        T pdf{0};
+    };
+
+    // f and/or pdf from the same local-frame quantities, so that sample() returns exactly
+    // what f() and pdf() return at its direction.
+    template <bool with_f, bool with_pdf>
+    [[nodiscard]] value_and_pdf evaluate(const vec3<T>& l, const vec3<T>& v,
+                                         const surface_point<T>& at) const noexcept {
+        const vec3<T> l_local = at.shading.to_local(l);
+        const vec3<T> v_local = at.shading.to_local(v);
+        value_and_pdf out;
+        if (!(l_local.z > T(0)) || !(v_local.z > T(0))) return out;
+        const auto [h, v_dot_h] = detail::half_vector_and_cos(l_local, v_local);
+        const T d = D_of(h);
+        if constexpr (with_f) out.f = k_d_ * inv_pi<T> + specular(l_local, v_local, h, v_dot_h, d);
+        if constexpr (with_pdf) {
+            const T p_s = specular_probability(v_local.z);
+            // pdf_s = G1(v) D(h) / (4 n·v); v_local.z > 0 here.
+            const T pdf_s = p_s > T(0) ? distribution_.G1(v_local) * d / (T(4) * v_local.z) : T(0);
+            out.pdf = p_s * pdf_s + (T(1) - p_s) * l_local.z * inv_pi<T>;
+        }
+        return out;
+    }
+
+    // D of the local half vector: D(h) when the distribution has the local form, else
+    // D(n·h).
+    [[nodiscard]] T D_of(const vec3<T>& h) const noexcept {
+        if constexpr (requires { { distribution_.D(h) } -> std::same_as<T>; })
+            return distribution_.D(h);
+        else
+            return distribution_.D(h.z);
+    }
+
+    // k_s scale F(v·h) D G / ((n·l)(n·v)) for local l, v, h with n·l, n·v > 0.
+    [[nodiscard]] rgb<T> specular(const vec3<T>& l, const vec3<T>& v, const vec3<T>& h, T v_dot_h,
+                                  T d) const noexcept {
+        T g;
+        if constexpr (requires { { masking_.G(distribution_, l, v, h, v_dot_h) } -> std::same_as<T>; })
+            g = masking_.G(distribution_, l, v, h, v_dot_h);
+        else
+            g = masking_.G(distribution_, l.z, v.z, h.z, v_dot_h);
+        const T lobe = Form::template scale<T>() * d * g /
+                       (detail::floored_cos(l.z) * detail::floored_cos(v.z));
+        return k_s_ * fresnel_.F(v_dot_h) * lobe;
+    }
+
     Distribution distribution_;
     Fresnel fresnel_;
     [[no_unique_address]] Masking masking_{};

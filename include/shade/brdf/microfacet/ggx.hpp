@@ -1,0 +1,213 @@
+#pragma once
+// shade::ggx: the GGX (Trowbridge-Reitz) microfacet distribution, isotropic or anisotropic,
+// with its Smith masking (Lambda, G1) and the sampling of its visible normals; and the
+// free functions D_ggx, Lambda_ggx, G1_smith_ggx.
+//
+// Local frame: n = +z, t = +x, b = +y. alpha_x is the roughness along t, alpha_y along b
+// (Walter et al.'s alpha_g when they are equal); not a "perceptual roughness".
+
+#include <algorithm>
+#include <cmath>
+#include <concepts>
+#include <string_view>
+
+#include <glm/geometric.hpp>
+
+#include <shade/brdf/brdf.hpp>
+#include <shade/brdf/microfacet/distribution.hpp>
+#include <shade/core/math.hpp>
+#include <shade/core/types.hpp>
+
+namespace shade {
+
+/// GGX (Trowbridge-Reitz) distribution, isotropic, from the cosine of the half angle.
+///
+/// Trowbridge, Reitz 1975, "Average irregularity representation of a rough surface for ray
+/// reflection", JOSA 65(5); named GGX in Walter et al. 2007 (EGSR), eq. 33:
+///
+///     D(h) = alpha^2 / (pi cos^4(theta_h) (alpha^2 + tan^2(theta_h))^2)
+///          = alpha^2 / (pi (alpha^2 cos^2(theta_h) + sin^2(theta_h))^2)
+///
+/// n_dot_h = cos(theta_h); alpha in [1e-4, 1e4]. Returns D in 1/sr (0 for n·h <= 0);
+/// D(n) = 1/(pi alpha^2). The second form, with sin^2 = (1 - c)(1 + c), has no
+/// cancellation for tiny alpha (the usual (alpha^2 - 1) c^2 + 1 rounds to 0 at c = 1 when
+/// alpha^2 < float epsilon, giving Inf). A cosine alone cannot give sin^2 to better than
+/// the rounding of c near 1 (relative error ~ 6e-8 / sin^2 in float); the local-frame form
+/// D_ggx(m, alpha_x, alpha_y) takes sin^2 from the tangent components instead.
+template <std::floating_point T>
+[[nodiscard]] inline T D_ggx(T n_dot_h, T alpha) noexcept {
+    if (!(n_dot_h > T(0))) return T(0);
+    const T c = std::min(n_dot_h, T(1));
+    const T a2 = alpha * alpha;
+    const T s2 = (T(1) - c) * (T(1) + c);
+    const T k = a2 * c * c + s2;
+    return a2 / (pi<T> * k * k);
+}
+
+/// Anisotropic GGX distribution of a microfacet normal m in the local frame.
+///
+/// Heitz 2014, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs",
+/// JCGT 3(2), sec. 5 (the anisotropic GGX distribution, obtained by stretching the
+/// isotropic one of Walter et al. 2007, eq. 33, by alpha_x and alpha_y):
+///
+///     D(m) = 1 / (pi alpha_x alpha_y (m_x^2/alpha_x^2 + m_y^2/alpha_y^2 + m_z^2)^2)
+///
+/// m a unit vector; alpha_x, alpha_y in [1e-4, 1e4]. Returns D in 1/sr, 0 for m_z <= 0;
+/// D(n) = 1/(pi alpha_x alpha_y). With alpha_x = alpha_y = alpha it is D_ggx(m_z, alpha),
+/// written as 1/(pi alpha^2 (cos^2 + sin^2/alpha^2)^2) with sin^2 = m_x^2 + m_y^2: taken
+/// from the tangent components, sin^2 keeps full relative precision near the peak, where
+/// 1 - cos^2 is lost to the rounding of cos (in float, cos(1e-3) carries an error up to
+/// 3e-8 against 1 - cos = 5e-7, so sin^2 from it is off by up to 6 %, and D with
+/// alpha = 0.01 by up to 1e-3).
+template <std::floating_point T>
+[[nodiscard]] inline T D_ggx(const vec3<T>& m, T alpha_x, T alpha_y) noexcept {
+    if (!(m.z > T(0))) return T(0);
+    const T x = m.x / alpha_x;
+    const T y = m.y / alpha_y;
+    const T k = x * x + y * y + m.z * m.z;
+    return T(1) / (pi<T> * alpha_x * alpha_y * k * k);
+}
+
+/// Smith's Lambda for the anisotropic GGX distribution, direction w in the local frame.
+///
+/// Heitz 2014, JCGT 3(2), eq. 86 (with the projected roughness of eq. 80,
+/// alpha_w^2 tan^2(theta) = (alpha_x^2 w_x^2 + alpha_y^2 w_y^2) / w_z^2):
+///
+///     Lambda(w) = (-1 + sqrt(1 + (alpha_x^2 w_x^2 + alpha_y^2 w_y^2) / w_z^2)) / 2
+///
+/// evaluated without cancellation as q / (2 c (c + sqrt(c^2 + q))), c = w_z,
+/// q = alpha_x^2 w_x^2 + alpha_y^2 w_y^2 (multiply and divide by sqrt(c^2 + q) + c).
+/// Returns Lambda >= 0 (dimensionless); 0 at w = n; +infinity for w_z <= 0 (then
+/// G1 = 1/(1 + Lambda) = 0).
+template <std::floating_point T>
+[[nodiscard]] inline T Lambda_ggx(const vec3<T>& w, T alpha_x, T alpha_y) noexcept {
+    if (!(w.z > T(0))) return infinity<T>;
+    const T c = w.z;
+    const T q = sqr(alpha_x * w.x) + sqr(alpha_y * w.y);
+    return q / (T(2) * c * (c + std::sqrt(c * c + q)));
+}
+
+/// Smith masking for the GGX distribution, isotropic, from the cosine.
+///
+/// Walter et al. 2007 (EGSR), eq. 34: G1 = 2 / (1 + sqrt(1 + alpha^2 tan^2(theta))),
+/// evaluated as the equal 2 c / (c + sqrt(c^2 + alpha^2 (1 - c^2))) with c = cos(theta), which
+/// needs no tangent and goes smoothly to 0 as c -> 0 (the tan form overflows there).
+/// Returns G1 in [0, 1]; 0 for n_dot_w <= 0, 1 at n_dot_w = 1.
+template <std::floating_point T>
+[[nodiscard]] inline T G1_smith_ggx(T n_dot_w, T alpha) noexcept {
+    if (!(n_dot_w > T(0))) return T(0);
+    const T c = std::min(n_dot_w, T(1));
+    const T s2 = (T(1) - c) * (T(1) + c);
+    return T(2) * c / (c + std::sqrt(c * c + alpha * alpha * s2));
+}
+
+/// Smith masking for the anisotropic GGX distribution, direction w in the local frame:
+/// Smith's G1 = 1 / (1 + Lambda_ggx(w)) (Heitz 2014, JCGT 3(2), sec. 5, with Lambda of
+/// eq. 86), evaluated as 2 c / (c + sqrt(c^2 + q)) with c and q as in Lambda_ggx (no
+/// cancellation, no tangent). Returns G1 in [0, 1]; 0 for w_z <= 0.
+template <std::floating_point T>
+[[nodiscard]] inline T G1_smith_ggx(const vec3<T>& w, T alpha_x, T alpha_y) noexcept {
+    if (!(w.z > T(0))) return T(0);
+    const T c = w.z;
+    const T q = sqr(alpha_x * w.x) + sqr(alpha_y * w.y);
+    return T(2) * c / (c + std::sqrt(c * c + q));
+}
+
+/// Distribution term type: GGX / Trowbridge-Reitz, isotropic (one alpha) or anisotropic
+/// (alpha_x along the tangent t, alpha_y along the bitangent b). Satisfies
+/// shade::sampled_microfacet_distribution.
+template <std::floating_point T>
+class ggx {
+public:
+    using scalar_type = T;
+
+    /// Isotropic, alpha_x = alpha_y = alpha. Throws shade::invalid_parameter naming
+    /// "alpha" unless alpha is in [1e-4, 1e4].
+    explicit ggx(T alpha) : alpha_x_(detail::require_microfacet_parameter("alpha", alpha)), alpha_y_(alpha) {}
+
+    /// Anisotropic. Throws shade::invalid_parameter naming "alpha_x" or "alpha_y" unless
+    /// each is in [1e-4, 1e4].
+    ggx(T alpha_x, T alpha_y)
+        : alpha_x_(detail::require_microfacet_parameter("alpha_x", alpha_x)),
+          alpha_y_(detail::require_microfacet_parameter("alpha_y", alpha_y)) {}
+
+    /// Unchecked, isotropic: the caller guarantees alpha in [1e-4, 1e4].
+    constexpr ggx(unchecked_t, T alpha) noexcept : alpha_x_(alpha), alpha_y_(alpha) {}
+
+    /// Unchecked, anisotropic: the caller guarantees alpha_x, alpha_y in [1e-4, 1e4].
+    constexpr ggx(unchecked_t, T alpha_x, T alpha_y) noexcept : alpha_x_(alpha_x), alpha_y_(alpha_y) {}
+
+    /// The parameter alpha of an isotropic distribution (Walter et al.'s alpha_g); for an
+    /// anisotropic one, alpha_x.
+    [[nodiscard]] constexpr T alpha() const noexcept { return alpha_x_; }
+    [[nodiscard]] constexpr T alpha_x() const noexcept { return alpha_x_; } ///< roughness along t
+    [[nodiscard]] constexpr T alpha_y() const noexcept { return alpha_y_; } ///< roughness along b
+    /// True when alpha_x == alpha_y.
+    [[nodiscard]] constexpr bool isotropic() const noexcept { return alpha_x_ == alpha_y_; }
+
+    /// D in 1/sr from the cosine of the half angle (see D_ggx(n_dot_h, alpha)), with
+    /// alpha_x: the isotropic distribution, or for an anisotropic one D of a normal in the
+    /// t-n plane.
+    [[nodiscard]] T D(T n_dot_h) const noexcept { return D_ggx(n_dot_h, alpha_x_); }
+
+    /// D(m) in 1/sr of a unit microfacet normal m in the local frame (see D_ggx(m, ...)).
+    [[nodiscard]] T D(const vec3<T>& m) const noexcept { return D_ggx(m, alpha_x_, alpha_y_); }
+
+    /// Smith's Lambda of the local direction w (see Lambda_ggx).
+    [[nodiscard]] T Lambda(const vec3<T>& w) const noexcept { return Lambda_ggx(w, alpha_x_, alpha_y_); }
+
+    /// Smith masking G1(w) = 1/(1 + Lambda(w)) of the local direction w, in [0, 1].
+    [[nodiscard]] T G1(const vec3<T>& w) const noexcept { return G1_smith_ggx(w, alpha_x_, alpha_y_); }
+
+    /// The largest value of D over all m: max(alpha_x, alpha_y, 1)^4 / (pi alpha_x alpha_y).
+    /// (D's denominator holds the quadratic form m_x^2/alpha_x^2 + m_y^2/alpha_y^2 + m_z^2,
+    /// whose minimum over unit m is 1/max(alpha_x, alpha_y, 1)^2: at m = n when both
+    /// alphas are <= 1, else at grazing m along the rougher axis. Isotropic: 1/(pi alpha^2)
+    /// for alpha <= 1, alpha^2/pi above.)
+    [[nodiscard]] T peak() const noexcept {
+        const T a = std::max(std::max(alpha_x_, alpha_y_), T(1));
+        const T a2 = a * a;
+        return (a2 / (pi<T> * alpha_x_)) * (a2 / alpha_y_);
+    }
+
+    /// The parameter that sets the peak (used by error messages): "alpha" when isotropic
+    /// (or both NaN), else the smaller of "alpha_x" and "alpha_y".
+    [[nodiscard]] constexpr std::string_view peak_parameter() const noexcept {
+        // (NaN == NaN is false: an unchecked isotropic NaN still names "alpha".)
+        if (alpha_x_ == alpha_y_ || (alpha_x_ != alpha_x_ && alpha_y_ != alpha_y_)) return "alpha";
+        return alpha_x_ < alpha_y_ ? "alpha_x" : "alpha_y";
+    }
+
+    /// A microfacet normal (local frame) drawn from the distribution of normals visible
+    /// from w, D_w(m) = G1(w) max(0, w·m) D(m) / w_z (shade::D_visible), for u uniform in
+    /// [0,1)^2. Precondition: w unit, w_z > 0. Returns a unit m with m_z > 0.
+    ///
+    /// Dupuy, Benyoub 2023, "Sampling Visible GGX Normals with Spherical Caps", Computer
+    /// Graphics Forum 42(8) (HPG), which simplifies Heitz 2018, "Sampling the GGX
+    /// Distribution of Visible Normals", JCGT 7(4): stretch w by (alpha_x, alpha_y, 1), where
+    /// the GGX microsurface becomes the unit hemisphere; a visible normal of the hemisphere
+    /// is the half vector of w_h and a point c drawn uniformly on the spherical cap
+    /// c_z >= -w_hz; unstretch that half vector by (alpha_x, alpha_y, 1) and normalize.
+    /// With phi = 2 pi u_x and z = (1 - u_y)(1 + w_hz) - w_hz: 1 - z = u_y (1 + w_hz) and
+    /// the half vector's z, z + w_hz = (1 - u_y)(1 + w_hz), are computed in these forms,
+    /// which have no cancellation (the second is > 0 for u_y < 1).
+    [[nodiscard]] vec3<T> sample_visible_normal(const vec3<T>& w, const vec2<T>& u) const noexcept {
+        const vec3<T> w_h = glm::normalize(vec3<T>(alpha_x_ * w.x, alpha_y_ * w.y, w.z));
+        const T phi = T(2) * pi<T> * u.x;
+        const T one_minus_z = u.y * (T(1) + w_h.z);
+        const T h_z = (T(1) - u.y) * (T(1) + w_h.z);
+        const T sin_theta = safe_sqrt(one_minus_z * (T(2) - one_minus_z));
+        const vec3<T> h(sin_theta * std::cos(phi) + w_h.x, sin_theta * std::sin(phi) + w_h.y, h_z);
+        const vec3<T> m(alpha_x_ * h.x, alpha_y_ * h.y, h.z);
+        const T length = glm::length(m);
+        // Zero only for u_y = 1, outside the documented domain; n keeps the result a unit vector.
+        if (!(length > T(0))) return vec3<T>(0, 0, 1);
+        return m / length;
+    }
+
+private:
+    T alpha_x_;
+    T alpha_y_;
+};
+
+} // namespace shade
