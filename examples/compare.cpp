@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -22,6 +23,7 @@
 #include <shade/color/convert.hpp>
 #include <shade/color/delta_e.hpp>
 
+#include "support/cli.hpp"
 #include "support/image.hpp"
 
 namespace {
@@ -47,8 +49,10 @@ Options:
   --white d65|d50      white point of L*a*b* (default d65, the white of sRGB; use d50 for
                        values measured against the ICC D50 white)
   --heatmap OUT.png    write a W x H PNG of the per-pixel Delta E00: black at 0, through
-                       red and yellow, to white at --scale and above
-  --scale S            Delta E00 shown as white in the heat map (default 10)
+                       red and yellow, to white at --scale and above; its path is
+                       checked before any work, and the file appears only when complete
+  --scale S            Delta E00 shown as white in the heat map, in (0, 1e6]
+                       (default 10)
   --fail-above STAT=T  exit with status 1 if STAT (mean, p95 or max) of Delta E00 > T
   --help               show this help
 
@@ -60,10 +64,10 @@ Exit status: 0 on success, 1 if --fail-above is exceeded, 2 on a usage error or 
 unreadable, mismatched or invalid input (with a message on stderr).
 )";
 
+namespace ex = shade::examples;
+
 /// A usage or input error: printed as "compare: error: <message>", exit status 2.
-struct usage_error : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+using ex::usage_error;
 
 struct region {
     int x = 0, y = 0, w = 0, h = 0;
@@ -92,14 +96,6 @@ real parse_real(std::string_view text, std::string_view what) {
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
         throw usage_error(std::string(what) + ": '" + std::string(text) + "' is not a finite number");
-    return value;
-}
-
-int parse_int(std::string_view text, std::string_view what) {
-    int value = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (ec != std::errc() || end != text.data() + text.size())
-        throw usage_error(std::string(what) + ": '" + std::string(text) + "' is not an integer");
     return value;
 }
 
@@ -132,11 +128,11 @@ options parse(int argc, char** argv, bool& help) {
             const auto parts = split(v, ',');
             if (parts.size() != 4)
                 throw usage_error("--region expects X,Y,W,H (four integers), got '" + std::string(v) + "'");
-            region r{parse_int(parts[0], "--region X"), parse_int(parts[1], "--region Y"),
-                     parse_int(parts[2], "--region W"), parse_int(parts[3], "--region H")};
-            if (r.x < 0 || r.y < 0 || r.w <= 0 || r.h <= 0)
-                throw usage_error("--region " + std::string(v) + ": X and Y must be >= 0, W and H > 0");
-            o.area = r;
+            constexpr int max = std::numeric_limits<int>::max();
+            o.area = region{ex::parse_integer(std::string(arg) + " X", parts[0], 0, max),
+                            ex::parse_integer(std::string(arg) + " Y", parts[1], 0, max),
+                            ex::parse_integer(std::string(arg) + " W", parts[2], 1, max),
+                            ex::parse_integer(std::string(arg) + " H", parts[3], 1, max)};
         } else if (arg == "--lab") {
             const std::string_view v = value(arg);
             const auto parts = split(v, ',');
@@ -151,9 +147,9 @@ options parse(int argc, char** argv, bool& help) {
             o.white = std::string(v);
         } else if (arg == "--heatmap") {
             o.heatmap = std::string(value(arg));
+            if (o.heatmap->empty()) throw usage_error("--heatmap needs a non-empty file name");
         } else if (arg == "--scale") {
-            o.scale = parse_real(value(arg), "--scale");
-            if (!(o.scale > 0)) throw usage_error("--scale must be > 0");
+            o.scale = ex::parse_real(arg, value(arg), 0, 1e6, ex::lower_limit::exclusive);
         } else if (arg == "--fail-above") {
             const std::string_view v = value(arg);
             const auto parts = split(v, '=');
@@ -217,7 +213,10 @@ void print_lab(const char* label, const shade::lab<real>& c) {
 }
 
 int run(const options& o) {
-    namespace ex = shade::examples;
+    // The heat map's path is checked (and its temporary file created) before any work, so
+    // a bad path fails before results are printed; the file appears only when complete.
+    std::optional<ex::output_file> heatmap_file;
+    if (o.heatmap) heatmap_file.emplace(*o.heatmap);
     const auto white = o.white == "d50" ? shade::white_point<real>::d50() : shade::white_point<real>::d65();
     const shade::srgb_lab_converter<real> convert(white);
 
@@ -271,7 +270,8 @@ int run(const options& o) {
         for (int y = 0; y < r.h; ++y)
             for (int x = 0; x < r.w; ++x)
                 heat.set(x, y, heat_colour(delta_e[std::size_t(y) * std::size_t(r.w) + std::size_t(x)], o.scale));
-        ex::save_png(*o.heatmap, heat);
+        ex::save_png(heatmap_file->temporary(), heat);
+        heatmap_file->commit();
         std::printf("heat map: %s (white = Delta E00 %.4g)\n", o.heatmap->c_str(), o.scale);
     }
 

@@ -9,6 +9,8 @@
 #include <shade/geometry/sphere.hpp>
 #include <shade/geometry/triangle.hpp>
 
+#include "support/cli.hpp"
+
 namespace {
 
 using real = float;
@@ -38,9 +40,31 @@ void print_hit(const std::optional<H>& h) {
     std::printf("\n");
 }
 
+void print_all();
+
 } // namespace
 
-int main() {
+int main(int argc, char** argv) {
+    namespace ex = shade::examples;
+    return ex::run_cli("intersect", [&] {
+        ex::command_line args(argc, argv);
+        while (args.next()) {
+            if (args.flag("--help") || args.flag("-h")) {
+                std::fputs("usage: intersect\n\nPrints what a few rays hit in a plane, a sphere and a triangle,\n"
+                           "with every triangle algorithm, in float. Takes no options but --help.\n",
+                           stdout);
+                return 0;
+            }
+            args.unknown();
+        }
+        print_all();
+        return 0;
+    });
+}
+
+namespace {
+
+void print_all() {
     const shade::ray<real> rays[] = {
         {{0.25f, 0.25f, 3.0f}, {0.0f, 0.0f, -1.0f}},  // straight down
         {{0.25f, 0.25f, -2.0f}, {0.0f, 0.0f, 2.0f}},  // straight up, non-unit direction
@@ -82,5 +106,6 @@ int main() {
     std::printf(" watertight with back-face culling, ray from below\n");
     print_ray(rays[1]);
     print_hit(shade::intersect<shade::watertight>(rays[1], tri, shade::culling::back_faces));
-    return 0;
 }
+
+} // namespace

@@ -28,7 +28,6 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -45,6 +44,7 @@
 #include <shade/brdf/phong.hpp>
 
 #include "support/canvas.hpp"
+#include "support/cli.hpp"
 #include "support/image.hpp"
 
 namespace {
@@ -66,14 +66,10 @@ Anisotropic models show the plane along the tangent t and the plane along the bi
 Writes DIR/lobes_<model>.png for each model and DIR/lobes_all.png with all of them.
 
 options:
-  --out DIR   output directory, created if missing (default out/)
+  --out DIR   output directory, created if missing (default out/); each PNG is written
+              to a temporary file there and renamed when complete
   --help      this text
 )";
-
-[[noreturn]] void fail(const std::string& message) {
-    std::fprintf(stderr, "lobes: %s\n(try --help)\n", message.c_str());
-    std::exit(2);
-}
 
 /// A BRDF as a function of (l, v) in the local frame n = +z, t = +x, b = +y.
 using brdf_function = std::function<rgb(const vec3&, const vec3&)>;
@@ -254,62 +250,54 @@ std::vector<panel> panels_of(const model& m) {
 } // namespace
 
 int main(int argc, char** argv) {
-    std::filesystem::path out = "out";
-    for (int i = 1; i < argc; ++i) {
-        const std::string_view opt = argv[i];
-        if (opt == "--help" || opt == "-h") {
-            std::fputs(usage.data(), stdout);
-            return 0;
+    namespace ex = shade::examples;
+    return ex::run_cli("lobes", [&] {
+        std::filesystem::path out = "out";
+        ex::command_line args(argc, argv);
+        while (args.next()) {
+            if (args.flag("--help") || args.flag("-h")) {
+                std::fputs(usage.data(), stdout);
+                return 0;
+            }
+            if (args.option("--out")) out = args.path();
+            else args.unknown();
         }
-        if (opt == "--out") {
-            if (i + 1 >= argc) fail("option --out needs a value");
-            out = argv[++i];
-            if (out.empty()) fail("option --out needs a non-empty directory name");
-        } else {
-            fail("unknown option '" + std::string(opt) + "'");
-        }
-    }
-    // Fail before drawing, not after, if the directory cannot be made or written to.
-    std::error_code ec;
-    std::filesystem::create_directories(out, ec);
-    if (ec) fail("cannot create output directory '" + out.string() + "': " + ec.message());
-    if (!std::filesystem::is_directory(out, ec)) fail("output path '" + out.string() + "' is not a directory");
-    {
-        const auto probe = out / "lobes_all.png";
-        std::ofstream file(probe, std::ios::binary | std::ios::app);
-        if (!file) fail("cannot write to output directory '" + out.string() + "'");
-    }
+        // Fail before drawing, not after, if the directory cannot be made or written to:
+        // the overview's temporary file is created now.
+        std::error_code ec;
+        std::filesystem::create_directories(out, ec);
+        if (ec) throw ex::usage_error("cannot create output directory '" + out.string() + "': " + ec.message());
+        if (!std::filesystem::is_directory(out, ec))
+            throw ex::usage_error("output path '" + out.string() + "' is not a directory");
+        ex::output_file overview(out / "lobes_all.png");
 
-    try {
         const std::vector<model> all = models();
         // The overview: three panels per row.
         std::vector<std::pair<panel, real>> every;
         for (const auto& m : all) {
             const auto panels = panels_of(m);
             const real rho_max = max_over(panels);
-            shade::examples::canvas c(panel_width * int(panels.size()), panel_height + legend_height, paper);
+            ex::canvas c(panel_width * int(panels.size()), panel_height + legend_height, paper);
             for (std::size_t k = 0; k < panels.size(); ++k) {
                 draw_panel(c, float(k) * panel_width, 0, panels[k], rho_max);
                 every.emplace_back(panels[k], rho_max);
             }
             draw_legend(c, panel_height);
-            const auto file = out / ("lobes_" + m.file + ".png");
-            shade::examples::save_png(file, c.to_image());
-            std::printf("wrote %s\n", file.string().c_str());
+            ex::output_file file(out / ("lobes_" + m.file + ".png"));
+            ex::save_png(file.temporary(), c.to_image());
+            file.commit();
+            std::printf("wrote %s\n", file.target().string().c_str());
         }
         constexpr int columns = 3;
         const int rows = (int(every.size()) + columns - 1) / columns;
-        shade::examples::canvas c(panel_width * columns, panel_height * rows + legend_height, paper);
+        ex::canvas c(panel_width * columns, panel_height * rows + legend_height, paper);
         for (std::size_t k = 0; k < every.size(); ++k)
             draw_panel(c, float(int(k) % columns * panel_width), float(int(k) / columns * panel_height),
                        every[k].first, every[k].second);
         draw_legend(c, float(panel_height * rows));
-        const auto file = out / "lobes_all.png";
-        shade::examples::save_png(file, c.to_image());
-        std::printf("wrote %s\n", file.string().c_str());
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "lobes: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+        ex::save_png(overview.temporary(), c.to_image());
+        overview.commit();
+        std::printf("wrote %s\n", overview.target().string().c_str());
+        return 0;
+    });
 }

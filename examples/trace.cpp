@@ -6,19 +6,18 @@
 // jittered samples per pixel, exposure + Reinhard tone map + sRGB encoding. The same
 // arguments give the same bytes whatever --threads is.
 
-#include <charconv>
 #include <chrono>
 #include <cstdio>
-#include <exception>
-#include <fstream>
+#include <cstdint>
+#include <filesystem>
 #include <string>
 #include <string_view>
-#include <system_error>
 
 #if defined(__unix__) || defined(__APPLE__)
 #include <unistd.h>
 #endif
 
+#include "support/cli.hpp"
 #include "support/image.hpp"
 #include "tracer/render.hpp"
 #include "tracer/scenes.hpp"
@@ -33,16 +32,21 @@ options:
   --scene NAME     gallery (default): one sphere per shading model on a checker plane;
                    mesh: a tessellated torus with flat, Gouraud and Phong shading;
                    lights: hard shadows from point/directional lights, soft from an area light
-  --width N        image width in pixels (default 640)
-  --height N       image height in pixels (default 360)
-  --spp N          samples per pixel (default 4)
-  --threads N      worker threads (default: all cores; the image does not depend on it)
-  --area-samples N area lights are sampled N x N times per hit (default 4)
-  --exposure X     exposure multiplier before tone mapping (default 1)
+  --width N        image width in pixels, 1 to 16384 (default 640)
+  --height N       image height in pixels, 1 to 16384 (default 360)
+  --spp N          samples per pixel, 1 to 65536 (default 4)
+  --threads N      worker threads, 1 to 1024 (default: all cores; the image does not
+                   depend on it)
+  --area-samples N area lights are sampled N x N times per hit, 1 to 256 (default 4)
+  --exposure X     exposure multiplier before tone mapping, in (0, 1e6] (default 1)
   --seed N         seed of the per-pixel random numbers (default 1)
-  --out FILE       output PNG (default <scene>.png)
+  --out FILE       output PNG (default <scene>.png); written to a temporary file next
+                   to it and renamed when complete, so a failed or interrupted run
+                   never leaves a partial FILE
   --quiet          no progress bar (it is drawn only when stderr is a terminal)
   --help           this text
+
+limits: at most 2^26 pixels (width x height) and 2^32 samples (pixels x spp).
 )";
 
 // True when stderr is a terminal, where a redrawn progress bar belongs (in a log file or a
@@ -55,92 +59,84 @@ bool stderr_is_terminal() {
 #endif
 }
 
+// Limits checked before anything is allocated or rendered: an image side of at most
+// 16384 pixels, at most 2^26 pixels (the radiance buffer then stays under 1 GiB in double,
+// 3 x 8 bytes a pixel, and the 8-bit image under 200 MiB) and at most 2^32 samples in all
+// (pixels x spp, hours of rendering on a desktop CPU).
+constexpr int max_side = 16384;
+constexpr std::uint64_t max_pixels = std::uint64_t(1) << 26;
+constexpr int max_spp = 1 << 16;
+constexpr std::uint64_t max_samples = std::uint64_t(1) << 32;
+constexpr int max_threads = 1024;
+constexpr int max_area_samples = 256;
+
 struct arguments {
     std::string scene = "gallery";
     tracer::render_options render;
     double exposure = 1;
-    std::string out;
+    std::filesystem::path out;
     bool quiet = false;
+    bool help = false;
 };
 
-[[noreturn]] void fail(const std::string& message) {
-    std::fprintf(stderr, "trace: %s\n(try --help)\n", message.c_str());
-    std::exit(2);
-}
-
-template <class N>
-N parse_number(std::string_view option, std::string_view text) {
-    N value{};
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (ec != std::errc() || end != text.data() + text.size())
-        fail("option " + std::string(option) + " needs a number, got '" + std::string(text) + "'");
-    return value;
-}
-
-int parse_positive(std::string_view option, std::string_view text) {
-    const int value = parse_number<int>(option, text);
-    if (value <= 0) fail("option " + std::string(option) + " must be positive, got " + std::string(text));
-    return value;
-}
-
 arguments parse(int argc, char** argv) {
+    namespace ex = shade::examples;
     arguments a;
     a.render.width = 640;
     a.render.height = 360;
-    for (int i = 1; i < argc; ++i) {
-        const std::string_view opt = argv[i];
-        if (opt == "--help" || opt == "-h") {
-            std::fputs(usage.data(), stdout);
-            std::exit(0);
+    bool out_given = false;
+    ex::command_line args(argc, argv);
+    while (args.next()) {
+        if (args.flag("--help") || args.flag("-h")) {
+            a.help = true;
+            return a;
         }
-        if (opt == "--quiet") {
-            a.quiet = true;
-            continue;
-        }
-        if (i + 1 >= argc) fail("option " + std::string(opt) + " needs a value");
-        const std::string_view value = argv[++i];
-        if (opt == "--scene") a.scene = value;
-        else if (opt == "--width") a.render.width = parse_positive(opt, value);
-        else if (opt == "--height") a.render.height = parse_positive(opt, value);
-        else if (opt == "--spp") a.render.spp = parse_positive(opt, value);
-        else if (opt == "--threads") a.render.threads = parse_positive(opt, value);
-        else if (opt == "--area-samples") a.render.lighting.area_samples_per_side = parse_positive(opt, value);
-        else if (opt == "--seed") a.render.seed = parse_number<std::uint64_t>(opt, value);
-        else if (opt == "--exposure") {
-            a.exposure = parse_number<double>(opt, value);
-            if (!(a.exposure > 0) || !std::isfinite(a.exposure)) fail("option --exposure must be a positive number");
-        } else if (opt == "--out") a.out = value;
-        else fail("unknown option '" + std::string(opt) + "'");
+        if (args.flag("--quiet")) a.quiet = true;
+        else if (args.option("--scene")) a.scene = args.text();
+        else if (args.option("--width")) a.render.width = args.integer(1, max_side);
+        else if (args.option("--height")) a.render.height = args.integer(1, max_side);
+        else if (args.option("--spp")) a.render.spp = args.integer(1, max_spp);
+        else if (args.option("--threads")) a.render.threads = args.integer(1, max_threads);
+        else if (args.option("--area-samples")) a.render.lighting.area_samples_per_side = args.integer(1, max_area_samples);
+        else if (args.option("--seed")) a.render.seed = args.integer<std::uint64_t>(0, UINT64_MAX);
+        else if (args.option("--exposure")) a.exposure = args.real(0, 1e6, ex::lower_limit::exclusive);
+        else if (args.option("--out")) {
+            a.out = args.path();
+            out_given = true;
+        } else args.unknown();
     }
     if (!tracer::is_scene_name(a.scene))
-        fail("unknown scene '" + a.scene + "' (known: " + tracer::scene_names() + ")");
-    if (a.out.empty()) a.out = a.scene + ".png";
+        throw ex::usage_error("unknown scene '" + a.scene + "' (known: " + tracer::scene_names() + ")");
+    const std::uint64_t pixels = std::uint64_t(a.render.width) * std::uint64_t(a.render.height);
+    ex::check_limit("the image size (--width x --height) in pixels", pixels, max_pixels);
+    ex::check_limit("the number of samples (--width x --height x --spp)", pixels * std::uint64_t(a.render.spp),
+                    max_samples);
+    if (!out_given) a.out = a.scene + ".png";
     return a;
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-    const arguments args = parse(argc, argv);
-    // Fail before rendering, not after, if the output cannot be written.
-    {
-        std::ofstream probe(args.out, std::ios::binary | std::ios::app);
-        if (!probe) fail("cannot write output file '" + args.out + "'");
-    }
-    try {
+    return shade::examples::run_cli("trace", [&] {
+        const arguments args = parse(argc, argv);
+        if (args.help) {
+            std::fputs(usage.data(), stdout);
+            return 0;
+        }
+        // The output path is checked (and its temporary file created) before rendering.
+        shade::examples::output_file out(args.out);
         const auto start = std::chrono::steady_clock::now();
         const double aspect = double(args.render.width) / double(args.render.height);
         const tracer::scene scene = tracer::make_scene(args.scene, aspect);
         tracer::render_options options = args.render;
         options.progress = !args.quiet && stderr_is_terminal();
         const auto radiance = tracer::render(scene, options);
-        shade::examples::save_png(args.out, tracer::to_srgb8(radiance, args.exposure));
+        shade::examples::save_png(out.temporary(), tracer::to_srgb8(radiance, args.exposure));
+        out.commit();
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::printf("%s: %dx%d, %d spp -> %s (%.2f s)\n", args.scene.c_str(), args.render.width,
                     args.render.height, args.render.spp, args.out.c_str(), seconds);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "trace: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+        return 0;
+    });
 }

@@ -1,10 +1,13 @@
+#include <type_traits>
 #include <cmath>
 
 #include <doctest/doctest.h>
 
 #include <shade/brdf/blinn_phong.hpp>
+#include <shade/brdf/phong.hpp>
 
 #include "brdf/support.hpp"
+#include "brdf/sampling.hpp"
 
 using namespace brdf_test;
 namespace form = shade::blinn_phong_form;
@@ -116,4 +119,41 @@ TEST_CASE_TEMPLATE("blinn-phong: invalid parameters throw naming the parameter",
     check_throws_naming([&] { (void)B(ok, ok, std::numeric_limits<T>::quiet_NaN()); }, "shininess");
     check_throws_naming([&] { (void)shade::blinn_phong<T, form::classic>(ok, rgb<T>(std::numeric_limits<T>::max()), T(1)); }, "k_s");
     CHECK_NOTHROW((void)B(shade::unchecked, ok, ok, T(-1)));
+}
+
+static_assert(shade::sampled_brdf<shade::blinn_phong<float>>);
+static_assert(shade::sampled_brdf<shade::blinn_phong<double, form::classic>>);
+static_assert(shade::sampled_brdf<shade::blinn_phong<float, form::normalized_rtr>>);
+static_assert(shade::sampled_brdf<shade::blinn_phong<double, form::modified>>);
+// The two forms both models have are one type each (shared, not duplicated).
+static_assert(std::is_same_v<form::classic, shade::phong_form::classic>);
+static_assert(std::is_same_v<form::modified, shade::phong_form::modified>);
+
+TEST_CASE_TEMPLATE("blinn-phong: sample and pdf agree, integrate to <= 1 and pass chi-square (exponents 1 and 10^4)", T, float, double) {
+    for (const T s : {T(1), T(1e4)}) {
+        CAPTURE(s);
+        const rgb<T> k_d(T(0.3), T(0.2), T(0.1)), k_s(T(0.5));
+        check_sampled_model(shade::blinn_phong<T>(k_d, k_s, s), flat<T>(), pdf_rounding(s));
+        check_sampled_model(shade::blinn_phong<T>(k_d, k_s, s), tilted<T>(), pdf_rounding(s));
+        check_sampled_model(shade::blinn_phong<T, form::normalized_rtr>(k_d, k_s, s), flat<T>(), pdf_rounding(s));
+        check_sampled_model(shade::blinn_phong<T, form::classic>(k_d, k_s, s), flat<T>(), pdf_rounding(s));
+        check_sampled_model(shade::blinn_phong<T, form::modified>(rgb<T>(0), rgb<T>(T(0.1)), s), flat<T>(),
+                            pdf_rounding(s));
+    }
+}
+
+TEST_CASE_TEMPLATE("blinn-phong: the lobe probability and the pdf of l by hand", T, float, double) {
+    // normalized_exact: c = 1 / (unit albedo at v = n), so the lobe's albedo estimate is
+    // mean(k_s) = 0.5; diffuse mean(k_d) = 0.5: P_s = 1/2.
+    const auto at = flat<T>();
+    const shade::blinn_phong<T> model(rgb<T>(T(0.5)), rgb<T>(T(0.5)), T(10));
+    CHECK(close(model.lobe_probability(), T(0.5), T(1e-5)));
+    // v at 60 deg, l its mirror (h = n, v.h = 1/2, n.l = 1/2):
+    // pdf = 1/2 (1/2)/pi + 1/2 (11/(2 pi)) / (4 * 1/2) = 1/(4 pi) + 11/(8 pi) = 13/(8 pi).
+    const auto v = direction(at, shade::pi<T> / 3, T(0));
+    const auto l = direction(at, shade::pi<T> / 3, shade::pi<T>);
+    CHECK(close(model.pdf(l, v, at), T(13) / (T(8) * shade::pi<T>), T(1e-5)));
+    // Classic, s = 0: the lobe estimate is mean(k_s) (1/pi) 8 pi (1 - 1/2)/2 = 2 mean(k_s).
+    const shade::blinn_phong<T, form::classic> classic(rgb<T>(T(0.2)), rgb<T>(T(0.1)), T(0));
+    CHECK(close(classic.lobe_probability(), T(0.5), T(1e-5)));
 }

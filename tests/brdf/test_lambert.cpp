@@ -4,6 +4,7 @@
 #include <shade/shading/shader.hpp>
 
 #include "brdf/support.hpp"
+#include "brdf/sampling.hpp"
 
 using namespace brdf_test;
 
@@ -50,4 +51,20 @@ TEST_CASE_TEMPLATE("lambert: invalid k_d throws naming k_d; unchecked skips vali
     check_throws_naming([] { (void)shade::lambert<T>(rgb<T>(0, shade::infinity<T>, 0)); }, "k_d");
     CHECK_NOTHROW((void)shade::lambert<T>(shade::unchecked, rgb<T>(-1)));
     CHECK(shade::lambert<T>(rgb<T>(2)).k_d() == rgb<T>(2)); // > 1 allowed (documented)
+}
+
+static_assert(shade::sampled_brdf<shade::lambert<float>>);
+static_assert(shade::sampled_brdf<shade::lambert<double>>);
+
+TEST_CASE_TEMPLATE("lambert: sample draws the cosine density, agrees with f and pdf, weight k_d", T, float, double) {
+    const rgb<T> k_d(T(0.5), T(0.25), T(0.9));
+    const shade::lambert<T> model(k_d);
+    for (const auto& at : {flat<T>(), tilted<T>()}) check_sampled_model(model, at);
+    // pdf = n.l / pi: at 60 deg, 1/(2 pi); the weight f |n.l| / pdf = (k_d/pi)(n.l)/(n.l/pi) = k_d.
+    const auto at = flat<T>();
+    CHECK(close(model.pdf(direction(at, shade::pi<T> / 3, T(1)), at.n(), at), T(0.5) / shade::pi<T>, T(1e-6)));
+    CHECK(model.pdf(-at.n(), at.n(), at) == T(0));
+    const auto s = model.sample(at.n(), T(0.7), shade::vec2<T>(T(0.2), T(0.9)), at);
+    REQUIRE(s.has_value());
+    CHECK(close(s->weight, k_d, T(1e-6)));
 }

@@ -1,11 +1,16 @@
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include <doctest/doctest.h>
 
 #include <shade/brdf/phong.hpp>
+#include <shade/core/sampling.hpp>
 #include <shade/shading/shader.hpp>
 
 #include "brdf/support.hpp"
+#include "brdf/sampling.hpp"
 
 using namespace brdf_test;
 
@@ -126,4 +131,123 @@ TEST_CASE_TEMPLATE("phong: invalid parameters throw naming the parameter", T, fl
     // Finite but overflowing together: k_s * (n + 2)/(2 pi) = Inf.
     check_throws_naming([&] { (void)P(ok, rgb<T>(std::numeric_limits<T>::max()), T(100)); }, "k_s");
     CHECK_NOTHROW((void)P(shade::unchecked, rgb<T>(-1), ok, T(-1)));
+}
+
+static_assert(shade::sampled_brdf<shade::classic_phong<float>>);
+static_assert(shade::sampled_brdf<shade::modified_phong<double>>);
+static_assert(shade::sampled_brdf<shade::normalized_phong<float>>);
+static_assert(shade::sampled_brdf<shade::normalized_phong<double>>);
+
+TEST_CASE_TEMPLATE("phong: sample and pdf agree, integrate to <= 1 and pass chi-square (exponents 1 and 10^4)", T, float, double) {
+    for (const T s : {T(1), T(1e4)}) {
+        CAPTURE(s);
+        const rgb<T> k_d(T(0.3), T(0.2), T(0.1)), k_s(T(0.5));
+        check_sampled_model(shade::normalized_phong<T>(k_d, k_s, s), flat<T>(), pdf_rounding(s));
+        check_sampled_model(shade::normalized_phong<T>(k_d, k_s, s), tilted<T>(), pdf_rounding(s));
+        check_sampled_model(shade::modified_phong<T>(rgb<T>(0), rgb<T>(T(0.1)), s), flat<T>(), pdf_rounding(s));
+        check_sampled_model(shade::classic_phong<T>(k_d, k_s, s), flat<T>(), pdf_rounding(s));
+        // Specular only: every direction comes from the lobe about r.
+        check_sampled_model(shade::normalized_phong<T>(rgb<T>(0), k_s, s), flat<T>(), pdf_rounding(s));
+    }
+}
+
+TEST_CASE_TEMPLATE("phong: the lobe probability and the pdf by hand", T, float, double) {
+    // Normalized Phong, s = 10: the lobe's albedo estimate is mean(k_s) c 2 pi/(s + 2) =
+    // mean(k_s) = 0.5 (c = 12/(2 pi)); the diffuse one mean(k_d) = 0.25: P_s = 0.5/0.75 = 2/3.
+    const auto at = flat<T>();
+    const shade::normalized_phong<T> model(rgb<T>(T(0.25)), rgb<T>(T(0.5)), T(10));
+    CHECK(close(model.lobe_probability(), T(2) / T(3), T(1e-6)));
+    // v at 30 deg, l its mirror image (r = l): pdf = (1/3) cos(30 deg)/pi + (2/3) 11/(2 pi) * 1.
+    const auto v = direction(at, shade::pi<T> / 6, T(0));
+    const auto l = direction(at, shade::pi<T> / 6, shade::pi<T>);
+    const T expected = std::sqrt(T(3)) / T(2) / (T(3) * shade::pi<T>) + T(11) / (T(3) * shade::pi<T>);
+    CHECK(close(model.pdf(l, v, at), expected, T(1e-5)));
+    // Classic form, s = 3: lobe estimate mean(k_s) (1/pi) 2 pi/(s + 1) = 0.5 * 2/4 = 0.25,
+    // equal to the diffuse estimate 0.25: P_s = 1/2.
+    const shade::classic_phong<T> classic(rgb<T>(T(0.25)), rgb<T>(T(0.5)), T(3));
+    CHECK(close(classic.lobe_probability(), T(0.5), T(1e-6)));
+    // Black model: P_s = 1/2, sample still returns directions (with f = 0).
+    const shade::modified_phong<T> black(rgb<T>(0), rgb<T>(0), T(5));
+    CHECK(black.lobe_probability() == T(0.5));
+}
+
+namespace {
+
+// Deliberately wrong samplers around a correct model, to show the checks catch them. Each
+// forwards f (and pdf, unless it changes it) to the model.
+template <class T>
+struct forwarding {
+    using scalar_type = T;
+    shade::normalized_phong<T> m;
+    rgb<T> f(const vec3<T>& l, const vec3<T>& v, const shade::surface_point<T>& at) const { return m.f(l, v, at); }
+    T pdf(const vec3<T>& l, const vec3<T>& v, const shade::surface_point<T>& at) const { return m.pdf(l, v, at); }
+};
+
+// (a) The pdf reported by sample() and pdf() is twice the true density.
+template <class T>
+struct pdf_doubled : forwarding<T> {
+    using forwarding<T>::m;
+    T pdf(const vec3<T>& l, const vec3<T>& v, const shade::surface_point<T>& at) const { return 2 * m.pdf(l, v, at); }
+    std::optional<shade::brdf_sample<T>> sample(const vec3<T>& v, T uc, const shade::vec2<T>& u,
+                                                const shade::surface_point<T>& at) const {
+        auto s = m.sample(v, uc, u, at);
+        if (s) {
+            s->pdf *= 2;
+            s->weight /= 2;
+        }
+        return s;
+    }
+};
+
+// (b) The lobe drawn about n instead of the mirror direction r; pdf() is the true one of
+// the model (about r), and sample() reports f and pdf at the l it returns.
+template <class T>
+struct wrong_axis : forwarding<T> {
+    using forwarding<T>::m;
+    std::optional<shade::brdf_sample<T>> sample(const vec3<T>& v, T uc, const shade::vec2<T>& u,
+                                                const shade::surface_point<T>& at) const {
+        const vec3<T> l = uc < m.lobe_probability()
+                              ? at.shading.to_world(shade::square_to_power_cosine_hemisphere(u, m.shininess()))
+                              : at.shading.to_world(shade::square_to_cosine_hemisphere(u));
+        const T n_dot_l = glm::dot(at.n(), l);
+        if (!(n_dot_l > 0) || !(glm::dot(at.n(), v) > 0)) return std::nullopt;
+        return shade::detail::make_brdf_sample(l, m.f(l, v, at), m.pdf(l, v, at), n_dot_l);
+    }
+};
+
+// (c) sample() reports a pdf 10 % off the pdf() at its direction.
+template <class T>
+struct inconsistent : forwarding<T> {
+    using forwarding<T>::m;
+    std::optional<shade::brdf_sample<T>> sample(const vec3<T>& v, T uc, const shade::vec2<T>& u,
+                                                const shade::surface_point<T>& at) const {
+        auto s = m.sample(v, uc, u, at);
+        if (s) s->pdf *= T(1.1);
+        return s;
+    }
+};
+
+} // namespace
+
+TEST_CASE_TEMPLATE("phong: deliberately wrong samplers fail the sampling checks", T, float, double) {
+    const auto at = flat<T>();
+    const shade::normalized_phong<T> model(rgb<T>(T(0.2)), rgb<T>(T(0.6)), T(20));
+    const auto v = direction(at, T(0.7), T(0.3));
+    static_assert(shade::sampled_brdf<pdf_doubled<T>> && shade::sampled_brdf<wrong_axis<T>>);
+    // The correct model passes (the checks are not failing everything).
+    const sampling_report good = check_sampling(model, v, at);
+    CHECK(good.p_value > chi2_significance);
+    CHECK(good.integral <= 1 + good.integral_error + 1e-6);
+    // (a) pdf x 2: the integral is ~2 and chi-square rejects.
+    const sampling_report doubled = check_sampling(pdf_doubled<T>{{model}}, v, at);
+    CHECK(doubled.integral > T(1.5));
+    CHECK(doubled.p_value < chi2_significance);
+    // (b) lobe about n: chi-square rejects; f and pdf still agree at the drawn points.
+    const sampling_report axis = check_sampling(wrong_axis<T>{{model}}, v, at);
+    CHECK(axis.disagreements == 0);
+    CHECK(axis.p_value < chi2_significance);
+    // (c) sample's pdf 10 % off pdf(): every sample disagrees.
+    const sampling_report off = check_sampling(inconsistent<T>{{model}}, v, at, 1000);
+    CHECK(off.disagreements == 1000 - int(std::lround((1 - off.drawn_fraction) * 1000)));
+    CHECK(off.disagreements > 0);
 }

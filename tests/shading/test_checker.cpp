@@ -6,10 +6,13 @@
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/cook_torrance.hpp>
+#include <shade/brdf/lambert.hpp>
+#include <shade/brdf/oren_nayar.hpp>
 #include <shade/brdf/phong.hpp>
 #include <shade/shading/checker.hpp>
 #include <shade/shading/gradient.hpp>
 
+#include "brdf/sampling.hpp"
 #include "shading/local_models.hpp"
 
 using test_models::constant_shader;
@@ -258,4 +261,38 @@ TEST_CASE_TEMPLATE("combinators nest: a checker of gradients of Cook-Torrance an
     static_assert(shade::shader<std::remove_cvref_t<decltype(mixed)>>);
     CHECK(mixed.shade(at1, view, s) == c(1));
     CHECK(near(mixed.shade(at0, view, s), shade::lit<ct_type>{ct, c(0)}.shade(at0, view, s), T(1e-5)));
+}
+
+TEST_CASE_TEMPLATE("checker of two sampled BRDFs samples the child it evaluates", T, float, double) {
+    using D = shade::oren_nayar<T>;
+    using P = shade::normalized_phong<T>;
+    using C = shade::checker<D, P>;
+    static_assert(shade::sampled_brdf<C>);
+    static_assert(shade::sampled_brdf<shade::checker_2d<P, D>>);
+    static_assert(shade::sampled_brdf<shade::checker<C, shade::gradient<D, P>>>); // nests
+    // A user BRDF with f only: the checker is a BRDF, not a sampled one, and shades as before.
+    static_assert(shade::brdf<shade::checker<lambert<T>, D>> && !shade::sampled_brdf<shade::checker<lambert<T>, D>>);
+    const C c(D(shade::rgb<T>(T(0.7)), T(0.4)), P(shade::rgb<T>(T(0.1)), shade::rgb<T>(T(0.6)), T(30)), T(1));
+    // Bias 1/2, size 1: parity 0 at the origin, 1 at (1, 0, 0).
+    const auto even = at_point(T(0), T(0), T(0));
+    const auto odd = at_point(T(1), T(0), T(0));
+    REQUIRE(c.parity(even) == 0);
+    REQUIRE(c.parity(odd) == 1);
+    const shade::vec3<T> v = glm::normalize(shade::vec3<T>(T(-0.4), T(0.1), 1));
+    for (const T uc : {T(0.1), T(0.6), T(0.95)}) {
+        const shade::vec2<T> u(T(0.2), T(0.7));
+        const auto s0 = c.sample(v, uc, u, even);
+        const auto s1 = c.sample(v, uc, u, odd);
+        const auto e0 = c.first().sample(v, uc, u, even);
+        const auto e1 = c.second().sample(v, uc, u, odd);
+        REQUIRE((s0.has_value() && e0.has_value() && s1.has_value() && e1.has_value()));
+        CHECK(s0->l == e0->l);
+        CHECK(s0->pdf == e0->pdf);
+        CHECK(s1->l == e1->l);
+        CHECK(s1->pdf == e1->pdf);
+        CHECK(c.pdf(s1->l, v, odd) == c.second().pdf(s1->l, v, odd));
+        CHECK(c.pdf(s1->l, v, even) == c.first().pdf(s1->l, v, even));
+    }
+    brdf_test::check_sampled_model(c, even);
+    brdf_test::check_sampled_model(c, odd, brdf_test::pdf_rounding(T(30))); // a cos^30 lobe
 }

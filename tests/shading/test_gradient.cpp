@@ -4,8 +4,12 @@
 
 #include <doctest/doctest.h>
 
+#include <shade/brdf/lambert.hpp>
+#include <shade/brdf/phong.hpp>
 #include <shade/shading/gradient.hpp>
+#include <shade/shading/shader.hpp>
 
+#include "brdf/sampling.hpp"
 #include "shading/local_models.hpp"
 
 using test_models::constant_shader;
@@ -125,4 +129,58 @@ TEST_CASE_TEMPLATE("gradient rejects bad parameters by name", T, float, double) 
                          shade::invalid_parameter);
     CHECK_THROWS_WITH_AS(gradient(S{}, S{}, v(1, 0, 0), T(1), nan), doctest::Contains("'phase'"),
                          shade::invalid_parameter);
+}
+
+TEST_CASE_TEMPLATE("gradient of two sampled BRDFs samples the blend: child by uc, blend pdf", T, float, double) {
+    using D = shade::lambert<T>;
+    using P = shade::normalized_phong<T>;
+    using G = shade::gradient<D, P>;
+    static_assert(shade::sampled_brdf<G>);
+    static_assert(shade::sampled_brdf<shade::gradient<G, D>>); // nests
+    const G g(D(shade::rgb<T>(T(0.6))), P(shade::rgb<T>(T(0.1)), shade::rgb<T>(T(0.7)), T(50)),
+              shade::vec3<T>(1, 0, 0), T(1));
+    // alpha(x) = (1 + cos(2 pi x))/2 = 0.3 at cos(2 pi x) = -0.4.
+    const T x = std::acos(T(-0.4)) / (T(2) * shade::pi<T>);
+    const auto at = at_point(x, T(0), T(0));
+    REQUIRE(g.alpha(at.p) == doctest::Approx(0.3).epsilon(1e-5));
+    const T a = g.alpha(at.p);
+    // The blend samples correctly (agreement, integral, chi-square) at alpha = 0.3, 1 and 0,
+    // with the rounding allowance of a cos^50 lobe.
+    const double rounding = brdf_test::pdf_rounding(T(50));
+    brdf_test::check_sampled_model(g, at, rounding);
+    brdf_test::check_sampled_model(g, at_point(T(0), T(0), T(0)), rounding);   // alpha = 1: Lambert only
+    brdf_test::check_sampled_model(g, at_point(T(0.5), T(0), T(0)), rounding); // alpha = 0: Phong only
+    // pdf = alpha pdf_0 + (1 - alpha) pdf_1, and uc is reused: uc < alpha draws the first
+    // child with uc / alpha, uc >= alpha the second with (uc - alpha) / (1 - alpha).
+    const shade::vec3<T> v = glm::normalize(shade::vec3<T>(T(0.3), T(-0.2), 1));
+    const shade::vec2<T> u(T(0.35), T(0.8));
+    for (const T uc : {T(0.1), T(0.29), T(0.31), T(0.9)}) {
+        CAPTURE(uc);
+        const auto s = g.sample(v, uc, u, at);
+        REQUIRE(s.has_value());
+        const auto child = uc < a ? g.first().sample(v, uc / a, u, at)
+                                  : g.second().sample(v, (uc - a) / (1 - a), u, at);
+        REQUIRE(child.has_value());
+        CHECK(glm::length(s->l - child->l) <= T(1e-6));
+        const T expected = a * g.first().pdf(s->l, v, at) + (1 - a) * g.second().pdf(s->l, v, at);
+        CHECK(s->pdf == doctest::Approx(double(expected)).epsilon(1e-5));
+        CHECK(g.pdf(s->l, v, at) == doctest::Approx(double(expected)).epsilon(1e-5));
+    }
+}
+
+TEST_CASE_TEMPLATE("gradient: a user BRDF with f only still makes a BRDF (not a sampled one) that shades", T, float, double) {
+    using U = lambert<T>; // tests/shading/local_models.hpp: f only
+    using G = shade::gradient<U, shade::lambert<T>>;
+    static_assert(shade::brdf<U> && !shade::sampled_brdf<U>);
+    static_assert(shade::brdf<G> && !shade::sampled_brdf<G>);
+    // Both children are k_d / pi with k_d = 1 and 0.5; alpha = 1/2 at x = 1/4:
+    // f = (1/2)(1/pi) + (1/2)(0.5/pi) = 0.75 / pi.
+    const G g(U{}, shade::lambert<T>(shade::rgb<T>(T(0.5))), shade::vec3<T>(1, 0, 0), T(1));
+    const auto at = at_point(T(0.25), T(0), T(0));
+    const shade::vec3<T> n(0, 0, 1);
+    CHECK(near(g.f(n, n, at), shade::rgb<T>(T(0.75) / shade::pi<T>), T(1e-5)));
+    shade::light_sample<T> s;
+    s.l = n;
+    s.diffuse = shade::rgb<T>(1);
+    CHECK(near(shade::lit{g}.shade(at, n, s), shade::rgb<T>(T(0.75)), T(1e-5)));
 }

@@ -2,10 +2,12 @@
 // shade::lambert: the ideal diffuse reflector.
 
 #include <concepts>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/brdf.hpp>
+#include <shade/brdf/detail/sampling.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/surface_point.hpp>
@@ -26,6 +28,10 @@ namespace shade {
 ///
 /// Reciprocal: yes (constant). Energy conserving: yes iff k_d <= 1 in every channel (the
 /// directional albedo is exactly k_d for every view).
+///
+/// Sampling (shade::sampled_brdf): the cosine density n·l / pi (Malley's method,
+/// shade::square_to_cosine_hemisphere), proportional to f |n·l|, so every sample's weight
+/// is exactly k_d; uc is not used.
 template <std::floating_point T>
 class lambert {
 public:
@@ -49,6 +55,18 @@ public:
         const T n_dot_v = glm::dot(at.n(), v);
         if (!(n_dot_l > T(0)) || !(n_dot_v > T(0))) return rgb<T>(0);
         return k_d_ * inv_pi<T>;
+    }
+
+    /// The density (1/sr) with which sample() draws l: n·l / pi, 0 unless n·l > 0 and n·v > 0.
+    [[nodiscard]] T pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept {
+        return detail::cosine_brdf_pdf(l, v, at);
+    }
+
+    /// Draws l with the cosine density from u (uc is not used); nullopt when v is not above
+    /// the surface or l falls on the horizon.
+    [[nodiscard]] std::optional<brdf_sample<T>> sample(const vec3<T>& v, T /*uc*/, const vec2<T>& u,
+                                                       const surface_point<T>& at) const noexcept {
+        return detail::sample_cosine_brdf(v, u, at, [this](const vec3<T>&) { return rgb<T>(k_d_ * inv_pi<T>); });
     }
 
 private:

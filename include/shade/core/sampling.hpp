@@ -75,6 +75,39 @@ template <std::floating_point T>
     return {d.x, d.y, z};
 }
 
+/// cos(theta) and sin(theta) of a polar angle drawn with density (e + 1) cos^e(theta) in
+/// cos(theta) on [0, 1], from u in [0,1): cos(theta) = u^(1/(e+1)), the inversion used by
+/// Lafortune, Willems 1994, "Using the Modified Phong Reflectance Model for Physically
+/// Based Rendering", Tech. Rep. CW 197, K.U. Leuven, and by Ashikhmin, Shirley 2000,
+/// "An Anisotropic Phong BRDF Model", JGT 5(2), sec. 4 (u and 1 - u are equally
+/// distributed). 1 - cos(theta) = -expm1(log(u)/(e+1)) is formed without cancellation, so
+/// sin(theta) = sqrt((1 - cos)(1 + cos)) stays accurate for the narrow lobes of large e,
+/// where cos(theta) rounds to 1. u = 0 gives cos = 0 (log(0) = -inf).
+template <std::floating_point T>
+struct polar_cosines {
+    T cos_theta; ///< in [0, 1]
+    T sin_theta; ///< in [0, 1]
+};
+
+template <std::floating_point T>
+[[nodiscard]] inline polar_cosines<T> power_cosine_polar(T u, T exponent) noexcept {
+    const T one_minus_cos = -std::expm1(std::log(u) / (exponent + T(1)));
+    const T cos_theta = T(1) - one_minus_cos;
+    return {cos_theta, safe_sqrt(one_minus_cos * (T(1) + cos_theta))};
+}
+
+/// Direction on the upper hemisphere (n = +z) with the power-cosine density
+/// pdf(w) = (e + 1)/(2 pi) cos^e(theta) per steradian (e >= 0; e = 1 is the cosine
+/// density, e = 0 the uniform one): the polar angle from power_cosine_polar(u.x, e), the
+/// azimuth 2 pi u.y. The lobe of the modified Phong BRDF (Lafortune, Willems 1994) about
+/// its axis.
+template <std::floating_point T>
+[[nodiscard]] inline vec3<T> square_to_power_cosine_hemisphere(const vec2<T>& u, T exponent) noexcept {
+    const polar_cosines<T> c = power_cosine_polar(u.x, exponent);
+    const T phi = T(2) * pi<T> * u.y;
+    return {c.sin_theta * std::cos(phi), c.sin_theta * std::sin(phi), c.cos_theta};
+}
+
 /// Uniform direction on the upper hemisphere (Archimedes: z uniform in [0,1)).
 /// pdf(w) = 1 / (2 pi) per steradian.
 template <std::floating_point T>

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <concepts>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -45,8 +46,10 @@ void require_checker_size_bias(T size, T bias) {
 
 /// The members shared by the checkers: given Derived::parity(at) (0 or 1), use the first
 /// or the second child. If both children are BRDFs the result is a BRDF (f, and
-/// f_diffuse/f_specular if both split); otherwise it is a shader (a BRDF child is lifted
-/// with shade_of, i.e. lit without ambient).
+/// f_diffuse/f_specular if both split, sample and pdf if both are sampled BRDFs: those of
+/// the child selected at `at`, so the checker samples exactly what it evaluates);
+/// otherwise it is a shader (a BRDF child is lifted with shade_of, i.e. lit without
+/// ambient).
 template <class Derived, shader_or_brdf S0, shader_or_brdf S1>
 class select2 {
 public:
@@ -81,6 +84,21 @@ public:
         requires(split_brdf<S0> && split_brdf<S1>)
     {
         return self().parity(at) == 0 ? s0_.f_specular(l, v, at) : s1_.f_specular(l, v, at);
+    }
+
+    /// The selected child's sample(v, uc, u, at) (shade::sampled_brdf).
+    [[nodiscard]] std::optional<brdf_sample<T>> sample(const vec3<T>& v, T uc, const vec2<T>& u,
+                                                       const surface_point<T>& at) const
+        requires(sampled_brdf<S0> && sampled_brdf<S1>)
+    {
+        return self().parity(at) == 0 ? s0_.sample(v, uc, u, at) : s1_.sample(v, uc, u, at);
+    }
+
+    /// The selected child's pdf(l, v, at): the density (1/sr) sample() draws l with.
+    [[nodiscard]] T pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const
+        requires(sampled_brdf<S0> && sampled_brdf<S1>)
+    {
+        return self().parity(at) == 0 ? s0_.pdf(l, v, at) : s1_.pdf(l, v, at);
     }
 
     /// Radiance (light_sample units) reflected toward v by the child selected at `at`.

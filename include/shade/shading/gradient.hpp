@@ -1,8 +1,11 @@
 #pragma once
 // shade::gradient: a periodic blend of two shaders or BRDFs along a direction.
 
+#include <algorithm>
 #include <cmath>
 #include <concepts>
+#include <limits>
+#include <optional>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -27,6 +30,18 @@ template <std::floating_point T>
     return w == T(0) ? rgb<T>(0) : w * c;
 }
 
+/// w * p for a blend weight w and a density p, exactly 0 when w == 0 (as weighted).
+template <std::floating_point T>
+[[nodiscard]] constexpr T weighted(T w, T p) noexcept {
+    return w == T(0) ? T(0) : w * p;
+}
+
+/// x clamped below 1: a number in [0, 1) after a division that may round up to 1.
+template <std::floating_point T>
+[[nodiscard]] inline T below_one(T x) noexcept {
+    return std::min(x, T(1) - std::numeric_limits<T>::epsilon() / T(2));
+}
+
 } // namespace detail
 
 /// A cosine gradient between two children along the unit direction d:
@@ -41,7 +56,11 @@ template <std::floating_point T>
 ///
 /// If both children are BRDFs the gradient is a BRDF: f = alpha f_0 + (1 - alpha) f_1, a
 /// convex combination, so it stays non-negative, reciprocal and energy conserving when
-/// both children are (f_diffuse and f_specular blend likewise if both split). Otherwise it
+/// both children are (f_diffuse and f_specular blend likewise if both split). If both are
+/// sampled BRDFs it is one too: sample() chooses the first child when uc < alpha and the
+/// second otherwise, passes the child uc rescaled to [0, 1) (uc / alpha or
+/// (uc - alpha) / (1 - alpha), so one number serves both choices), and returns the child's
+/// direction with the blend's f and pdf, pdf = alpha pdf_0 + (1 - alpha) pdf_1. Otherwise it
 /// is a shader blending the children's radiance (a BRDF child lifted by shade_of, i.e.
 /// lit without ambient).
 template <shader_or_brdf S0, shader_or_brdf S1>
@@ -110,6 +129,30 @@ public:
         const T a = alpha(at.p);
         return detail::weighted(a, s0_.f_specular(l, v, at)) +
                detail::weighted(T(1) - a, s1_.f_specular(l, v, at));
+    }
+
+    /// The density (1/sr) with which sample() draws l: alpha pdf_0 + (1 - alpha) pdf_1.
+    [[nodiscard]] T pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const
+        requires(sampled_brdf<S0> && sampled_brdf<S1>)
+    {
+        const T a = alpha(at.p);
+        return detail::weighted(a, s0_.pdf(l, v, at)) + detail::weighted(T(1) - a, s1_.pdf(l, v, at));
+    }
+
+    /// Draws l from the first child when uc < alpha, else from the second (see the class
+    /// comment); f and pdf are the blend's f(l, v, at) and pdf(l, v, at). nullopt when the
+    /// child returns none.
+    [[nodiscard]] std::optional<brdf_sample<T>> sample(const vec3<T>& v, T uc, const vec2<T>& u,
+                                                       const surface_point<T>& at) const
+        requires(sampled_brdf<S0> && sampled_brdf<S1>)
+    {
+        const T a = alpha(at.p);
+        const std::optional<brdf_sample<T>> child =
+            uc < a ? s0_.sample(v, detail::below_one(uc / a), u, at)
+                   : s1_.sample(v, detail::below_one((uc - a) / (T(1) - a)), u, at);
+        if (!child) return std::nullopt;
+        const vec3<T>& l = child->l;
+        return detail::make_brdf_sample(l, f(l, v, at), pdf(l, v, at), std::abs(glm::dot(at.n(), l)));
     }
 
     /// Radiance (light_sample units): alpha shade_0 + (1 - alpha) shade_1.
