@@ -91,7 +91,7 @@ sphere_data<T> make_spheres(std::uint64_t seed) {
 
 template <class T>
 outcome<T> run_shade_sphere(const shade::ray<T>& r, const shade::sphere<T>& s) {
-    const auto h = shade::intersect(r, s);
+    const auto h = shade::find_intersection(r, s);
     if (!h) return {};
     return {1, h->t, h->n.x, h->n.y};
 }

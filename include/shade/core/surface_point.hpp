@@ -1,7 +1,10 @@
 #pragma once
 // shade::surface_point: what a reflection model may know about the point it shades.
 
+#include <cmath>
 #include <concepts>
+
+#include <glm/geometric.hpp>
 
 #include <shade/core/frame.hpp>
 #include <shade/core/types.hpp>
@@ -27,6 +30,25 @@ struct surface_point {
         surface_point s;
         s.p = p;
         s.shading = frame<T>::from_normal(n);
+        return s;
+    }
+
+    /// A point at p with unit normal n, surface parameters uv and the tangent frame of
+    /// `tangent` (e.g. dp/du, any length): t is tangent's part perpendicular to n, made
+    /// unit, and b = cross(n, t). Where that part is zero or not finite (no tangent known),
+    /// the arbitrary frame of at(p, n) instead; never throws.
+    [[nodiscard]] static surface_point at(const vec3<T>& p, const vec3<T>& n, const vec3<T>& tangent,
+                                          const vec2<T>& uv) noexcept {
+        surface_point s = at(p, n);
+        s.uv = uv;
+        const vec3<T> ortho = tangent - n * glm::dot(n, tangent);
+        // Divided by its largest component first, so that squaring a tiny or huge tangent
+        // neither underflows nor overflows.
+        const T m = std::fmax(std::fabs(ortho.x), std::fmax(std::fabs(ortho.y), std::fabs(ortho.z)));
+        if (!(m > T(0)) || !std::isfinite(m)) return s;
+        const vec3<T> w = ortho / m;
+        s.shading.t = w / glm::length(w);
+        s.shading.b = glm::cross(n, s.shading.t);
         return s;
     }
 };

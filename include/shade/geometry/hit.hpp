@@ -8,6 +8,11 @@
 // entering root for a sphere). facing_normal() gives n flipped toward the ray's origin,
 // which is what shading with the "away from the surface" convention of
 // shade/core/frame.hpp wants.
+//
+// Parameterisation: uv are the surface parameters of p and dpdu the tangent dp/du (not
+// unit length). Every shape's (u, v) is right-handed about the outward normal:
+// cross(dp/du, dp/dv) points along n (for a triangle, with its default barycentric uv or
+// per-vertex uv that are not mirrored). surface_at(h) builds the shading frame from them.
 
 #include <algorithm>
 #include <cmath>
@@ -17,6 +22,7 @@
 
 #include <shade/core/config.hpp>
 #include <shade/core/math.hpp>
+#include <shade/core/surface_point.hpp>
 #include <shade/core/types.hpp>
 
 namespace shade {
@@ -35,6 +41,8 @@ struct hit {
     vec3<T> p{0, 0, 0};    ///< world-space hit point
     vec3<T> n{0, 0, 1};    ///< geometric outward unit normal of the surface at p
     bool front_face = true; ///< true when the ray struck the side n points into
+    vec2<T> uv{0, 0};      ///< surface parameters (u, v) of p; the shape says how they map
+    vec3<T> dpdu{0, 0, 0}; ///< tangent dp/du at p, perpendicular to n, zero where undefined
 
     /// n if the ray struck the front face, -n otherwise: the unit normal on the side of
     /// the ray's origin.
@@ -57,6 +65,16 @@ struct triangle_hit : hit<T> {
     /// Weight of v2 (b2).
     [[nodiscard]] constexpr T v() const noexcept { return barycentric.z; }
 };
+
+/// The shading point of hit h: position h.p, uv h.uv, and the frame whose normal is
+/// h.facing_normal() (the side the ray came from) and whose tangent t is dp/du made unit
+/// (shade::surface_point::at with a tangent; where dp/du is zero, as at a sphere's poles,
+/// an arbitrary tangent). On a back-face hit the normal is -n, so the bitangent
+/// b = cross(-n, t) points against dp/dv: the frame stays right-handed.
+template <std::floating_point T>
+[[nodiscard]] surface_point<T> surface_at(const hit<T>& h) noexcept {
+    return surface_point<T>::at(h.p, h.facing_normal(), h.dpdu, h.uv);
+}
 
 namespace detail {
 

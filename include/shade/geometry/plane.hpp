@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include <shade/core/error.hpp>
+#include <shade/core/frame.hpp>
 #include <shade/core/types.hpp>
 #include <shade/geometry/hit.hpp>
 #include <shade/geometry/ray.hpp>
@@ -14,25 +15,41 @@
 namespace shade {
 
 /// An infinite plane through `point` with unit normal `normal`; its front side is the one
-/// the normal points into.
+/// the normal points into. Its parameterisation is Cartesian, in world units, in the
+/// orthonormal frame (tangent, bitangent, normal): the point point + u tangent +
+/// v bitangent has uv = (u, v), so dp/du = tangent, dp/dv = bitangent and
+/// cross(tangent, bitangent) = normal.
 template <std::floating_point T>
 class plane {
 public:
     using scalar_type = T;
 
     /// Throws shade::invalid_parameter naming "point" if point is not finite, or "normal"
-    /// if normal is zero or not finite. normal may have any length; it is normalised.
+    /// if normal is zero or not finite. normal may have any length; it is normalised. The
+    /// tangent is that of shade::frame::from_normal (an arbitrary, fixed direction).
     plane(const vec3<T>& point, const vec3<T>& normal)
-        : point_(require_finite("point", point)), normal_(require_direction("normal", normal)) {}
+        : point_(require_finite("point", point)),
+          axes_(frame<T>::from_normal(require_direction("normal", normal))) {}
 
-    /// A point on the plane.
+    /// As plane(point, normal), with the u axis along `tangent` made perpendicular to the
+    /// normal (shade::frame::from_normal_tangent, which throws naming "tangent" if it is
+    /// zero, not finite or parallel to the normal).
+    plane(const vec3<T>& point, const vec3<T>& normal, const vec3<T>& tangent)
+        : point_(require_finite("point", point)),
+          axes_(frame<T>::from_normal_tangent(normal, tangent)) {}
+
+    /// A point on the plane: uv = (0, 0).
     [[nodiscard]] const vec3<T>& point() const noexcept { return point_; }
     /// The plane's unit normal (front side).
-    [[nodiscard]] const vec3<T>& normal() const noexcept { return normal_; }
+    [[nodiscard]] const vec3<T>& normal() const noexcept { return axes_.n; }
+    /// The unit u axis dp/du, perpendicular to the normal.
+    [[nodiscard]] const vec3<T>& tangent() const noexcept { return axes_.t; }
+    /// The unit v axis dp/dv = cross(normal, tangent).
+    [[nodiscard]] const vec3<T>& bitangent() const noexcept { return axes_.b; }
 
 private:
     vec3<T> point_;
-    vec3<T> normal_;
+    frame<T> axes_;
 };
 
 /// The hit of ray r with plane pl, or nothing.
@@ -41,7 +58,8 @@ private:
 /// (ed.), An Introduction to Ray Tracing, section on ray/plane intersection): with n the
 /// unit normal and q a point of the plane, n·(o + t d - q) = 0 gives
 ///     t = n·(q - o) / n·d.
-/// Returns the hit with that t, p = o + t d, the plane's normal and front_face = (n·d < 0).
+/// Returns the hit with that t, p = o + t d, the plane's normal, front_face = (n·d < 0),
+/// uv = the coordinates of p - point() along tangent() and bitangent(), dpdu = tangent().
 /// No hit when r is not valid(), when n·d == 0 exactly (ray parallel to the plane, also
 /// when it lies in it; no epsilon, so nearly parallel rays hit far away as they should),
 /// when t is outside [t_min, t_max] or not finite, or, with culling::back_faces, when the
@@ -75,6 +93,9 @@ template <std::floating_point T>
     out->p = p;
     out->n = n;
     out->front_face = n_dot_d < T(0);
+    const vec3<T> offset = p - pl.point();
+    out->uv = vec2<T>(glm::dot(offset, pl.tangent()), glm::dot(offset, pl.bitangent()));
+    out->dpdu = pl.tangent();
     return out;
 }
 

@@ -18,6 +18,15 @@
 namespace shade {
 
 /// A sphere with centre `center` and radius `radius` > 0; its front side is the outside.
+///
+/// Parameterisation (latitude-longitude, right-handed about the outward normal): the point
+/// c + R (sin θ cos φ, sin θ sin φ, cos θ) has uv = (φ / 2π, 1 - θ / π), φ in [0, 2π), so
+/// u runs once around the z axis from +x toward +y and v from 0 at the south pole (-z) to
+/// 1 at the north pole (+z). Differentiating,
+///     dp/du = 2π R sin θ (-sin φ, cos φ, 0) = 2π R (-n_y, n_x, 0),
+///     dp/dv = π R (-cos θ cos φ, -cos θ sin φ, sin θ),
+/// and cross(dp/du, dp/dv) points along the outward normal n. dp/du is zero at the poles,
+/// where the parameterisation is singular.
 template <std::floating_point T>
 class sphere {
 public:
@@ -38,7 +47,28 @@ private:
     T radius_;
 };
 
-/// The first hit of ray r with sphere s inside [t_min, t_max], or nothing.
+namespace detail {
+
+/// The uv of the point with outward unit normal n on a sphere (see shade::sphere):
+/// u = φ / 2π with φ = atan2(n_y, n_x) moved into [0, 2π), and v = 1 - θ / π computed as
+/// atan2(sqrt(n_x² + n_y²), -n_z) / π, which is accurate near the poles where acos(n_z)
+/// loses digits.
+template <std::floating_point T>
+[[nodiscard]] inline vec2<T> sphere_uv(const vec3<T>& n) noexcept {
+    T phi = std::atan2(n.y, n.x);
+    if (phi < T(0)) phi += T(2) * pi<T>;
+    const T u = phi / (T(2) * pi<T>);
+    const T v = std::atan2(std::sqrt(n.x * n.x + n.y * n.y), -n.z) / pi<T>;
+    // φ just below 0 can round up to 2π when moved; u stays in [0, 1).
+    return vec2<T>(u < T(1) ? u : T(0), v);
+}
+
+} // namespace detail
+
+/// The first hit of ray r with sphere s inside [t_min, t_max], or nothing: t, p, n and
+/// front_face, without the parameterisation (uv and dpdu stay zero). This is the lean test
+/// for loops over many spheres that keep the closest hit; make_hit(s, h) then adds uv and
+/// dpdu to that one, and intersect(r, s) does both.
 ///
 /// With f = o - c, substituting o + t d into |x - c|^2 = R^2 gives
 ///     a t^2 - 2 b t + c_0 = 0,   a = d·d,  b = -f·d,  c_0 = f·f - R^2,
@@ -66,8 +96,8 @@ private:
 /// it into callers: called out of line, its optional<hit> comes back through memory that
 /// the caller rereads with wider loads than the stores.
 template <std::floating_point T>
-[[nodiscard]] inline std::optional<hit<T>> intersect(const ray<T>& r,
-                                                     const sphere<T>& s) noexcept {
+[[nodiscard]] inline std::optional<hit<T>> find_intersection(const ray<T>& r,
+                                                             const sphere<T>& s) noexcept {
     // Every return below returns `out`, so that it is built in the caller's storage (named
     // return value optimisation). A hit<double> returned as a temporary is copied with
     // `rep movs` by g++ -O3, which costs more than the whole intersection test.
@@ -126,6 +156,24 @@ template <std::floating_point T>
     out->p = p;
     out->n = n;
     out->front_face = entering;
+    return out;
+}
+
+/// Hit h of find_intersection(r, s) with its uv and dpdu set from the sphere's
+/// parameterisation (see shade::sphere): uv from the unit normal, dp/du = 2π R (-n_y, n_x, 0).
+template <std::floating_point T>
+[[nodiscard]] inline hit<T> make_hit(const sphere<T>& s, hit<T> h) noexcept {
+    h.uv = detail::sphere_uv(h.n);
+    h.dpdu = (T(2) * pi<T> * s.radius()) * vec3<T>(-h.n.y, h.n.x, T(0));
+    return h;
+}
+
+/// The first hit of ray r with sphere s, with its parameterisation:
+/// find_intersection(r, s) completed by make_hit.
+template <std::floating_point T>
+[[nodiscard]] inline std::optional<hit<T>> intersect(const ray<T>& r, const sphere<T>& s) noexcept {
+    std::optional<hit<T>> out = find_intersection(r, s);
+    if (out) *out = make_hit(s, *out);
     return out;
 }
 

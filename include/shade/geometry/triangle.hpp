@@ -111,7 +111,9 @@ struct triangle_intersection {
 };
 
 /// The full hit record of an intersection x that a triangle algorithm's find returned for
-/// tri: x's t, barycentrics and front_face, the geometric unit normal tri.normal(), and
+/// tri: x's t, barycentrics and front_face, the geometric unit normal tri.normal(), the
+/// barycentric parameterisation uv = (b1, b2) with dpdu = v1 - v0 (the triangle is
+/// p = v0 + u (v1 - v0) + v (v2 - v0), right-handed about its normal), and
 /// the point p = b0 v0 + b1 v1 + b2 v2. Where that sum overflows (vertices within a few
 /// ulps of the largest finite value), each coordinate of p is clamped to the triangle's
 /// bounding box, so p is always finite.
@@ -135,6 +137,43 @@ template <std::floating_point T>
     h.n = tri.normal();
     h.front_face = x.front_face;
     h.barycentric = b;
+    h.uv = vec2<T>(b.y, b.z);
+    h.dpdu = tri.v1 - tri.v0;
+    return h;
+}
+
+/// Texture coordinates given at a triangle's three vertices (e.g. by a mesh file). The
+/// defaults, (0, 0), (1, 0), (0, 1), are the barycentric parameterisation of make_hit.
+template <std::floating_point T>
+struct triangle_uv {
+    using scalar_type = T;
+
+    vec2<T> uv0{0, 0}; ///< uv at v0
+    vec2<T> uv1{1, 0}; ///< uv at v1
+    vec2<T> uv2{0, 1}; ///< uv at v2
+};
+
+/// As make_hit(tri, x), with the uv interpolated from per-vertex coordinates,
+/// uv = b0 uv0 + b1 uv1 + b2 uv2, and dpdu the derivative of the affine map from uv to
+/// the triangle's points. With duv1 = uv1 - uv0, duv2 = uv2 - uv0, e1 = v1 - v0,
+/// e2 = v2 - v0, solving e1 = duv1.x dp/du + duv1.y dp/dv and the same for e2 gives
+///     dp/du = (duv2.y e1 - duv1.y e2) / det,   det = duv1.x duv2.y - duv1.y duv2.x
+/// (Pharr, Jakob, Humphreys 2016, "Physically Based Rendering", 3rd ed., §3.6.2). Where
+/// det is zero or dp/du not finite (the three uv collinear), dpdu is that of the
+/// barycentric parameterisation, v1 - v0. Mirrored uv (det < 0) make (u, v) left-handed
+/// about the normal. Precondition as for make_hit(tri, x).
+template <std::floating_point T>
+[[nodiscard]] triangle_hit<T> make_hit(const triangle<T>& tri, const triangle_intersection<T>& x,
+                                       const triangle_uv<T>& uvs) noexcept {
+    triangle_hit<T> h = make_hit(tri, x);
+    const vec3<T>& b = x.barycentric;
+    h.uv = b.x * uvs.uv0 + b.y * uvs.uv1 + b.z * uvs.uv2;
+    const vec2<T> duv1 = uvs.uv1 - uvs.uv0;
+    const vec2<T> duv2 = uvs.uv2 - uvs.uv0;
+    const T det = duv1.x * duv2.y - duv1.y * duv2.x;
+    if (det == T(0)) return h;
+    const vec3<T> dpdu = (duv2.y * (tri.v1 - tri.v0) - duv1.y * (tri.v2 - tri.v0)) / det;
+    if (is_finite(dpdu)) h.dpdu = dpdu;
     return h;
 }
 
