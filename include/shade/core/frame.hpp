@@ -39,7 +39,7 @@ struct frame {
     /// Orthonormal Basis, Revisited", JCGT 6(1), Listing 3. The sign of n.z picks one of
     /// two charts, so the only division, by (sign + n.z), is never by less than 1 in
     /// magnitude.
-    [[nodiscard]] static SHADE_HOST_DEVICE frame from_normal(const vec3<T>& n) noexcept {
+    [[nodiscard]] static frame from_normal(const vec3<T>& n) noexcept {
         const T sign = std::copysign(T(1), n.z);
         const T a = T(-1) / (sign + n.z);
         const T c = n.x * n.y * a;
@@ -77,12 +77,12 @@ struct frame {
     }
 
     /// Expresses the world direction w in this frame (n becomes +z).
-    [[nodiscard]] SHADE_HOST_DEVICE vec3<T> to_local(const vec3<T>& w) const noexcept {
+    [[nodiscard]] vec3<T> to_local(const vec3<T>& w) const noexcept {
         return vec3<T>(glm::dot(w, t), glm::dot(w, b), glm::dot(w, n));
     }
 
     /// Maps the local direction w (n = +z) back to world space.
-    [[nodiscard]] SHADE_HOST_DEVICE vec3<T> to_world(const vec3<T>& w) const noexcept {
+    [[nodiscard]] vec3<T> to_world(const vec3<T>& w) const noexcept {
         return t * w.x + b * w.y + n * w.z;
     }
 };

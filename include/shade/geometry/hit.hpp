@@ -14,10 +14,10 @@
 // cross(dp/du, dp/dv) points along n (for a triangle, with its default barycentric uv or
 // per-vertex uv that are not mirrored). surface_at(h) builds the shading frame from them.
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/core/config.hpp>
@@ -46,7 +46,7 @@ struct hit {
 
     /// n if the ray struck the front face, -n otherwise: the unit normal on the side of
     /// the ray's origin.
-    [[nodiscard]] SHADE_HOST_DEVICE constexpr vec3<T> facing_normal() const noexcept {
+    [[nodiscard]] constexpr vec3<T> facing_normal() const noexcept {
         return front_face ? n : -n;
     }
 };
@@ -83,7 +83,7 @@ namespace detail {
 /// vector when v is zero or not finite; callers treat that as "no valid normal".
 template <std::floating_point T>
 [[nodiscard]] inline vec3<T> normalize_or_zero(const vec3<T>& v) noexcept {
-    const T m = std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
+    const T m = glm::max(std::abs(v.x), glm::max(std::abs(v.y), std::abs(v.z)));
     if (!(m > T(0)) || !std::isfinite(m)) return vec3<T>(0, 0, 0);
     const vec3<T> w = v / m;
     return w / glm::length(w);

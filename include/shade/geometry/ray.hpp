@@ -32,7 +32,7 @@ struct ray {
     T t_max = infinity<T>;      ///< largest accepted t; may be +infinity
 
     /// The point origin + t * direction.
-    [[nodiscard]] SHADE_HOST_DEVICE constexpr vec3<T> at(T t) const noexcept {
+    [[nodiscard]] constexpr vec3<T> at(T t) const noexcept {
         return origin + t * direction;
     }
 
