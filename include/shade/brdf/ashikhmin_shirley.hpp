@@ -2,11 +2,11 @@
 // shade::ashikhmin_shirley: the anisotropic Phong BRDF of Ashikhmin and Shirley, with its
 // energy-preserving coupled diffuse term.
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <optional>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/brdf.hpp>
@@ -160,7 +160,7 @@ private:
     [[nodiscard]] half_lobe specular_lobe(const vec3<T>& l, const vec3<T>& v,
                                           const frame<T>& fr) const noexcept {
         const auto [h, v_dot_h] = detail::half_vector_and_cos(l, v);
-        const T n_dot_h = std::clamp(glm::dot(fr.n, h), T(0), T(1));
+        const T n_dot_h = glm::clamp(glm::dot(fr.n, h), T(0), T(1));
         const T h_dot_t = glm::dot(h, fr.t);
         const T h_dot_b = glm::dot(h, fr.b);
         const T t2 = h_dot_t * h_dot_t;
@@ -175,13 +175,13 @@ private:
     [[nodiscard]] rgb<T> specular(const half_lobe& s, T n_dot_l, T n_dot_v) const noexcept {
         return F_schlick(r_s_, s.v_dot_h) *
                (s.power / (detail::floored_cos(s.v_dot_h) *
-                           detail::floored_cos(std::max(n_dot_l, n_dot_v))));
+                           detail::floored_cos(glm::max(n_dot_l, n_dot_v))));
     }
 
     /// f_d for n·l, n·v > 0.
     [[nodiscard]] rgb<T> diffuse(T n_dot_l, T n_dot_v) const noexcept {
-        const T g = one_minus_pow5_of_one_minus_half(std::min(n_dot_l, T(1))) *
-                    one_minus_pow5_of_one_minus_half(std::min(n_dot_v, T(1)));
+        const T g = one_minus_pow5_of_one_minus_half(glm::min(n_dot_l, T(1))) *
+                    one_minus_pow5_of_one_minus_half(glm::min(n_dot_v, T(1)));
         return (T(28) / (T(23) * pi<T>) * g) * r_d_ * (rgb<T>(1) - r_s_);
     }
 
@@ -196,7 +196,7 @@ private:
         // u.x picks the quadrant (its integer part after scaling by 4) and the position
         // within it (the fraction), where the paper's formula gives phi in [0, pi/2).
         const T u4 = T(4) * u.x;
-        const T quadrant = std::min(std::floor(u4), T(3));
+        const T quadrant = glm::min(std::floor(u4), T(3));
         const T phi_q = std::atan(phi_scale_ * std::tan(T(0.5) * pi<T> * (u4 - quadrant)));
         const T cos_phi_q = std::cos(phi_q);
         const T sin_phi_q = std::sin(phi_q);

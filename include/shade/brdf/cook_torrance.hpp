@@ -11,10 +11,10 @@
 //   const shade::cook_torrance<shade::ggx<float>, shade::schlick<float>, shade::smith_ggx<float>>
 //       metal(shade::ggx<float>(0.3f), shade::schlick<float>({0.95f, 0.64f, 0.54f}));
 
-#include <algorithm>
 #include <concepts>
 #include <optional>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/brdf.hpp>
@@ -250,9 +250,9 @@ public:
                       (T(4) * Form::template scale<T>());
         // Divided by the larger weight first, so that huge (valid) weights cannot overflow
         // the sum.
-        const T larger = std::max(w_s, w_d);
+        const T larger = glm::max(w_s, w_d);
         const T p = (w_s / larger) / (w_s / larger + w_d / larger);
-        return std::clamp(p, T(0.1), T(0.9));
+        return glm::clamp(p, T(0.1), T(0.9));
     }
 
 private:

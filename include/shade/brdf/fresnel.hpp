@@ -7,10 +7,11 @@
 // The argument cos_theta is the cosine between the incident direction and the normal of
 // the reflecting (micro)facet, e.g. l·h = v·h in a microfacet model.
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <limits>
+
+#include <glm/common.hpp>
 
 #include <shade/brdf/brdf.hpp>
 #include <shade/core/error.hpp>
@@ -31,7 +32,7 @@ namespace shade {
 /// cosine slightly outside by rounding would otherwise push F outside [f0, 1]).
 template <std::floating_point T>
 [[nodiscard]] constexpr rgb<T> F_schlick(const rgb<T>& f0, T cos_theta) noexcept {
-    const T c = std::clamp(cos_theta, T(0), T(1));
+    const T c = glm::clamp(cos_theta, T(0), T(1));
     const T m = T(1) - c;
     const T m2 = m * m;
     const T m5 = m2 * m2 * m;
@@ -63,7 +64,7 @@ template <std::floating_point T>
 /// at c = 0 where the formula would be 0/0.
 template <std::floating_point T>
 [[nodiscard]] inline T F_dielectric(T cos_theta, T eta) noexcept {
-    const T c = std::clamp(cos_theta, T(0), T(1));
+    const T c = glm::clamp(cos_theta, T(0), T(1));
     const T g2 = eta * eta - T(1) + c * c;
     if (g2 < T(0)) return T(1); // total internal reflection
     // eta^2 overflows for a huge (valid, finite) eta, e.g. 1e20 in float: then g = inf and
@@ -80,7 +81,7 @@ template <std::floating_point T>
     // arithmetic, so b takes its limit 1 instead of 0/0 = NaN.
     const T denominator = c * g_minus_c + T(1);
     const T b = denominator > T(0) ? (c * g_plus_c - T(1)) / denominator : T(1);
-    return std::min(T(0.5) * a * a * (T(1) + b * b), T(1));
+    return glm::min(T(0.5) * a * a * (T(1) + b * b), T(1));
 }
 
 /// Fresnel term type: Schlick's approximation with per-channel f0 (see F_schlick).

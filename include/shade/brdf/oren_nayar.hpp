@@ -10,12 +10,12 @@
 //
 // Sampling (shade::sampled_brdf): the cosine density n·l / pi.
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <optional>
 #include <type_traits>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/brdf.hpp>
@@ -153,10 +153,10 @@ public:
         T angular;
         if constexpr (std::is_same_v<Evaluation, oren_nayar_evaluation::trig_free>) {
             const T s = glm::dot(l, v) - n_dot_l * n_dot_v;
-            angular = s > T(0) ? s / detail::floored_cos(std::max(n_dot_l, n_dot_v)) : T(0);
+            angular = s > T(0) ? s / detail::floored_cos(glm::max(n_dot_l, n_dot_v)) : T(0);
         } else {
-            const T cos_alpha = std::min(std::min(n_dot_l, n_dot_v), T(1));
-            const T cos_beta = std::min(std::max(n_dot_l, n_dot_v), T(1));
+            const T cos_alpha = glm::min(glm::min(n_dot_l, n_dot_v), T(1));
+            const T cos_beta = glm::min(glm::max(n_dot_l, n_dot_v), T(1));
             const T sin_alpha = safe_sqrt((T(1) - cos_alpha) * (T(1) + cos_alpha));
             const T sin_beta = safe_sqrt((T(1) - cos_beta) * (T(1) + cos_beta));
             const vec3<T> l_t = l - n_dot_l * n;
@@ -165,9 +165,9 @@ public:
             const T len_v = glm::length(v_t);
             T cos_phi = T(0);
             if (len_l > T(0) && len_v > T(0))
-                cos_phi = std::clamp(glm::dot(l_t / len_l, v_t / len_v), T(-1), T(1));
+                cos_phi = glm::clamp(glm::dot(l_t / len_l, v_t / len_v), T(-1), T(1));
             const T tan_beta = sin_beta / detail::floored_cos(cos_beta);
-            angular = std::max(cos_phi, T(0)) * sin_alpha * tan_beta;
+            angular = glm::max(cos_phi, T(0)) * sin_alpha * tan_beta;
         }
         return rho_ * (inv_pi<T> * (a_ + b_ * angular));
     }
@@ -188,11 +188,11 @@ private:
     // sigma is capped at 1e4 rad before squaring: beyond it A and B equal their limits
     // 0.5 and 0.45 to better than 1e-8, and sigma^2 can no longer overflow to Inf/Inf.
     static constexpr T coefficient_a(T sigma) noexcept {
-        const T s2 = sqr(std::min(sigma, T(1e4)));
+        const T s2 = sqr(glm::min(sigma, T(1e4)));
         return T(1) - T(0.5) * s2 / (s2 + Form::template a_constant<T>());
     }
     static constexpr T coefficient_b(T sigma) noexcept {
-        const T s2 = sqr(std::min(sigma, T(1e4)));
+        const T s2 = sqr(glm::min(sigma, T(1e4)));
         return T(0.45) * s2 / (s2 + T(0.09));
     }
 

@@ -3,8 +3,7 @@
 
 #include <concepts>
 #include <cstddef>
-#include <ostream>
-#include <sstream>
+#include <iosfwd>
 #include <string>
 
 #include <shade/core/error.hpp>
@@ -38,7 +37,7 @@ struct result {
     [[nodiscard]] explicit operator bool() const noexcept { return passed; }
 };
 
-/// Writes r.message.
+/// Writes r.message (include <ostream> where you stream it).
 template <std::floating_point T>
 std::ostream& operator<<(std::ostream& out, const result<T>& r) {
     return out << r.message;
@@ -56,10 +55,9 @@ std::string where(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at
 
 /// x with 6 significant digits: enough to read, short enough for a sentence.
 inline std::string number(double x) {
-    std::ostringstream out;
-    out.precision(6);
-    out << x;
-    return out.str();
+    std::string s;
+    shade::detail::append_text(s, x, 6);
+    return s;
 }
 
 } // namespace detail

@@ -14,9 +14,10 @@
 // The two colours must be relative to the same white point. Non-finite input: every
 // function is noexcept and propagates NaN; for finite input the result is finite.
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
+
+#include <glm/common.hpp>
 
 #include <shade/color/lab.hpp>
 #include <shade/core/error.hpp>
@@ -89,7 +90,7 @@ template <std::floating_point T>
     // colours of equal hue rounding can make it a tiny negative, which the clamp removes.
     const T delta_a = reference.a - sample.a;
     const T delta_b = reference.b - sample.b;
-    const T delta_H_sq = std::max(T(0), delta_a * delta_a + delta_b * delta_b - delta_C * delta_C);
+    const T delta_H_sq = glm::max(T(0), delta_a * delta_a + delta_b * delta_b - delta_C * delta_C);
     const T S_C = T(1) + parameters.K_1() * C_1;
     const T S_H = T(1) + parameters.K_2() * C_1;
     const T term_L = delta_L / parameters.k_L();

@@ -3,14 +3,14 @@
 // constructors and factories call these so that a bad parameter fails loudly, once, with
 // its name, instead of turning into NaN deep inside a renderer.
 
-#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <concepts>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/core/math.hpp>
@@ -47,23 +47,39 @@ private:
 
 namespace detail {
 
+/// Appends x to s with `digits` significant digits (at most 17) in the shorter of fixed
+/// and scientific notation, as printf's "%.<digits>g" writes it ("0.5", "1e+30", "inf",
+/// "nan"). The default, 9, tells any two floats apart.
 template <std::floating_point T>
-std::string to_text(T x) {
-    std::ostringstream out;
-    out.precision(9);
-    out << x;
-    return out.str();
+void append_text(std::string& s, T x, int digits = 9) {
+    char buffer[64]; // sign, 17 digits, point, exponent of a long double: 29 at most
+    const std::to_chars_result r =
+        std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, digits);
+    s.append(buffer, r.ptr);
 }
 
-// Written with a stream rather than `"(" + to_text(...) + ...`: g++ 12 at -O3 reports a
-// false -Wrestrict on that chain of std::string operator+ (GCC bug 105329), which
-// -Werror would turn into a build failure in Release builds of user code.
+/// x as text for an error message, as append_text writes it.
+template <std::floating_point T>
+std::string to_text(T x) {
+    std::string s;
+    append_text(s, x);
+    return s;
+}
+
+/// v as "(x, y, z)", each component as append_text writes it. Built with append rather
+/// than `"(" + to_text(...) + ...`: g++ 12 at -O3 reports a false -Wrestrict on that chain
+/// of std::string operator+ (GCC bug 105329), which -Werror would turn into a build
+/// failure in Release builds of user code.
 template <std::floating_point T>
 std::string to_text(const vec3<T>& v) {
-    std::ostringstream out;
-    out.precision(9);
-    out << '(' << v.x << ", " << v.y << ", " << v.z << ')';
-    return out.str();
+    std::string s = "(";
+    append_text(s, v.x);
+    s += ", ";
+    append_text(s, v.y);
+    s += ", ";
+    append_text(s, v.z);
+    s += ')';
+    return s;
 }
 
 } // namespace detail
@@ -136,7 +152,7 @@ vec3<T> require_in_range(std::string_view name, const vec3<T>& v, T lo, T hi) {
 template <std::floating_point T>
 vec3<T> require_direction(std::string_view name, const vec3<T>& v) {
     if (!is_finite(v)) throw invalid_parameter(name, "must be finite", detail::to_text(v));
-    const T m = std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
+    const T m = glm::max(std::abs(v.x), glm::max(std::abs(v.y), std::abs(v.z)));
     if (!(m > T(0))) throw invalid_parameter(name, "must have non-zero length", detail::to_text(v));
     const vec3<T> w = v / m;
     return w / glm::length(w);

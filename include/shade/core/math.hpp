@@ -1,7 +1,6 @@
 #pragma once
 // Scalar constants and small numeric helpers shared by all of shade.
 
-#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <concepts>
@@ -10,6 +9,7 @@
 #include <numbers>
 #include <type_traits>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/core/types.hpp>
@@ -131,7 +131,7 @@ template <std::floating_point T>
 /// underflow.
 template <std::floating_point T>
 [[nodiscard]] inline int power_of_two_rescale_exponent(const vec3<T>& v) noexcept {
-    return power_of_two_rescale_exponent(std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z))));
+    return power_of_two_rescale_exponent(glm::max(std::abs(v.x), glm::max(std::abs(v.y), std::abs(v.z))));
 }
 
 } // namespace detail

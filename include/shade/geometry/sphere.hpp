@@ -2,11 +2,11 @@
 // shade::sphere and ray/sphere intersection, numerically stable for far-away and
 // off-centre spheres.
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <optional>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/core/error.hpp>
@@ -134,8 +134,8 @@ template <std::floating_point T>
     // are 0; c_0 / q would be 0/0.
     const T root_a = q / a;
     const T root_b = q != T(0) ? c0 / q : T(0);
-    const T t_near = detail::times_power_of_two(std::min(root_a, root_b), scale);
-    const T t_far = detail::times_power_of_two(std::max(root_a, root_b), scale);
+    const T t_near = detail::times_power_of_two(glm::min(root_a, root_b), scale);
+    const T t_far = detail::times_power_of_two(glm::max(root_a, root_b), scale);
 
     T t;
     bool entering;

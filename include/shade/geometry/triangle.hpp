@@ -34,7 +34,6 @@
 // ray hits at least one of the triangles sharing the edge or vertex, also when the
 // compiler fuses multiply-adds (tests/robustness builds its tests with -mfma).
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <limits>
@@ -43,6 +42,7 @@
 #include <tuple>
 #include <utility>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/core/math.hpp>
@@ -126,9 +126,9 @@ template <std::floating_point T>
     vec3<T> p = b.x * tri.v0 + b.y * tri.v1 + b.z * tri.v2;
     if (!is_finite(p)) {
         for (int k = 0; k < 3; ++k) {
-            const T lo = std::min(tri.v0[k], std::min(tri.v1[k], tri.v2[k]));
-            const T hi = std::max(tri.v0[k], std::max(tri.v1[k], tri.v2[k]));
-            p[k] = std::min(std::max(p[k], lo), hi); // an infinite p[k] becomes lo or hi
+            const T lo = glm::min(tri.v0[k], glm::min(tri.v1[k], tri.v2[k]));
+            const T hi = glm::max(tri.v0[k], glm::max(tri.v1[k], tri.v2[k]));
+            p[k] = glm::min(glm::max(p[k], lo), hi); // an infinite p[k] becomes lo or hi
         }
     }
     triangle_hit<T> h;

@@ -1,10 +1,10 @@
 #pragma once
 // shade::gooch: Gooch cool-to-warm shading for technical illustration.
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/core/error.hpp>
@@ -101,7 +101,7 @@ public:
             // for large valid values, and inf times a factor 0 would be NaN.
             // r.v of unit vectors can round a few ulps past 1, and (1 + ulp)^shininess
             // overflows to inf for a large valid shininess (then inf x 0 = NaN): clamp to 1.
-            const T r_dot_v = std::min(clamped_dot(r, v), T(1));
+            const T r_dot_v = glm::min(clamped_dot(r, v), T(1));
             out += p_.highlight * (s.specular * std::pow(r_dot_v, p_.shininess));
         }
         return out;

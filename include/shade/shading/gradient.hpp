@@ -1,13 +1,13 @@
 #pragma once
 // shade::gradient: a periodic blend of two shaders or BRDFs along a direction.
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <limits>
 #include <optional>
 #include <utility>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/brdf.hpp>
@@ -39,7 +39,7 @@ template <std::floating_point T>
 /// x clamped below 1: a number in [0, 1) after a division that may round up to 1.
 template <std::floating_point T>
 [[nodiscard]] inline T below_one(T x) noexcept {
-    return std::min(x, T(1) - std::numeric_limits<T>::epsilon() / T(2));
+    return glm::min(x, T(1) - std::numeric_limits<T>::epsilon() / T(2));
 }
 
 } // namespace detail

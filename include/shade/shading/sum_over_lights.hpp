@@ -4,7 +4,7 @@
 
 #include <concepts>
 #include <cstddef>
-#include <ranges>
+#include <iterator>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -78,10 +78,16 @@ template <class S, light L, class Visibility, class Jitter>
     return sum / (T(n) * T(n));
 }
 
-/// Lights is a range of lights (std::vector<any_light<T>>, std::span, ...).
+/// Lights is a range of lights (std::vector<any_light<T>>, std::span, ...): what
+/// std::ranges::input_range<const Lights> and light<std::ranges::range_value_t<const
+/// Lights>> say, written with <iterator>'s range access and iterator concepts (which
+/// define those two) instead of the far larger <ranges>.
 template <class Lights>
 concept light_range =
-    std::ranges::input_range<const Lights> && light<std::ranges::range_value_t<const Lights>>;
+    requires(const Lights& ls) {
+        { std::ranges::begin(ls) } -> std::input_iterator;
+        { std::ranges::end(ls) } -> std::sentinel_for<decltype(std::ranges::begin(ls))>;
+    } && light<std::iter_value_t<decltype(std::ranges::begin(std::declval<const Lights&>()))>>;
 
 /// Lights is a std::tuple (or pair/array) of lights, possibly of different types.
 template <class Lights>

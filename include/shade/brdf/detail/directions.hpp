@@ -3,12 +3,12 @@
 // the floor applied to cosines in denominators, and the constructor check that a model's
 // peak value fits in the scalar type.
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <limits>
 #include <string_view>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/core/error.hpp>
@@ -38,7 +38,7 @@ template <std::floating_point T>
 template <std::floating_point T>
 [[nodiscard]] inline vec3<T> half_vector(const vec3<T>& l, const vec3<T>& v) noexcept {
     const vec3<T> s = l + v;
-    const T m = std::max(std::abs(s.x), std::max(std::abs(s.y), std::abs(s.z)));
+    const T m = glm::max(std::abs(s.x), glm::max(std::abs(s.y), std::abs(s.z)));
     if (!(m > T(0))) return vec3<T>(0, 0, 0); // l = -v: excluded by the precondition
     const vec3<T> w = s / m;
     return w / glm::length(w);
@@ -62,17 +62,17 @@ struct half_angle {
 template <std::floating_point T>
 [[nodiscard]] inline half_angle<T> half_vector_and_cos(const vec3<T>& l, const vec3<T>& v) noexcept {
     const vec3<T> s = l + v;
-    const T m = std::max(std::abs(s.x), std::max(std::abs(s.y), std::abs(s.z)));
+    const T m = glm::max(std::abs(s.x), glm::max(std::abs(s.y), std::abs(s.z)));
     if (!(m > T(0))) return {vec3<T>(0, 0, 0), T(0)}; // l = -v: excluded by the precondition
     const vec3<T> w = s / m;
     const T len_w = glm::length(w);
-    return {w / len_w, std::min(T(0.5) * m * len_w, T(1))};
+    return {w / len_w, glm::min(T(0.5) * m * len_w, T(1))};
 }
 
 /// The largest channel of an RGB value.
 template <std::floating_point T>
 [[nodiscard]] constexpr T max_channel(const vec3<T>& c) noexcept {
-    return std::max(c.x, std::max(c.y, c.z));
+    return glm::max(c.x, glm::max(c.y, c.z));
 }
 
 /// Throws invalid_parameter naming `parameter` unless `peak` (the largest value the model

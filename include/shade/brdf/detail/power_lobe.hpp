@@ -7,11 +7,11 @@
 // accessors, evaluation, sampling and the two forms both models have (classic and
 // modified) live here once.
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <optional>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/brdf.hpp>
@@ -94,7 +94,7 @@ struct mirror_cosine {
     template <std::floating_point T>
     [[nodiscard]] static T cosine(const vec3<T>& n, const vec3<T>& l, const vec3<T>& v) noexcept {
         const vec3<T> r = T(2) * glm::dot(n, l) * n - l;
-        return std::min(clamped_dot(r, v), T(1));
+        return glm::min(clamped_dot(r, v), T(1));
     }
     template <std::floating_point T>
     [[nodiscard]] static lobe_geometry<T> geometry(const vec3<T>& n, const vec3<T>& l,
@@ -124,13 +124,13 @@ struct mirror_cosine {
 struct half_vector_cosine {
     template <std::floating_point T>
     [[nodiscard]] static T cosine(const vec3<T>& n, const vec3<T>& l, const vec3<T>& v) noexcept {
-        return std::min(clamped_dot(n, half_vector_and_cos(l, v).h), T(1));
+        return glm::min(clamped_dot(n, half_vector_and_cos(l, v).h), T(1));
     }
     template <std::floating_point T>
     [[nodiscard]] static lobe_geometry<T> geometry(const vec3<T>& n, const vec3<T>& l,
                                                    const vec3<T>& v) noexcept {
         const half_angle<T> ha = half_vector_and_cos(l, v);
-        return {std::min(clamped_dot(n, ha.h), T(1)), T(0.25) / floored_cos(ha.cos_theta_d)};
+        return {glm::min(clamped_dot(n, ha.h), T(1)), T(0.25) / floored_cos(ha.cos_theta_d)};
     }
     /// h with v·h <= 0 gives an l below the surface (n·l = 2 (v·h)(n·h) - n·v < 0), which
     /// the caller drops.

@@ -7,13 +7,13 @@
 // Local frame: n = +z, t = +x, b = +y. m_x and m_y are the RMS slopes of the microfacets
 // along t and b (Cook and Torrance's m, Walter et al.'s alpha_b when they are equal).
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <limits>
 #include <numbers>
 #include <string_view>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/brdf.hpp>
@@ -39,7 +39,7 @@ namespace shade {
 template <std::floating_point T>
 [[nodiscard]] inline T D_beckmann(T n_dot_h, T m) noexcept {
     if (!(n_dot_h > T(0))) return T(0);
-    const T c = std::min(n_dot_h, T(1));
+    const T c = glm::min(n_dot_h, T(1));
     const T c2 = c * c;
     const T m2 = m * m;
     const T tan2 = (T(1) - c) * (T(1) + c) / c2;
@@ -161,7 +161,7 @@ template <std::floating_point T>
         if (!(next > lo && next < hi)) next = T(0.5) * (lo + hi);
         const T step = std::abs(next - x);
         x = next;
-        if (step <= T(4) * std::numeric_limits<T>::epsilon() * std::max(std::abs(x), T(1))) break;
+        if (step <= T(4) * std::numeric_limits<T>::epsilon() * glm::max(std::abs(x), T(1))) break;
     }
     return x;
 }
@@ -193,7 +193,7 @@ template <std::floating_point T>
 template <std::floating_point T>
 [[nodiscard]] inline T G1_smith_beckmann(T n_dot_w, T m) noexcept {
     if (!(n_dot_w > T(0))) return T(0);
-    const T c = std::min(n_dot_w, T(1));
+    const T c = glm::min(n_dot_w, T(1));
     const T s = std::sqrt((T(1) - c) * (T(1) + c));
     // a >= 1.6 (including s = 0, where a would be +inf) gives exactly 1.
     if (!(m * s * T(1.6) > c)) return T(1);
@@ -210,7 +210,7 @@ template <std::floating_point T>
 template <std::floating_point T>
 [[nodiscard]] inline T G1_smith_beckmann_exact(T n_dot_w, T m) noexcept {
     if (!(n_dot_w > T(0))) return T(0);
-    const T c = std::min(n_dot_w, T(1));
+    const T c = glm::min(n_dot_w, T(1));
     const T s = std::sqrt((T(1) - c) * (T(1) + c));
     if (!(s > T(0))) return T(1);
     return T(1) / (T(1) + detail::lambda_beckmann_of_a(c / (m * s)));
@@ -269,7 +269,7 @@ public:
     /// x^2 exp(-(x - 1)/s^2) = 0 with x = 1/cos^2). s^2 P(s) does not decrease with s, so
     /// the peak is s^2 P(s) / (m_x m_y) at s = max(m_x, m_y).
     [[nodiscard]] T peak() const noexcept {
-        const T s = std::max(m_x_, m_y_);
+        const T s = glm::max(m_x_, m_y_);
         const T s2 = s * s;
         if (s2 <= T(0.5)) return T(1) / (pi<T> * m_x_ * m_y_);
         return (T(4) * s2 / (pi<T> * m_x_)) * (s2 / m_y_) * std::exp(T(1) / s2 - T(2));
@@ -301,7 +301,7 @@ public:
         const T x = detail::beckmann_visible_slope(sin_theta / w_s.z, u.x);
         // y is normal: the k = 0 case, drawn in the lower half and mirrored so that the
         // tail u_y -> 1 keeps the accuracy of the tail u_y -> 0 (1 - u_y is exact there).
-        const T y_half = detail::beckmann_visible_slope(T(0), std::min(u.y, T(1) - u.y));
+        const T y_half = detail::beckmann_visible_slope(T(0), glm::min(u.y, T(1) - u.y));
         const T y = u.y < T(0.5) ? y_half : -y_half;
         const T slope_x = m_x_ * (cos_phi * x - sin_phi * y);
         const T slope_y = m_y_ * (sin_phi * x + cos_phi * y);

@@ -6,11 +6,11 @@
 // Local frame: n = +z, t = +x, b = +y. alpha_x is the roughness along t, alpha_y along b
 // (Walter et al.'s alpha_g when they are equal); not a "perceptual roughness".
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <string_view>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/brdf.hpp>
@@ -37,7 +37,7 @@ namespace shade {
 template <std::floating_point T>
 [[nodiscard]] inline T D_ggx(T n_dot_h, T alpha) noexcept {
     if (!(n_dot_h > T(0))) return T(0);
-    const T c = std::min(n_dot_h, T(1));
+    const T c = glm::min(n_dot_h, T(1));
     const T a2 = alpha * alpha;
     const T s2 = (T(1) - c) * (T(1) + c);
     const T k = a2 * c * c + s2;
@@ -96,7 +96,7 @@ template <std::floating_point T>
 template <std::floating_point T>
 [[nodiscard]] inline T G1_smith_ggx(T n_dot_w, T alpha) noexcept {
     if (!(n_dot_w > T(0))) return T(0);
-    const T c = std::min(n_dot_w, T(1));
+    const T c = glm::min(n_dot_w, T(1));
     const T s2 = (T(1) - c) * (T(1) + c);
     return T(2) * c / (c + std::sqrt(c * c + alpha * alpha * s2));
 }
@@ -165,7 +165,7 @@ public:
     /// alphas are <= 1, else at grazing m along the rougher axis. Isotropic: 1/(pi alpha^2)
     /// for alpha <= 1, alpha^2/pi above.)
     [[nodiscard]] T peak() const noexcept {
-        const T a = std::max(std::max(alpha_x_, alpha_y_), T(1));
+        const T a = glm::max(glm::max(alpha_x_, alpha_y_), T(1));
         const T a2 = a * a;
         return (a2 / (pi<T> * alpha_x_)) * (a2 / alpha_y_);
     }

@@ -15,8 +15,9 @@
 // the cosine-only contract, `G(d, n·l, n·v, n·h, v·h)`; shade::cook_torrance uses the first
 // when it exists. The terms shipped here have both.
 
-#include <algorithm>
 #include <concepts>
+
+#include <glm/common.hpp>
 
 #include <shade/brdf/microfacet/beckmann.hpp>
 #include <shade/brdf/microfacet/distribution.hpp>
@@ -41,8 +42,8 @@ template <std::floating_point T>
         return T(0);
     // Written as min(v·h, 2 (n·h) min(n·l, n·v)) / (v·h) so there is one division, by
     // v·h > 0, and the result cannot exceed 1 through rounding.
-    const T shadowed = T(2) * n_dot_h * std::min(n_dot_l, n_dot_v);
-    return std::min(v_dot_h, shadowed) / v_dot_h;
+    const T shadowed = T(2) * n_dot_h * glm::min(n_dot_l, n_dot_v);
+    return glm::min(v_dot_h, shadowed) / v_dot_h;
 }
 
 /// Masking term type: V-groove (see G_v_groove); works with any distribution (it ignores

@@ -13,13 +13,14 @@
 // each lane does 18 multiplications and 14 additions before that decision, against 24
 // and 19 for the paper's P = d x e2, Q = s x e1 arrangement.
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+
+#include <glm/common.hpp>
 
 #include <shade/core/math.hpp>
 #include <shade/geometry/hit.hpp>
@@ -133,7 +134,7 @@ intersect_batch(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull
 
     // t finite in [t_min, t_max] is t >= t_min and t <= min(t_max, max); NaN fails both.
     L::splat(t_lo, r.t_min);
-    L::splat(t_hi, std::min(r.t_max, std::numeric_limits<T>::max()));
+    L::splat(t_hi, glm::min(r.t_max, std::numeric_limits<T>::max()));
     L::splat(inf, infinity<T>);
     // Fully unrolled (at most 16 steps), so the ray's splats stay in registers instead of
     // being reloaded at every step; both compilers read this pragma.
