@@ -4,6 +4,7 @@
 // hits. See bench/support.hpp for names, counters and the callgrind mode.
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -39,22 +40,35 @@ v3<T> random_unit(shade::rng& g) {
     }
 }
 
+// Pairs per "_memory" data set: more bytes than the last-level cache holds.
+template <class T>
+constexpr std::size_t memory_pair_count = shade_bench::beyond_cache_bytes / (sizeof(shade::ray<T>) + 4 * sizeof(T));
+
 template <class T, class Shape, class Run>
 double hit_rate(const std::vector<shade::ray<T>>& rays, const std::vector<Shape>& shapes, Run run) {
     std::size_t hits = 0;
-    for (std::size_t i = 0; i < pair_count<T>; ++i) hits += static_cast<std::size_t>(run(rays[i], shapes[i]).hit);
-    return static_cast<double>(hits) / static_cast<double>(pair_count<T>);
+    for (std::size_t i = 0; i < rays.size(); ++i) hits += static_cast<std::size_t>(run(rays[i], shapes[i]).hit);
+    return static_cast<double>(hits) / static_cast<double>(rays.size());
 }
 
+// Every pair in storage order, or in `order` when one is given (a permutation of the
+// pairs: bench/support.hpp, random_order).
 template <class T, class Shape, class Run>
 void add_pairs(const std::string& name, const std::vector<shade::ray<T>>& rays,
-               const std::vector<Shape>& shapes, Run run) {
+               const std::vector<Shape>& shapes, Run run, const std::vector<std::uint32_t>* order = nullptr) {
     shade_bench::add(
-        name, double(pair_count<T>),
-        [&rays, &shapes, run] {
-            for (std::size_t i = 0; i < pair_count<T>; ++i) {
-                outcome<T> o = run(rays[i], shapes[i]);
-                benchmark::DoNotOptimize(o);
+        name, double(rays.size()),
+        [&rays, &shapes, run, order] {
+            if (order == nullptr) {
+                for (std::size_t i = 0; i < rays.size(); ++i) {
+                    outcome<T> o = run(rays[i], shapes[i]);
+                    benchmark::DoNotOptimize(o);
+                }
+            } else {
+                for (const std::uint32_t i : *order) {
+                    outcome<T> o = run(rays[i], shapes[i]);
+                    benchmark::DoNotOptimize(o);
+                }
             }
         },
         hit_rate(rays, shapes, run));
@@ -71,10 +85,10 @@ struct sphere_data {
 // Spheres of radius 0.5 to 1.5 around points of [-2, 2]^3; rays from 3 to 8 away aimed
 // at a point 0 to 0.9 radii (hit) or 1.1 to 2 radii (miss) off the centre.
 template <class T>
-sphere_data<T> make_spheres(std::uint64_t seed) {
+sphere_data<T> make_spheres(std::uint64_t seed, std::size_t count = pair_count<T>) {
     shade::rng g(seed);
     sphere_data<T> data;
-    for (std::size_t i = 0; i < pair_count<T>; ++i) {
+    for (std::size_t i = 0; i < count; ++i) {
         const v3<T> centre = random_unit<T>(g) * (T(2) * g.uniform<T>());
         const T radius = T(0.5) + g.uniform<T>();
         const bool hit = (i % 2) == 0;
@@ -118,10 +132,10 @@ struct plane_data {
 // Planes through points of [-2, 2]^3 with random normals; rays from 1 to 5 away from the
 // plane, pointing towards it (hit) or away from it (miss, t < 0).
 template <class T>
-plane_data<T> make_planes(std::uint64_t seed) {
+plane_data<T> make_planes(std::uint64_t seed, std::size_t count = pair_count<T>) {
     shade::rng g(seed);
     plane_data<T> data;
-    for (std::size_t i = 0; i < pair_count<T>; ++i) {
+    for (std::size_t i = 0; i < count; ++i) {
         const v3<T> point = random_unit<T>(g) * (T(2) * g.uniform<T>());
         const v3<T> normal = random_unit<T>(g);
         const v3<T> origin = point + normal * (T(1) + T(4) * g.uniform<T>()) + random_unit<T>(g);
@@ -167,6 +181,21 @@ void register_all(const char* type) {
     const std::string plane_group = std::string("plane/") + type + "/hit50/";
     add_pairs<T>(plane_group + "glm", planes.rays, planes.planes, run_glm_plane<T>);
     add_pairs<T>(plane_group + "shade", planes.rays, planes.planes, run_shade_plane<T>);
+    if (!shade_bench::with_order_variants()) return;
+    // The same pairs in a random order, and a set larger than the last-level cache.
+    static const auto shuffled = shade_bench::random_order(pair_count<T>, 33);
+    static const sphere_data<T> many_spheres = make_spheres<T>(34, memory_pair_count<T>);
+    static const plane_data<T> many_planes = make_planes<T>(35, memory_pair_count<T>);
+    static const auto memory_order = shade_bench::random_order(memory_pair_count<T>, 36);
+    const std::string s = std::string("sphere/") + type, p = std::string("plane/") + type;
+    add_pairs<T>(s + "/hit50_shuffled/glm", spheres.rays, spheres.spheres, run_glm_sphere<T>, &shuffled);
+    add_pairs<T>(s + "/hit50_shuffled/shade", spheres.rays, spheres.spheres, run_shade_sphere<T>, &shuffled);
+    add_pairs<T>(s + "/hit50_memory/glm", many_spheres.rays, many_spheres.spheres, run_glm_sphere<T>, &memory_order);
+    add_pairs<T>(s + "/hit50_memory/shade", many_spheres.rays, many_spheres.spheres, run_shade_sphere<T>, &memory_order);
+    add_pairs<T>(p + "/hit50_shuffled/glm", planes.rays, planes.planes, run_glm_plane<T>, &shuffled);
+    add_pairs<T>(p + "/hit50_shuffled/shade", planes.rays, planes.planes, run_shade_plane<T>, &shuffled);
+    add_pairs<T>(p + "/hit50_memory/glm", many_planes.rays, many_planes.planes, run_glm_plane<T>, &memory_order);
+    add_pairs<T>(p + "/hit50_memory/shade", many_planes.rays, many_planes.planes, run_shade_plane<T>, &memory_order);
 }
 
 const bool registered = [] {

@@ -19,10 +19,14 @@
 // the dump's description, so bench/report.py can divide the instructions of exactly
 // that loop by iterations x ops_per_iter.
 
+#include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <numeric>
+#include <random>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <benchmark/benchmark.h>
 
@@ -45,11 +49,13 @@ inline benchmark::IterationCount fixed_iterations() {
 }
 
 /// Registers the benchmark `name` whose every iteration calls body() once, performing
-/// ops_per_iter operations. hit_rate < 0 means "not an intersection benchmark".
+/// ops_per_iter operations. hit_rate < 0 means "not an intersection benchmark"; counters
+/// are further (name, value) pairs for the JSON output.
 template <class Body>
-void add(const std::string& name, double ops_per_iter, Body body, double hit_rate = -1.0) {
+void add(const std::string& name, double ops_per_iter, Body body, double hit_rate = -1.0,
+         std::vector<std::pair<std::string, double>> counters = {}) {
     auto* b = benchmark::RegisterBenchmark(
-        name.c_str(), [name, ops_per_iter, hit_rate, body](benchmark::State& state) mutable {
+        name.c_str(), [name, ops_per_iter, hit_rate, body, counters](benchmark::State& state) mutable {
 #if SHADE_BENCH_CALLGRIND
             CALLGRIND_ZERO_STATS;
 #endif
@@ -59,9 +65,36 @@ void add(const std::string& name, double ops_per_iter, Body body, double hit_rat
 #endif
             state.counters["ops_per_iter"] = ops_per_iter;
             if (hit_rate >= 0.0) state.counters["hit_rate"] = hit_rate;
+            for (const auto& [counter, value] : counters) state.counters[counter] = value;
         });
     if (const benchmark::IterationCount n = fixed_iterations(); n > 0) b->Iterations(n);
 }
+
+/// The visiting orders of an intersection benchmark. Its pairs in storage order, as the
+/// first groups run them, repeat the same hit/miss sequence every iteration, which the
+/// branch predictor learns: that flatters every test that branches. So each benchmark
+/// also runs its pairs in a random order (group suffix "_shuffled", the same L1-resident
+/// data) and from a set larger than the last-level cache, in a random order ("_memory":
+/// every test waits for memory as a renderer's incoherent rays do).
+inline std::vector<std::uint32_t> random_order(std::size_t n, std::uint64_t seed) {
+    std::vector<std::uint32_t> order(n);
+    std::iota(order.begin(), order.end(), std::uint32_t(0));
+    std::mt19937_64 g(seed);
+    for (std::size_t i = n; i > 1; --i) {
+        const auto j = static_cast<std::size_t>(g() % i); // Fisher-Yates
+        std::swap(order[i - 1], order[j]);
+    }
+    return order;
+}
+
+/// Bytes of the "_memory" data sets: twice the 32 MiB last-level cache of the machine
+/// the benchmarks are written for, so no iteration finds its pairs in any cache.
+inline constexpr std::size_t beyond_cache_bytes = std::size_t(64) << 20;
+
+/// True when the shuffled and memory variants are registered: not under callgrind's fixed
+/// iterations, where instruction counts do not depend on order or caches and a 64 MiB set
+/// would take minutes to simulate.
+inline bool with_order_variants() { return fixed_iterations() == 0; }
 
 /// What every intersection benchmark keeps of one test, whatever the routine returns: hit
 /// or not, t and two barycentric coordinates (or zeros). Passing this same small record to

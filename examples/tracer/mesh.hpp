@@ -11,10 +11,13 @@
 #include <glm/geometric.hpp>
 
 #include <shade/core/math.hpp>
-
-#include "bvh.hpp"
+#include <shade/geometry/aabb.hpp>
+#include <shade/geometry/triangle.hpp>
 
 namespace tracer {
+
+using real = double;
+using vec3 = shade::vec3<real>;
 
 /// A triangle mesh: shared vertex positions and unit vertex normals, three indices per
 /// triangle (counter-clockwise seen from outside).
@@ -25,12 +28,24 @@ struct mesh {
 
     [[nodiscard]] std::size_t triangle_count() const { return indices.size() / 3; }
 
-    /// Bounds of each triangle, for building a BVH.
-    [[nodiscard]] std::vector<aabb> triangle_bounds() const {
-        std::vector<aabb> out(triangle_count());
-        for (std::size_t i = 0; i < out.size(); ++i)
-            for (int k = 0; k < 3; ++k) out[i].grow(positions[indices[3 * i + std::size_t(k)]]);
+    /// Triangle i (its three vertices).
+    [[nodiscard]] shade::triangle<real> triangle(std::size_t i) const {
+        return {positions[indices[3 * i]], positions[indices[3 * i + 1]], positions[indices[3 * i + 2]]};
+    }
+
+    /// Every triangle, in index order (for building a shade::triangle_bvh).
+    [[nodiscard]] std::vector<shade::triangle<real>> triangles() const {
+        std::vector<shade::triangle<real>> out;
+        out.reserve(triangle_count());
+        for (std::size_t i = 0; i < triangle_count(); ++i) out.push_back(triangle(i));
         return out;
+    }
+
+    /// The box of all vertices.
+    [[nodiscard]] shade::aabb<real> bounds() const {
+        shade::aabb<real> box;
+        for (const vec3& p : positions) box.grow(p);
+        return box;
     }
 };
 

@@ -14,15 +14,17 @@
 
 #include <shade/core/random.hpp>
 #include <shade/core/surface_point.hpp>
+#include <shade/geometry/aabb.hpp>
+#include <shade/geometry/bvh.hpp>
 #include <shade/geometry/camera.hpp>
 #include <shade/geometry/plane.hpp>
 #include <shade/geometry/sphere.hpp>
 #include <shade/geometry/triangle.hpp>
+#include <shade/geometry/triangle_bvh.hpp>
 #include <shade/light/any_light.hpp>
 #include <shade/shading/shader.hpp>
 #include <shade/shading/sum_over_lights.hpp>
 
-#include "bvh.hpp"
 #include "mesh.hpp"
 
 namespace tracer {
@@ -71,7 +73,9 @@ struct object {
     std::optional<shade::sphere<real>> sphere;
     std::optional<shade::plane<real>> plane;
     std::shared_ptr<const tracer::mesh> mesh;
-    std::shared_ptr<const tracer::bvh> mesh_bvh;
+    /// The mesh's hierarchy, with the watertight triangle test (no ray slips between
+    /// neighbouring triangles).
+    std::shared_ptr<const shade::triangle_bvh<real, shade::watertight>> mesh_bvh;
     mesh_shading shading = mesh_shading::phong;
     material surface;
 };
@@ -81,7 +85,9 @@ struct lighting_options {
     int area_samples_per_side = 4; ///< n: each area light is sampled n x n times per hit
 };
 
-/// A scene: objects, lights, camera and background.
+/// A scene: objects, lights, camera and background. Add objects with add_sphere, add_plane
+/// and add_mesh, which keep a hierarchy over the bounded ones (spheres and meshes) so that
+/// a ray tests only the objects whose boxes it enters; planes are tested one by one.
 struct scene {
     std::string name;
     std::vector<object> objects;
@@ -95,6 +101,7 @@ struct scene {
         o.sphere = s;
         o.surface = std::move(m);
         objects.push_back(std::move(o));
+        index_objects();
     }
     void add_plane(const shade::plane<real>& p, material m) {
         object o;
@@ -102,44 +109,45 @@ struct scene {
         o.plane = p;
         o.surface = std::move(m);
         objects.push_back(std::move(o));
+        index_objects();
     }
     void add_mesh(tracer::mesh m, mesh_shading shading, material mat) {
         object o;
         o.shape = object::kind::mesh;
         auto shared = std::make_shared<const tracer::mesh>(std::move(m));
-        o.mesh_bvh = std::make_shared<const tracer::bvh>(shared->triangle_bounds());
+        o.mesh_bvh = std::make_shared<const shade::triangle_bvh<real, shade::watertight>>(shared->triangles());
         o.mesh = std::move(shared);
         o.shading = shading;
         o.surface = std::move(mat);
         objects.push_back(std::move(o));
+        index_objects();
     }
 
     /// The closest hit along r, if any.
     [[nodiscard]] std::optional<scene_hit> intersect(shade::ray<real> r) const {
         std::optional<scene_hit> best;
-        for (std::size_t i = 0; i < objects.size(); ++i) {
+        for (const std::size_t i : unbounded_) {
             if (auto h = intersect_object(i, r)) {
                 r.t_max = h->t;
                 best = h;
             }
         }
+        if (auto h = bounded_.closest(r, [&](std::uint32_t k, const shade::ray<real>& rr) {
+                return intersect_object(bounded_objects_[k], rr);
+            }))
+            best = h->hit;
         return best;
     }
 
     /// True when something blocks r within its interval (shadow rays).
     [[nodiscard]] bool occluded(const shade::ray<real>& r) const {
-        for (std::size_t i = 0; i < objects.size(); ++i) {
-            const object& o = objects[i];
-            if (o.shape == object::kind::mesh) {
-                if (o.mesh_bvh->any(r, [&](std::uint32_t tri, const shade::ray<real>& rr) {
-                        return triangle_hit(*o.mesh, tri, rr).has_value();
-                    }))
-                    return true;
-            } else if (intersect_object(i, r)) {
-                return true;
-            }
-        }
-        return false;
+        for (const std::size_t i : unbounded_)
+            if (intersect_object(i, r)) return true;
+        return bounded_.any(r, [&](std::uint32_t k, const shade::ray<real>& rr) {
+            const object& o = objects[bounded_objects_[k]];
+            if (o.shape == object::kind::mesh) return o.mesh_bvh->any(rr);
+            return intersect_object(bounded_objects_[k], rr).has_value();
+        });
     }
 
     /// Direct lighting at hit h seen from direction v (unit, toward the viewer): the sum over
@@ -166,16 +174,25 @@ struct scene {
     }
 
 private:
-    [[nodiscard]] static shade::triangle<real> mesh_triangle(const tracer::mesh& m, std::uint32_t tri) {
-        const std::size_t i = 3 * std::size_t(tri);
-        return {m.positions[m.indices[i]], m.positions[m.indices[i + 1]], m.positions[m.indices[i + 2]]};
-    }
+    shade::bvh<real> bounded_;                   ///< over the objects with a box
+    std::vector<std::size_t> bounded_objects_;   ///< bounded_'s primitive k is objects[bounded_objects_[k]]
+    std::vector<std::size_t> unbounded_;         ///< the planes
 
-    /// Where r meets triangle tri of m (t and barycentrics only: the BVH tests many
-    /// triangles, and only the closest one needs a full record, from shade::make_hit).
-    [[nodiscard]] static std::optional<shade::triangle_intersection<real>>
-    triangle_hit(const tracer::mesh& m, std::uint32_t tri, const shade::ray<real>& r) {
-        return shade::find_intersection<shade::watertight>(r, mesh_triangle(m, tri));
+    /// Rebuilds the hierarchy over the bounded objects (a few dozen at most: cheap).
+    void index_objects() {
+        std::vector<shade::aabb<real>> boxes;
+        bounded_objects_.clear();
+        unbounded_.clear();
+        for (std::size_t i = 0; i < objects.size(); ++i) {
+            const object& o = objects[i];
+            if (o.shape == object::kind::plane) {
+                unbounded_.push_back(i);
+                continue;
+            }
+            boxes.push_back(o.shape == object::kind::sphere ? shade::bounds(*o.sphere) : o.mesh->bounds());
+            bounded_objects_.push_back(i);
+        }
+        bounded_ = shade::bvh<real>(boxes);
     }
 
     [[nodiscard]] std::optional<scene_hit> intersect_object(std::size_t i, const shade::ray<real>& r) const {
@@ -201,14 +218,10 @@ private:
         }
         case object::kind::mesh: {
             const tracer::mesh& m = *o.mesh;
-            const auto x = o.mesh_bvh->closest<shade::triangle_intersection<real>>(
-                r, [&](std::uint32_t tri, const shade::ray<real>& rr) {
-                    auto th = triangle_hit(m, tri, rr);
-                    if (th) out.triangle = tri; // the last accepted hit is the closest
-                    return th;
-                });
+            const auto x = o.mesh_bvh->closest(r);
             if (!x) return std::nullopt;
-            const auto h = shade::make_hit(mesh_triangle(m, out.triangle), *x);
+            out.triangle = x->primitive;
+            const shade::triangle_hit<real>& h = x->hit;
             out.t = h.t;
             out.p = h.p;
             out.barycentric = h.barycentric;

@@ -1,8 +1,10 @@
 #pragma once
 // shade: header-only C++20 shading, BRDF and ray-intersection library on GLM.
 // This umbrella header includes every public header except shade/check/doctest.hpp (which
-// needs doctest) and shade/geometry/triangle_batch.hpp (whose x86-64 backends bring in the
-// compiler's SIMD intrinsics headers: include it where you use the batch).
+// needs doctest), shade/geometry/triangle_batch.hpp (whose x86-64 backends bring in the
+// compiler's SIMD intrinsics headers: include it where you use the batch), and the
+// hierarchies shade/geometry/bvh.hpp and triangle_bvh.hpp (SIMD box tests, and the batch):
+// include them where you use them.
 // Conventions: shade/core/frame.hpp and docs/conventions.md.
 
 #include <shade/version.hpp>
@@ -16,6 +18,7 @@
 #include <shade/core/surface_point.hpp>
 #include <shade/core/types.hpp>
 
+#include <shade/geometry/aabb.hpp>
 #include <shade/geometry/camera.hpp>
 #include <shade/geometry/hit.hpp>
 #include <shade/geometry/plane.hpp>

@@ -17,11 +17,11 @@
 #include <shade/brdf/lambert.hpp>
 #include <shade/core/random.hpp>
 #include <shade/geometry/triangle.hpp>
+#include <shade/geometry/triangle_bvh.hpp>
 #include <shade/light/directional.hpp>
 #include <shade/light/point.hpp>
 #include <shade/shading/checker.hpp>
 
-#include "tracer/bvh.hpp"
 #include "tracer/mesh.hpp"
 #include "tracer/render.hpp"
 #include "tracer/scenes.hpp"
@@ -432,14 +432,12 @@ std::optional<shade::triangle_hit<real>> brute_force(const tracer::mesh& m, shad
     return best;
 }
 
-std::optional<shade::triangle_hit<real>> through_bvh(const tracer::mesh& m, const tracer::bvh& b,
-                                                     const shade::ray<real>& r) {
-    return b.closest<shade::triangle_hit<real>>(r, [&](std::uint32_t i, const shade::ray<real>& rr) {
-        const std::size_t k = 3 * std::size_t(i);
-        const shade::triangle<real> t{m.positions[m.indices[k]], m.positions[m.indices[k + 1]],
-                                      m.positions[m.indices[k + 2]]};
-        return shade::intersect<shade::watertight>(rr, t);
-    });
+using mesh_bvh = shade::triangle_bvh<real, shade::watertight>;
+
+std::optional<shade::triangle_hit<real>> through_bvh(const mesh_bvh& b, const shade::ray<real>& r) {
+    const auto h = b.closest(r);
+    if (!h) return std::nullopt;
+    return h->hit;
 }
 
 } // namespace
@@ -451,10 +449,10 @@ TEST_CASE("BVH: closest hit and any-hit equal brute force over all triangles for
         tracer::make_torus({5, -2, 1}, 2, 0.2, 64, 6), // thin tube: many slivers
     };
     for (const auto& m : meshes) {
-        const tracer::bvh b(m.triangle_bounds());
+        const mesh_bvh b(m.triangles());
         CHECK(b.size() > 1);
-        const tracer::aabb box = b.bounds();
-        const vec3 centre = box.centre();
+        const shade::aabb<real> box = m.bounds();
+        const vec3 centre = box.center();
         const real size = glm::length(box.hi - box.lo);
         shade::rng random(42, 3);
         const auto u = [&] { return random.uniform<real>(); };
@@ -473,14 +471,9 @@ TEST_CASE("BVH: closest hit and any-hit equal brute force over all triangles for
             if (target == o) continue;
             shade::ray<real> r{o, target - o};
             if (k % 5 == 0) r.t_max = u() * 1.5; // shortened rays: the interval must be honoured
-            const auto fast = through_bvh(m, b, r);
+            const auto fast = through_bvh(b, r);
             const auto slow = brute_force(m, r);
-            const bool any = b.any(r, [&](std::uint32_t i, const shade::ray<real>& rr) {
-                const std::size_t q = 3 * std::size_t(i);
-                const shade::triangle<real> t{m.positions[m.indices[q]], m.positions[m.indices[q + 1]],
-                                              m.positions[m.indices[q + 2]]};
-                return shade::intersect<shade::watertight>(rr, t).has_value();
-            });
+            const bool any = b.any(r);
             if (slow) ++hits;
             // Same triangle test, same interval: the same closest t exactly. Except for a
             // ray through a vertex or along an edge: several triangles report the same
@@ -499,22 +492,6 @@ TEST_CASE("BVH: closest hit and any-hit equal brute force over all triangles for
         CHECK(ties < hits / 20); // ties are the rare vertex rays, not the rule
         CHECK(hits > 500); // the test exercises hits, not only misses
     }
-}
-
-TEST_CASE("BVH: an empty BVH hits nothing and a one-triangle BVH is a leaf") {
-    const tracer::bvh empty(std::vector<tracer::aabb>{});
-    const shade::ray<real> r{{0, 0, -1}, {0, 0, 1}};
-    CHECK(empty.size() == 0);
-    CHECK_FALSE(empty.closest<shade::triangle_hit<real>>(r, [](std::uint32_t, const shade::ray<real>&) {
-        return std::optional<shade::triangle_hit<real>>(shade::triangle_hit<real>{});
-    }));
-    CHECK_FALSE(empty.any(r, [](std::uint32_t, const shade::ray<real>&) { return true; }));
-    tracer::aabb one;
-    one.grow(vec3(-1, -1, 0));
-    one.grow(vec3(1, 1, 0)); // a flat box (zero thickness in z) must still be entered
-    const tracer::bvh single(std::vector<tracer::aabb>{one});
-    CHECK(single.size() == 1);
-    CHECK(single.any(r, [](std::uint32_t i, const shade::ray<real>&) { return i == 0; }));
 }
 
 TEST_CASE("scene::intersect on a mesh equals brute force, and the reported triangle is the one hit") {

@@ -1,0 +1,227 @@
+// Bounding-volume hierarchies: shade::triangle_bvh<float> against Embree 3 in the same
+// binary, single thread: build time, and closest-hit throughput for primary (coherent)
+// and random (incoherent) rays, on icospheres of 20k / 82k / 328k triangles and on the
+// reference tracer's mesh scene. Embree is used only here (bench/CMakeLists.txt builds
+// this file only when find_package(embree 3) finds it); the library never depends on it.
+//
+// Names (bench/support.hpp): bvh/<rays>/<scene>/<shade|embree> with rays = build,
+// primary or incoherent; ops_per_iter is the number of rays (or 1 build), so the time
+// per operation is ns per ray. Counters: hit_rate (shade's), and agreement: the fraction
+// of rays on which shade and Embree agree on hit or miss (computed once, before timing).
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <embree3/rtcore.h>
+
+#include <benchmark/benchmark.h>
+
+#include <shade/core/random.hpp>
+#include <shade/geometry/camera.hpp>
+#include <shade/geometry/triangle_bvh.hpp>
+
+#include "support.hpp"
+#include "tracer/mesh.hpp"
+#include "tracer/scenes.hpp"
+
+namespace {
+
+using v3 = shade::vec3<float>;
+
+/// An indexed float mesh (Embree's input) and the same triangles as a list (shade's).
+struct scene_data {
+    std::string name;
+    std::vector<float> positions; // x y z per vertex
+    std::vector<std::uint32_t> indices;
+    std::vector<shade::triangle<float>> triangles;
+    std::vector<shade::ray<float>> primary, incoherent;
+};
+
+void add_mesh(scene_data& s, const tracer::mesh& m) {
+    const auto base = static_cast<std::uint32_t>(s.positions.size() / 3);
+    for (const auto& p : m.positions)
+        for (int k = 0; k < 3; ++k) s.positions.push_back(static_cast<float>(p[k]));
+    for (const std::uint32_t i : m.indices) s.indices.push_back(base + i);
+}
+
+void finish_triangles(scene_data& s) {
+    const auto at = [&](std::uint32_t i) {
+        return v3(s.positions[3 * i], s.positions[3 * i + 1], s.positions[3 * i + 2]);
+    };
+    for (std::size_t t = 0; t + 2 < s.indices.size(); t += 3)
+        s.triangles.push_back({at(s.indices[t]), at(s.indices[t + 1]), at(s.indices[t + 2])});
+}
+
+constexpr int image_side = 256; // primary rays: 256 x 256 per iteration
+constexpr std::size_t incoherent_count = 65536;
+
+/// Primary rays of a pinhole camera, one per pixel centre of an image_side^2 image.
+std::vector<shade::ray<float>> camera_rays(const shade::pinhole_camera<double>& cam) {
+    std::vector<shade::ray<float>> rays;
+    for (int y = 0; y < image_side; ++y)
+        for (int x = 0; x < image_side; ++x) {
+            const auto r = cam.ray_for_raster(x + 0.5, y + 0.5, image_side, image_side);
+            rays.push_back({v3(r.origin), v3(r.direction)});
+        }
+    return rays;
+}
+
+/// Random rays: origins uniform in the box [-extent, extent]^3 around the centre, unit
+/// directions uniform on the sphere (so successive rays share no path).
+std::vector<shade::ray<float>> random_rays(const v3& centre, float extent, std::uint64_t seed) {
+    shade::rng g(seed);
+    std::vector<shade::ray<float>> rays;
+    while (rays.size() < incoherent_count) {
+        const v3 o = centre + extent * v3(2 * g.uniform<float>() - 1, 2 * g.uniform<float>() - 1,
+                                          2 * g.uniform<float>() - 1);
+        const v3 d(2 * g.uniform<float>() - 1, 2 * g.uniform<float>() - 1, 2 * g.uniform<float>() - 1);
+        const float len = glm::length(d);
+        if (len > 0.1f && len <= 1.0f) rays.push_back({o, d / len});
+    }
+    return rays;
+}
+
+scene_data icosphere(int levels, const char* name) {
+    scene_data s;
+    s.name = name;
+    add_mesh(s, tracer::make_icosphere(tracer::vec3(0), 1.0, levels));
+    finish_triangles(s);
+    // A camera at distance 3 looking at the sphere, which fills most of the image.
+    const shade::pinhole_camera<double> cam({0.3, 0.4, 3}, {0, 0, 0}, {0, 1, 0}, 50 * shade::pi<double> / 180, 1.0);
+    s.primary = camera_rays(cam);
+    s.incoherent = random_rays(v3(0), 1.5f, 99);
+    return s;
+}
+
+scene_data mesh_scene() {
+    scene_data s;
+    s.name = "mesh_scene";
+    const tracer::scene sc = tracer::make_mesh_scene(1.0);
+    for (const auto& o : sc.objects)
+        if (o.mesh) add_mesh(s, *o.mesh);
+    finish_triangles(s);
+    s.primary = camera_rays(*sc.camera);
+    s.incoherent = random_rays(v3(0, 0.35f, 0), 3.5f, 98);
+    return s;
+}
+
+// ---- Embree ---------------------------------------------------------------------------
+
+struct embree_device {
+    RTCDevice device = rtcNewDevice("threads=1");
+    ~embree_device() { rtcReleaseDevice(device); }
+};
+
+RTCDevice device() {
+    static embree_device d;
+    return d.device;
+}
+
+/// Embree's scene over s's mesh (default build quality, one thread), committed.
+RTCScene embree_build(const scene_data& s) {
+    RTCScene scene = rtcNewScene(device());
+    RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                           3 * sizeof(float), s.positions.size() / 3));
+    std::copy(s.positions.begin(), s.positions.end(), vb);
+    auto* ib = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), s.indices.size() / 3));
+    std::copy(s.indices.begin(), s.indices.end(), ib);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene, geom);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(scene);
+    return scene;
+}
+
+/// Embree's closest hit of r: t, or +infinity on a miss.
+float embree_closest(RTCScene scene, const shade::ray<float>& r) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh{};
+    rh.ray.org_x = r.origin.x;
+    rh.ray.org_y = r.origin.y;
+    rh.ray.org_z = r.origin.z;
+    rh.ray.dir_x = r.direction.x;
+    rh.ray.dir_y = r.direction.y;
+    rh.ray.dir_z = r.direction.z;
+    rh.ray.tnear = r.t_min;
+    rh.ray.tfar = r.t_max;
+    rh.ray.mask = ~0u;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, &context, &rh);
+    return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? std::numeric_limits<float>::infinity() : rh.ray.tfar;
+}
+
+struct built {
+    scene_data data;
+    shade::triangle_bvh<float> shade_bvh;
+    RTCScene embree = nullptr;
+};
+
+void register_scene(const built& b) {
+    const scene_data& s = b.data;
+    const std::string build = "bvh/build/" + s.name + "/";
+    shade_bench::add(build + "embree", 1.0, [&s] {
+        RTCScene scene = embree_build(s);
+        benchmark::DoNotOptimize(scene);
+        rtcReleaseScene(scene);
+    });
+    shade_bench::add(build + "shade", 1.0, [&s] {
+        shade::triangle_bvh<float> t(s.triangles);
+        benchmark::DoNotOptimize(t);
+    });
+    for (const bool coherent : {true, false}) {
+        const std::vector<shade::ray<float>>& rays = coherent ? s.primary : s.incoherent;
+        std::size_t agree = 0, hits = 0;
+        for (const auto& r : rays) {
+            const bool a = b.shade_bvh.closest(r).has_value();
+            const bool e = embree_closest(b.embree, r) < std::numeric_limits<float>::infinity();
+            agree += a == e;
+            hits += a;
+        }
+        const double n = double(rays.size());
+        const std::string group = std::string("bvh/") + (coherent ? "primary/" : "incoherent/") + s.name + "/";
+        shade_bench::add(
+            group + "embree", n,
+            [&b, &rays] {
+                for (const auto& r : rays) benchmark::DoNotOptimize(embree_closest(b.embree, r));
+            },
+            double(hits) / n, {{"agreement", double(agree) / n}});
+        shade_bench::add(
+            group + "shade", n,
+            [&b, &rays] {
+                for (const auto& r : rays) {
+                    const auto h = b.shade_bvh.closest(r);
+                    benchmark::DoNotOptimize(h);
+                }
+            },
+            double(hits) / n, {{"agreement", double(agree) / n}});
+    }
+}
+
+const bool registered = [] {
+    // Static storage: the benchmarks refer to the data while they run.
+    static std::vector<std::unique_ptr<built>> scenes;
+    const auto add = [](scene_data s) {
+        auto b = std::make_unique<built>();
+        b->data = std::move(s);
+        b->shade_bvh = shade::triangle_bvh<float>(b->data.triangles);
+        b->embree = embree_build(b->data);
+        scenes.push_back(std::move(b));
+    };
+    add(icosphere(5, "ico20k"));
+    add(icosphere(6, "ico82k"));
+    add(icosphere(7, "ico328k"));
+    add(mesh_scene());
+    for (const auto& b : scenes) register_scene(*b);
+    return true;
+}();
+
+} // namespace

@@ -1,0 +1,199 @@
+#pragma once
+// shade::bvh: a bounding-volume hierarchy over any primitives, given their boxes; and
+// shade::primitive_bvh, which also holds the primitives (spheres, or any type with
+// shade::bounds and shade::intersect). For triangles, shade::triangle_bvh
+// (shade/geometry/triangle_bvh.hpp) tests its leaves with the SIMD batch kernel.
+//
+// Usage:
+//     std::vector<shade::sphere<double>> spheres = ...;
+//     const shade::primitive_bvh<shade::sphere<double>> accel(spheres);
+//     if (auto h = accel.closest(r))        // nearest hit: h->primitive, h->hit (t, p, n, ...)
+//         ...;
+//     bool blocked = accel.any(shadow_ray); // any hit in [t_min, t_max]
+//
+//     // Or only the tree, with your own primitives and test:
+//     const shade::bvh<float> tree(boxes);  // std::span<const shade::aabb<float>>
+//     auto h = tree.closest(r, [&](std::uint32_t i, const shade::ray<float>& rr) {
+//         return my_intersect(rr, prims[i]);  // std::optional<X>, X with a member t
+//     });
+//
+// Built with a binned surface area heuristic (Wald 2007) into nodes of four children;
+// traversed nearest child first, testing the four children's boxes together with the
+// conservative slab test of Ize 2013 (never missing a box the exact ray touches, see
+// shade::intersect(ray, aabb)), on float boxes rounded outward, also for double. So the
+// hierarchy loses no hit that the primitive test finds: closest() returns exactly the
+// hit a loop over all primitives returns (up to which of several primitives at the very
+// same t), and a watertight primitive test stays watertight behind it.
+// See shade/geometry/detail/bvh_build.hpp and bvh_traverse.hpp for the algorithms.
+
+#include <concepts>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include <shade/core/error.hpp>
+#include <shade/core/types.hpp>
+#include <shade/geometry/aabb.hpp>
+#include <shade/geometry/detail/bvh_build.hpp>
+#include <shade/geometry/detail/bvh_traverse.hpp>
+#include <shade/geometry/ray.hpp>
+
+namespace shade {
+
+/// The nearest hit found by a hierarchy: the primitive's index (its position in the
+/// span the hierarchy was built from) and the primitive test's record.
+template <class H>
+struct primitive_hit {
+    std::uint32_t primitive = 0; ///< index of the primitive hit
+    H hit{};                     ///< what the primitive test returned (t, and so on)
+};
+
+namespace detail {
+
+/// Throws invalid_parameter naming `parameter` unless every coordinate of box is finite
+/// and lo <= hi (a NaN would make the box tests meaningless).
+template <std::floating_point T>
+void require_finite_box(const char* parameter, std::size_t index, const aabb<T>& box) {
+    if (!(is_finite(box.lo) && is_finite(box.hi)) || box.empty())
+        throw invalid_parameter(parameter,
+                                "must hold finite, non-empty boxes (element " + std::to_string(index) + ")",
+                                to_text(box.lo) + " - " + to_text(box.hi));
+}
+
+} // namespace detail
+
+/// A hierarchy over primitives 0 .. n-1 given by their boxes; the primitives stay with the
+/// caller, who passes a test for them to closest and any. Leaves hold up to 8 primitives.
+template <std::floating_point T>
+class bvh {
+public:
+    using scalar_type = T;
+
+    /// An empty hierarchy: nothing is ever hit.
+    bvh() = default;
+
+    /// Builds over the primitives with the given boxes. Throws shade::invalid_parameter
+    /// naming "boxes" when a box is empty or not finite, or when there are 2^27 or more.
+    explicit bvh(std::span<const aabb<T>> boxes) {
+        detail::require_bvh_size("boxes", boxes.size());
+        std::vector<detail::bvh_prim_ref> refs;
+        refs.reserve(boxes.size());
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+            detail::require_finite_box("boxes", i, boxes[i]);
+            refs.push_back(detail::make_prim_ref(boxes[i], static_cast<std::uint32_t>(i)));
+        }
+        tree_ = detail::bvh_builder(8, 1).build(refs);
+    }
+
+    /// The nearest hit of r: test(index, ray) is called for primitives whose boxes r
+    /// enters, returning std::optional<H> with H having a member t (the ray parameter);
+    /// the ray passed shrinks its t_max to the nearest hit so far, so test must honour
+    /// [t_min, t_max]. Returns that primitive and its record, or nothing.
+    template <class Test>
+    [[nodiscard]] auto closest(ray<T> r, Test&& test) const {
+        using H = typename std::invoke_result_t<Test&, std::uint32_t, const ray<T>&>::value_type;
+        std::optional<primitive_hit<H>> best;
+        if (tree_.nodes.empty() || !r.valid()) return best;
+        detail::bvh_traverse<true>(tree_.nodes.data(), r, r.t_max, [&](std::uint32_t first, std::uint32_t count) {
+            for (std::uint32_t i = first; i < first + count; ++i) {
+                const std::uint32_t p = tree_.order[i];
+                if (auto h = test(p, std::as_const(r))) {
+                    r.t_max = h->t;
+                    best = primitive_hit<H>{p, *h};
+                }
+            }
+            return false;
+        });
+        return best;
+    }
+
+    /// True when test(index, r) reports a hit for some primitive (for shadow rays); stops
+    /// at the first one found.
+    template <class Test>
+    [[nodiscard]] bool any(const ray<T>& r, Test&& test) const {
+        if (tree_.nodes.empty() || !r.valid()) return false;
+        bool found = false;
+        detail::bvh_traverse<false>(tree_.nodes.data(), r, r.t_max, [&](std::uint32_t first, std::uint32_t count) {
+            for (std::uint32_t i = first; i < first + count; ++i)
+                if (test(tree_.order[i], r)) return found = true;
+            return false;
+        });
+        return found;
+    }
+
+    /// Number of primitives.
+    [[nodiscard]] std::size_t size() const noexcept { return tree_.order.size(); }
+    /// Number of nodes (of up to four children each).
+    [[nodiscard]] std::size_t node_count() const noexcept { return tree_.nodes.size(); }
+
+private:
+    detail::bvh_tree tree_;
+};
+
+/// A primitive a primitive_bvh can hold: shade::bounds(p) gives its aabb and
+/// shade::intersect(r, p) its nearest hit in [t_min, t_max] as a std::optional of a record
+/// with a member t (found by argument-dependent lookup, as for shade::sphere).
+template <class P>
+concept bvh_primitive = requires(const P& p, const ray<typename P::scalar_type>& r) {
+    { bounds(p) } -> std::same_as<aabb<typename P::scalar_type>>;
+    { intersect(r, p)->t } -> std::convertible_to<typename P::scalar_type>;
+};
+
+/// A hierarchy that holds its primitives (copied in).
+template <bvh_primitive P>
+class primitive_bvh {
+public:
+    using scalar_type = typename P::scalar_type;
+    /// The record shade::intersect(ray, P) returns inside its std::optional.
+    using hit_type = typename decltype(intersect(std::declval<const ray<scalar_type>&>(),
+                                                 std::declval<const P&>()))::value_type;
+
+    /// An empty hierarchy.
+    primitive_bvh() = default;
+
+    /// Builds over a copy of primitives. Throws shade::invalid_parameter naming
+    /// "primitives" when a primitive's bounds are not finite.
+    explicit primitive_bvh(std::span<const P> primitives)
+        : primitives_(primitives.begin(), primitives.end()), tree_(boxes_of(primitives)) {}
+
+    /// The nearest hit of r, with the index of the primitive hit, or nothing.
+    [[nodiscard]] std::optional<primitive_hit<hit_type>> closest(const ray<scalar_type>& r) const {
+        return tree_.closest(r, [this](std::uint32_t i, const ray<scalar_type>& rr) {
+            return intersect(rr, primitives_[i]);
+        });
+    }
+
+    /// True when r hits some primitive within [t_min, t_max].
+    [[nodiscard]] bool any(const ray<scalar_type>& r) const {
+        return tree_.any(r, [this](std::uint32_t i, const ray<scalar_type>& rr) {
+            return intersect(rr, primitives_[i]).has_value();
+        });
+    }
+
+    /// The primitives, in the order given.
+    [[nodiscard]] std::span<const P> primitives() const noexcept { return primitives_; }
+
+private:
+    static std::vector<aabb<scalar_type>> boxes_of(std::span<const P> primitives) {
+        std::vector<aabb<scalar_type>> boxes;
+        boxes.reserve(primitives.size());
+        for (std::size_t i = 0; i < primitives.size(); ++i) {
+            boxes.push_back(bounds(primitives[i]));
+            if (!(is_finite(boxes.back().lo) && is_finite(boxes.back().hi)))
+                throw invalid_parameter("primitives",
+                                        "must have finite bounds (element " + std::to_string(i) + ")",
+                                        detail::to_text(boxes.back().lo) + " - " +
+                                            detail::to_text(boxes.back().hi));
+        }
+        return boxes;
+    }
+
+    std::vector<P> primitives_;
+    bvh<scalar_type> tree_;
+};
+
+} // namespace shade

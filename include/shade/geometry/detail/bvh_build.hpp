@@ -1,0 +1,406 @@
+#pragma once
+// The builder behind shade::bvh and shade::triangle_bvh: a binary tree by binned surface
+// area heuristic, collapsed into nodes of four children whose float boxes the traversal
+// (detail/bvh_traverse.hpp) tests together. Internal: use shade/geometry/bvh.hpp.
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <shade/core/error.hpp>
+#include <shade/core/math.hpp>
+#include <shade/core/types.hpp>
+#include <shade/geometry/aabb.hpp>
+
+namespace shade::detail {
+
+/// The next float above f (toward +infinity), for f not NaN and not +infinity: one step of the bit pattern
+/// (IEEE 754-2019 §3.4: for floats of one sign the encodings are ordered like the values),
+/// the inline equivalent of std::nextafter(f, +inf), which is a library call.
+[[nodiscard]] inline float next_float_up(float f) noexcept {
+    if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
+    const auto bits = std::bit_cast<std::uint32_t>(f);
+    return std::bit_cast<float>(f > 0.0f ? bits + 1 : bits - 1);
+}
+/// The next float below f (toward -infinity), for f not NaN and not -infinity.
+[[nodiscard]] inline float next_float_down(float f) noexcept { return -next_float_up(-f); }
+
+/// x rounded to a float no larger than x (toward -infinity); x itself when it is a float.
+template <std::floating_point T>
+[[nodiscard]] inline float float_down(T x) noexcept {
+    auto f = static_cast<float>(x);
+    if constexpr (sizeof(T) > sizeof(float))
+        if (static_cast<T>(f) > x) f = next_float_down(f);
+    return f;
+}
+
+/// x rounded to a float no smaller than x (toward +infinity).
+template <std::floating_point T>
+[[nodiscard]] inline float float_up(T x) noexcept {
+    auto f = static_cast<float>(x);
+    if constexpr (sizeof(T) > sizeof(float))
+        if (static_cast<T>(f) < x) f = next_float_up(f);
+    return f;
+}
+
+/// A node of the collapsed tree: the boxes of up to four children, stored per axis and
+/// side (lo x, hi x, lo y, hi y, lo z, hi z; one float per child in each), so that one
+/// vector load gets one plane of all four, and the children's references. A reference is
+/// an inner node's index, or a leaf (leaf_flag set) holding `count` items from `first`
+/// (see make_leaf_ref). Unused children have an empty box (lo = +inf, hi = -inf), which
+/// no ray enters. 128 bytes: two cache lines.
+struct alignas(64) bvh_node4 {
+    std::array<std::array<float, 4>, 6> planes; ///< [2 k + side][child]: side 0 lo, 1 hi
+    std::array<std::uint32_t, 4> child;         ///< child references
+};
+
+inline constexpr std::uint32_t bvh_leaf_flag = 0x8000'0000u;
+/// Items per leaf fit in 4 bits; first items index in the remaining 27.
+inline constexpr std::uint32_t bvh_max_leaf_items = 15;
+inline constexpr std::uint32_t bvh_max_items = 1u << 27;
+
+[[nodiscard]] constexpr std::uint32_t make_leaf_ref(std::uint32_t first, std::uint32_t count) noexcept {
+    return bvh_leaf_flag | (first << 4) | count;
+}
+[[nodiscard]] constexpr bool is_leaf_ref(std::uint32_t ref) noexcept { return (ref & bvh_leaf_flag) != 0; }
+[[nodiscard]] constexpr std::uint32_t leaf_first(std::uint32_t ref) noexcept {
+    return (ref & ~bvh_leaf_flag) >> 4;
+}
+[[nodiscard]] constexpr std::uint32_t leaf_count(std::uint32_t ref) noexcept { return ref & 15u; }
+
+#if defined(__GNUC__)
+/// Four floats in one GNU vector (SSE on x86-64, NEON on ARM): the builder's boxes.
+using bvh_v4 [[gnu::vector_size(16)]] = float;
+[[nodiscard]] inline bvh_v4 bvh_vmin(const bvh_v4& a, const bvh_v4& b) noexcept { return a < b ? a : b; }
+[[nodiscard]] inline bvh_v4 bvh_vmax(const bvh_v4& a, const bvh_v4& b) noexcept { return a > b ? a : b; }
+#else
+/// Four floats (the builder's boxes), one at a time where GNU vectors are missing.
+struct bvh_v4 {
+    std::array<float, 4> v{};
+    float& operator[](std::size_t i) noexcept { return v[i]; }
+    float operator[](std::size_t i) const noexcept { return v[i]; }
+    friend bvh_v4 operator+(bvh_v4 a, const bvh_v4& b) noexcept { for (std::size_t i = 0; i < 4; ++i) a.v[i] += b.v[i]; return a; }
+    friend bvh_v4 operator-(bvh_v4 a, const bvh_v4& b) noexcept { for (std::size_t i = 0; i < 4; ++i) a.v[i] -= b.v[i]; return a; }
+    friend bvh_v4 operator*(bvh_v4 a, const bvh_v4& b) noexcept { for (std::size_t i = 0; i < 4; ++i) a.v[i] *= b.v[i]; return a; }
+};
+[[nodiscard]] inline bvh_v4 bvh_vmin(bvh_v4 a, const bvh_v4& b) noexcept { for (std::size_t i = 0; i < 4; ++i) a.v[i] = std::min(a.v[i], b.v[i]); return a; }
+[[nodiscard]] inline bvh_v4 bvh_vmax(bvh_v4 a, const bvh_v4& b) noexcept { for (std::size_t i = 0; i < 4; ++i) a.v[i] = std::max(a.v[i], b.v[i]); return a; }
+#endif
+
+/// One primitive while building: its box (rounded outward to floats; x, y, z in lanes 0-2
+/// of lo and hi) and its index (lane 3 of lo, bit-cast). The builder partitions these in
+/// place.
+struct bvh_prim_ref {
+    bvh_v4 lo;
+    bvh_v4 hi;
+
+    [[nodiscard]] std::uint32_t index() const noexcept { return std::bit_cast<std::uint32_t>(float(lo[3])); }
+    /// Twice the centroid, lo + hi (lane 3 unused).
+    [[nodiscard]] bvh_v4 centroid2() const noexcept { return lo + hi; }
+};
+
+/// A float box of the builder (lanes 0-2; lane 3 unused).
+struct bvh_box {
+    bvh_v4 lo{infinity<float>, infinity<float>, infinity<float>, infinity<float>};
+    bvh_v4 hi{-infinity<float>, -infinity<float>, -infinity<float>, -infinity<float>};
+
+    void grow(const bvh_v4& l, const bvh_v4& h) noexcept {
+        lo = bvh_vmin(lo, l);
+        hi = bvh_vmax(hi, h);
+    }
+    void grow(const bvh_box& b) noexcept { grow(b.lo, b.hi); }
+    /// Half the surface area (the heuristic needs only ratios); 0 when empty.
+    [[nodiscard]] float half_area() const noexcept {
+        const float x = hi[0] - lo[0], y = hi[1] - lo[1], z = hi[2] - lo[2];
+        if (!(x >= 0.0f && y >= 0.0f && z >= 0.0f)) return 0.0f;
+        return x * y + y * z + z * x;
+    }
+};
+
+/// The float box holding b (each bound rounded outward), and the primitive reference.
+template <std::floating_point T>
+[[nodiscard]] inline bvh_prim_ref make_prim_ref(const aabb<T>& b, std::uint32_t index) noexcept {
+    return bvh_prim_ref{bvh_v4{float_down(b.lo.x), float_down(b.lo.y), float_down(b.lo.z),
+                               std::bit_cast<float>(index)},
+                        bvh_v4{float_up(b.hi.x), float_up(b.hi.y), float_up(b.hi.z), 0.0f}};
+}
+
+/// The tree a build produces: the collapsed nodes (node 0 is the root; none for no
+/// primitives) and the primitives' indices in leaf order (a leaf reference's first and
+/// count index this array).
+struct bvh_tree {
+    std::vector<bvh_node4> nodes;
+    std::vector<std::uint32_t> order;
+};
+
+/// Binned SAH builder (Wald 2007, "On fast Construction of SAH-based Bounding Volume
+/// Hierarchies", IEEE Symposium on Interactive Ray Tracing, §3-4): at each node the
+/// primitives' centroids are sorted into `bins` equal bins along each axis of their
+/// bounds, and of the bins - 1 planes between bins on the three axes the one of least
+/// surface area heuristic cost is taken (Goldsmith, Salmon 1987, "Automatic Creation of
+/// Object Hierarchies for Ray Tracing", IEEE CG&A 7(5); MacDonald, Booth 1990, "Heuristics
+/// for ray tracing using space subdivision", The Visual Computer 6(3)):
+///     cost(split) = C_trav + (A_L N_L + A_R N_R) / A,    cost(leaf) = N,
+/// with A the surface areas, N the numbers of primitives (counted in whole blocks of
+/// `block` primitives, the width of the leaves' batch tests) and C_trav = 1. A node
+/// becomes a leaf when it holds at most max_leaf primitives and the leaf is no more
+/// costly, or when all centroids coincide; otherwise it is split (at the median when
+/// binning cannot separate the centroids, or below depth median_depth, which bounds the
+/// depth and so the traversal's stack).
+class bvh_builder {
+public:
+    static constexpr int bins = 16;
+    static constexpr int median_depth = 48;
+
+    bvh_builder(std::uint32_t max_leaf, std::uint32_t block) : max_leaf_(max_leaf), block_(block) {}
+
+    /// Builds over refs (reordered in place).
+    [[nodiscard]] bvh_tree build(std::vector<bvh_prim_ref>& refs) {
+        bvh_tree tree;
+        refs_ = refs.data();
+        binary_.clear();
+        if (refs.empty()) return tree;
+        binary_.reserve(2 * refs.size() / std::max<std::uint32_t>(1, block_) + 2);
+        bvh_box box, centroids;
+        bounds_of(0, static_cast<std::uint32_t>(refs.size()), box, centroids);
+        const std::uint32_t root = build_binary(0, static_cast<std::uint32_t>(refs.size()), 0, box, centroids);
+        tree.order.resize(refs.size());
+        for (std::size_t i = 0; i < refs.size(); ++i) tree.order[i] = refs[i].index();
+        tree.nodes.reserve(binary_.size() / 2 + 1);
+        tree.nodes.emplace_back();
+        if (binary_[root].count > 0) {
+            // A single leaf: one root node with one child.
+            set_empty(tree.nodes[0]);
+            set_child(tree.nodes[0], 0, binary_[root].box, leaf_ref(binary_[root]));
+        } else {
+            collapse(tree, 0, root);
+        }
+        return tree;
+    }
+
+private:
+    struct binary_node {
+        bvh_box box;
+        std::uint32_t first = 0; ///< leaf: first primitive; inner: left child
+        std::uint32_t count = 0; ///< leaf: number of primitives; inner: 0
+        std::uint32_t right = 0; ///< inner: right child
+    };
+
+    [[nodiscard]] std::uint32_t blocks(std::uint32_t n) const noexcept { return (n + block_ - 1) / block_; }
+
+    static void set_empty(bvh_node4& node) noexcept {
+        for (auto& plane : node.planes) plane.fill(0.0f);
+        for (int k = 0; k < 3; ++k) {
+            node.planes[std::size_t(2 * k)].fill(infinity<float>);
+            node.planes[std::size_t(2 * k + 1)].fill(-infinity<float>);
+        }
+        node.child.fill(0);
+    }
+    static void set_child(bvh_node4& node, std::size_t j, const bvh_box& b, std::uint32_t ref) noexcept {
+        for (std::size_t k = 0; k < 3; ++k) {
+            node.planes[2 * k][j] = b.lo[k];
+            node.planes[2 * k + 1][j] = b.hi[k];
+        }
+        node.child[j] = ref;
+    }
+    [[nodiscard]] static std::uint32_t leaf_ref(const binary_node& n) noexcept {
+        return make_leaf_ref(n.first, n.count);
+    }
+
+    /// Fills tree.nodes[index] with up to four children gathered from the binary subtree
+    /// under `node`: the inner child of largest area is opened until there are four.
+    void collapse(bvh_tree& tree, std::size_t index, std::uint32_t node) {
+        std::array<std::uint32_t, 4> kids{binary_[node].first, binary_[node].right, 0, 0};
+        std::size_t n = 2;
+        while (n < 4) {
+            int best = -1;
+            float best_area = -1.0f;
+            for (std::size_t j = 0; j < n; ++j) {
+                const binary_node& c = binary_[kids[j]];
+                if (c.count == 0 && c.box.half_area() > best_area) {
+                    best = static_cast<int>(j);
+                    best_area = c.box.half_area();
+                }
+            }
+            if (best < 0) break;
+            const binary_node& open = binary_[kids[std::size_t(best)]];
+            kids[n++] = open.right;
+            kids[std::size_t(best)] = open.first;
+        }
+        set_empty(tree.nodes[index]);
+        for (std::size_t j = 0; j < n; ++j) {
+            const binary_node& c = binary_[kids[j]];
+            std::uint32_t ref;
+            if (c.count > 0) {
+                ref = leaf_ref(c);
+            } else {
+                ref = static_cast<std::uint32_t>(tree.nodes.size());
+                tree.nodes.emplace_back();
+                collapse(tree, ref, kids[j]);
+            }
+            set_child(tree.nodes[index], j, c.box, ref);
+        }
+    }
+
+    std::uint32_t make_leaf(const bvh_box& box, std::uint32_t begin, std::uint32_t end) {
+        binary_.push_back(binary_node{box, begin, end - begin, 0});
+        return static_cast<std::uint32_t>(binary_.size() - 1);
+    }
+
+    /// The box and the centroid box (of doubled centroids, lo + hi) of refs_[begin, end).
+    void bounds_of(std::uint32_t begin, std::uint32_t end, bvh_box& box, bvh_box& centroids) const noexcept {
+        for (std::uint32_t i = begin; i < end; ++i) {
+            const bvh_prim_ref& r = refs_[i];
+            box.grow(r.lo, r.hi);
+            const bvh_v4 c = r.centroid2();
+            centroids.grow(c, c);
+        }
+    }
+
+    /// Builds the binary subtree over refs_[begin, end), whose box and centroid box are
+    /// given; returns its node's index.
+    std::uint32_t build_binary(std::uint32_t begin, std::uint32_t end, int depth, const bvh_box& box,
+                               const bvh_box& centroids) {
+        const std::uint32_t n = end - begin;
+        if (n == 1) return make_leaf(box, begin, end);
+
+        std::uint32_t mid = begin;
+        bool found = false;
+        bvh_box left_box, left_centroids, right_box, right_centroids;
+        if (depth < median_depth) {
+            // Bin the centroids on every axis with extent: bin = floor((c - lo) scale).
+            std::array<std::array<bvh_box, bins>, 3> bin_box{};
+            std::array<std::array<std::uint32_t, bins>, 3> bin_count{};
+            bvh_v4 scale{0.0f, 0.0f, 0.0f, 0.0f};
+            for (std::size_t k = 0; k < 3; ++k) {
+                const float extent = centroids.hi[k] - centroids.lo[k];
+                // Slightly under bins / extent, so the largest centroid falls in the last bin.
+                scale[k] = extent > 0.0f ? float(bins) * 0.99999f / extent : 0.0f;
+            }
+            const bvh_v4 c_lo = centroids.lo;
+            const bvh_v4 zero{0.0f, 0.0f, 0.0f, 0.0f};
+            const bvh_v4 last{float(bins - 1), float(bins - 1), float(bins - 1), float(bins - 1)};
+            for (std::uint32_t i = begin; i < end; ++i) {
+                const bvh_prim_ref& r = refs_[i];
+                // Clamped to [0, bins - 1] without branches (the bins of successive
+                // primitives are unpredictable); a NaN lane (infinite bounds) gives 0.
+                const bvh_v4 x = bvh_vmin(bvh_vmax((r.centroid2() - c_lo) * scale, zero), last);
+                for (std::size_t k = 0; k < 3; ++k) {
+                    const auto b = static_cast<std::size_t>(x[k]);
+                    bin_box[k][b].grow(r.lo, r.hi);
+                    ++bin_count[k][b];
+                }
+            }
+            // Sweep: right_cost[j] = A N of bins j..bins-1, then evaluate from the left.
+            float best_cost = infinity<float>;
+            std::size_t best_axis = 0, best_split = 0;
+            for (std::size_t k = 0; k < 3; ++k) {
+                if (!(scale[k] > 0.0f)) continue;
+                std::array<float, bins> right_cost{};
+                bvh_box acc;
+                std::uint32_t count = 0;
+                for (std::size_t j = bins - 1; j > 0; --j) {
+                    acc.grow(bin_box[k][j]);
+                    count += bin_count[k][j];
+                    right_cost[j] = acc.half_area() * float(blocks(count));
+                }
+                acc = bvh_box{};
+                count = 0;
+                for (std::size_t j = 1; j < bins; ++j) {
+                    acc.grow(bin_box[k][j - 1]);
+                    count += bin_count[k][j - 1];
+                    if (count == 0 || count == n) continue;
+                    const float cost = acc.half_area() * float(blocks(count)) + right_cost[j];
+                    if (cost < best_cost) {
+                        best_cost = cost;
+                        best_axis = k;
+                        best_split = j;
+                    }
+                }
+            }
+            if (best_cost < infinity<float>) {
+                const float area = box.half_area();
+                const float split_cost = area + best_cost; // C_trav A + (A_L N_L + A_R N_R)
+                const float leaf_cost = area * float(blocks(n));
+                if (n <= max_leaf_ && leaf_cost <= split_cost) return make_leaf(box, begin, end);
+                // Partition (Hoare), gathering both sides' boxes on the way.
+                const float lo = c_lo[best_axis], sc = scale[best_axis];
+                const auto goes_left = [&](const bvh_prim_ref& r) {
+                    return bin_index((r.centroid2()[best_axis] - lo) * sc) < best_split;
+                };
+                std::uint32_t i = begin, j = end;
+                for (;;) {
+                    while (i < j && goes_left(refs_[i])) {
+                        left_box.grow(refs_[i].lo, refs_[i].hi);
+                        const bvh_v4 c = refs_[i].centroid2();
+                        left_centroids.grow(c, c);
+                        ++i;
+                    }
+                    while (i < j && !goes_left(refs_[j - 1])) {
+                        --j;
+                        right_box.grow(refs_[j].lo, refs_[j].hi);
+                        const bvh_v4 c = refs_[j].centroid2();
+                        right_centroids.grow(c, c);
+                    }
+                    if (i >= j) break;
+                    std::swap(refs_[i], refs_[j - 1]);
+                }
+                mid = i;
+                found = mid > begin && mid < end;
+            } else if (n <= max_leaf_) {
+                return make_leaf(box, begin, end); // all centroids coincide
+            }
+        }
+        if (!found) {
+            if (n <= max_leaf_) return make_leaf(box, begin, end);
+            // Median split on the widest centroid axis (or by index when they coincide).
+            std::size_t axis = 0;
+            for (std::size_t k = 1; k < 3; ++k)
+                if (centroids.hi[k] - centroids.lo[k] > centroids.hi[axis] - centroids.lo[axis]) axis = k;
+            mid = begin + n / 2;
+            std::nth_element(refs_ + begin, refs_ + mid, refs_ + end,
+                             [axis](const bvh_prim_ref& a, const bvh_prim_ref& b) {
+                                 return a.centroid2()[axis] < b.centroid2()[axis];
+                             });
+            left_box = left_centroids = right_box = right_centroids = bvh_box{};
+            bounds_of(begin, mid, left_box, left_centroids);
+            bounds_of(mid, end, right_box, right_centroids);
+        }
+        const auto index = static_cast<std::uint32_t>(binary_.size());
+        binary_.push_back(binary_node{box, 0, 0, 0});
+        const std::uint32_t left = build_binary(begin, mid, depth + 1, left_box, left_centroids);
+        const std::uint32_t right = build_binary(mid, end, depth + 1, right_box, right_centroids);
+        binary_[index].first = left;
+        binary_[index].right = right;
+        return index;
+    }
+
+    /// The bin of a scaled centroid coordinate x, clamped to [0, bins - 1]; written so that
+    /// a NaN x (from infinite bounds) lands in bin 0, never in a cast.
+    [[nodiscard]] static std::size_t bin_index(float x) noexcept {
+        // Branch-free (minss, maxss): the bins of successive primitives are unpredictable.
+        return static_cast<std::size_t>(std::min(std::max(0.0f, x), float(bins - 1)));
+    }
+
+    std::uint32_t max_leaf_;
+    std::uint32_t block_;
+    bvh_prim_ref* refs_ = nullptr;
+    std::vector<binary_node> binary_;
+};
+
+/// Throws shade::invalid_parameter naming `parameter` unless there are fewer than 2^27
+/// primitives (the leaf references' index field).
+inline void require_bvh_size(const char* parameter, std::size_t n) {
+    if (n >= bvh_max_items)
+        throw invalid_parameter(parameter, "must hold fewer than 2^27 primitives", std::to_string(n));
+}
+
+} // namespace shade::detail

@@ -1,0 +1,215 @@
+#pragma once
+// The traversal behind shade::bvh and shade::triangle_bvh: the conservative slab test of
+// four float boxes at once, and the ordered depth-first walk. Internal: use
+// shade/geometry/bvh.hpp.
+//
+// The four boxes are tested in one 16-byte GNU vector (g++ and clang++ compile it to SSE
+// on the x86-64 baseline, NEON on ARM); other compilers test them one at a time.
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <concepts>
+#include <cstdint>
+#include <cstring>
+
+#include <shade/core/math.hpp>
+#include <shade/core/types.hpp>
+#include <shade/geometry/aabb.hpp>
+#include <shade/geometry/detail/bvh_build.hpp>
+#include <shade/geometry/ray.hpp>
+
+namespace shade::detail {
+
+/// What the box tests need of a ray of scalar T, in float: per axis the reciprocal of the
+/// direction, which plane is near (lo when the direction's sign bit is clear, else hi),
+/// and the origin rounded so that each slab distance errs outward. For a float ray the
+/// origin is exact; for a double ray, it is rounded up where it is subtracted from the
+/// near plane and down for the far plane (or the reverse for a negative direction), so
+/// the computed near distance can only be smaller and the far one larger. The far
+/// distances are then enlarged by 1 + 2 gamma(n) (Ize 2013, see shade::intersect(ray,
+/// aabb)): n = 3 roundings for float rays (subtraction, reciprocal, product), n = 4 for
+/// double rays, whose reciprocal is rounded twice (to double, then to float).
+struct bvh_float_ray {
+    std::array<float, 3> inv;           ///< 1 / direction, per axis (±inf for a zero component)
+    std::array<float, 3> origin_near;   ///< origin, rounded against the near plane
+    std::array<float, 3> origin_far;    ///< origin, rounded against the far plane
+    std::array<std::size_t, 3> near_plane; ///< index of the near plane in bvh_node4::planes
+    float enlarge = 1.0f;               ///< factor of the far distances
+    float t_min = 0.0f;                 ///< the ray's t_min rounded down
+
+    template <std::floating_point T>
+    explicit bvh_float_ray(const ray<T>& r) noexcept {
+        constexpr bool exact = sizeof(T) == sizeof(float);
+        enlarge = 1.0f + 2.0f * rounding_gamma<float>(exact ? 3 : 4);
+        t_min = float_down(r.t_min);
+        for (std::size_t k = 0; k < 3; ++k) {
+            const T d = r.direction[int(k)];
+            const T o = r.origin[int(k)];
+            const bool negative = std::signbit(d);
+            inv[k] = static_cast<float>(T(1) / d);
+            near_plane[k] = 2 * k + (negative ? 1 : 0);
+            // Near plane minus origin: rounding the origin up makes it smaller for a
+            // positive direction (and the distance, a positive multiple, smaller too).
+            origin_near[k] = negative ? float_down(o) : float_up(o);
+            origin_far[k] = negative ? float_up(o) : float_down(o);
+        }
+    }
+};
+
+#if defined(__GNUC__)
+using bvh_f4 [[gnu::vector_size(16)]] = float;
+using bvh_i4 [[gnu::vector_size(16)]] = std::int32_t;
+
+[[gnu::always_inline]] inline bvh_f4 bvh_load(const std::array<float, 4>& p) noexcept {
+    bvh_f4 v;
+    std::memcpy(&v, p.data(), sizeof v);
+    return v;
+}
+[[gnu::always_inline]] inline bvh_f4 bvh_splat(float x) noexcept { return bvh_f4{x, x, x, x}; }
+/// Per lane: t where t > a, else a (a NaN t is ignored: detail::max_ignoring_nan).
+[[gnu::always_inline]] inline bvh_f4 bvh_max(const bvh_f4& t, const bvh_f4& a) noexcept {
+#if defined(__SSE__)
+    return __builtin_ia32_maxps(t, a); // maxps returns its second operand when unordered
+#else
+    const bvh_i4 m = t > a;
+    return reinterpret_cast<bvh_f4>((reinterpret_cast<bvh_i4>(t) & m) | (reinterpret_cast<bvh_i4>(a) & ~m));
+#endif
+}
+/// Per lane: t where t < a, else a (a NaN t is ignored).
+[[gnu::always_inline]] inline bvh_f4 bvh_min(const bvh_f4& t, const bvh_f4& a) noexcept {
+#if defined(__SSE__)
+    return __builtin_ia32_minps(t, a);
+#else
+    const bvh_i4 m = t < a;
+    return reinterpret_cast<bvh_f4>((reinterpret_cast<bvh_i4>(t) & m) | (reinterpret_cast<bvh_i4>(a) & ~m));
+#endif
+}
+[[gnu::always_inline]] inline unsigned bvh_bits(const bvh_i4& m) noexcept {
+#if defined(__SSE__)
+    return static_cast<unsigned>(__builtin_ia32_movmskps(reinterpret_cast<bvh_f4>(m)));
+#else
+    unsigned out = 0;
+    for (int i = 0; i < 4; ++i) out |= unsigned(m[i] != 0) << i;
+    return out;
+#endif
+}
+
+/// The conservative slab test of r against the four boxes of node within [t_min,
+/// t_max]: bit j set where child j's box is entered; t_enter[j] is where.
+[[gnu::always_inline]] inline unsigned bvh_test_boxes(const bvh_node4& node, const bvh_float_ray& r,
+                                                      float t_max, std::array<float, 4>& t_enter) noexcept {
+    bvh_f4 near = bvh_splat(r.t_min);
+    bvh_f4 far = bvh_splat(infinity<float>);
+    for (std::size_t k = 0; k < 3; ++k) {
+        const std::size_t n = r.near_plane[k];
+        const bvh_f4 inv = bvh_splat(r.inv[k]);
+        near = bvh_max((bvh_load(node.planes[n]) - bvh_splat(r.origin_near[k])) * inv, near);
+        far = bvh_min((bvh_load(node.planes[n ^ 1u]) - bvh_splat(r.origin_far[k])) * inv, far);
+    }
+    far = bvh_min(far * bvh_splat(r.enlarge), bvh_splat(t_max));
+    std::memcpy(t_enter.data(), &near, sizeof near);
+    return bvh_bits(near <= far);
+}
+#else
+inline unsigned bvh_test_boxes(const bvh_node4& node, const bvh_float_ray& r, float t_max,
+                               std::array<float, 4>& t_enter) noexcept {
+    unsigned bits = 0;
+    for (std::size_t j = 0; j < 4; ++j) {
+        float near = r.t_min;
+        float far = infinity<float>;
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::size_t n = r.near_plane[k];
+            near = max_ignoring_nan((node.planes[n][j] - r.origin_near[k]) * r.inv[k], near);
+            far = min_ignoring_nan((node.planes[n ^ 1u][j] - r.origin_far[k]) * r.inv[k], far);
+        }
+        far = min_ignoring_nan(far * r.enlarge, t_max);
+        t_enter[j] = near;
+        bits |= unsigned(near <= far) << j;
+    }
+    return bits;
+}
+#endif
+
+/// Entries of the traversal stack: a node reference and where the ray enters its box.
+/// The builder bounds the binary depth (below bvh_builder::median_depth + 27 + 1 levels,
+/// so the collapsed tree is no deeper), and each visited node pushes at most three
+/// children: 256 entries cannot overflow.
+struct bvh_stack_entry {
+    std::uint32_t ref;
+    float t;
+};
+inline constexpr std::size_t bvh_stack_size = 256;
+
+/// Walks the nodes whose boxes r enters, and calls leaf(first, count) for every leaf
+/// reached; stops when leaf returns true (any-hit). Ordered: nearest child first (for
+/// closest hits, where a near hit prunes the rest); otherwise in child order, which saves
+/// the sorting where any hit ends the walk.
+/// t_max is read again after each leaf (a closest-hit leaf shrinks it), which prunes
+/// the boxes and the stacked entries that start beyond it. Precondition: nodes is not
+/// empty and r is valid.
+template <bool Ordered, std::floating_point T, class Leaf>
+void bvh_traverse(const bvh_node4* nodes, const ray<T>& r, const T& t_max, Leaf&& leaf) {
+    const bvh_float_ray fr(r);
+    float t_max_f = float_up(t_max);
+    std::array<bvh_stack_entry, bvh_stack_size> stack;
+    std::size_t top = 0;
+    std::uint32_t ref = 0;
+    std::array<float, 4> t_enter;
+    for (;;) {
+        while (!is_leaf_ref(ref)) {
+            const bvh_node4& node = nodes[ref];
+            unsigned bits = bvh_test_boxes(node, fr, t_max_f, t_enter);
+            if (bits == 0) goto pop;
+            {
+                const auto i0 = static_cast<std::size_t>(std::countr_zero(bits));
+                bits &= bits - 1;
+                if (bits == 0) {
+                    ref = node.child[i0];
+                    continue;
+                }
+                const auto i1 = static_cast<std::size_t>(std::countr_zero(bits));
+                bits &= bits - 1;
+                if (bits == 0) {
+                    // Two: go to the nearer, stack the other.
+                    const bool first_nearer = !Ordered || t_enter[i0] <= t_enter[i1];
+                    const std::size_t go = first_nearer ? i0 : i1, later = first_nearer ? i1 : i0;
+                    stack[top++] = {node.child[later], t_enter[later]};
+                    ref = node.child[go];
+                    continue;
+                }
+                // Three or four: stack them all, sorted so the nearest is on top, and pop it.
+                const std::size_t base = top;
+                stack[top++] = {node.child[i0], t_enter[i0]};
+                stack[top++] = {node.child[i1], t_enter[i1]};
+                for (; bits != 0; bits &= bits - 1) {
+                    const auto i = static_cast<std::size_t>(std::countr_zero(bits));
+                    stack[top++] = {node.child[i], t_enter[i]};
+                }
+                for (std::size_t a = base + 1; Ordered && a < top; ++a) {
+                    const bvh_stack_entry e = stack[a];
+                    std::size_t b = a;
+                    for (; b > base && stack[b - 1].t < e.t; --b) stack[b] = stack[b - 1];
+                    stack[b] = e;
+                }
+                ref = stack[--top].ref;
+                continue;
+            }
+        pop:
+            do {
+                if (top == 0) return;
+                --top;
+            } while (stack[top].t > t_max_f);
+            ref = stack[top].ref;
+        }
+        if (leaf(leaf_first(ref), leaf_count(ref))) return;
+        t_max_f = float_up(t_max);
+        do {
+            if (top == 0) return;
+            --top;
+        } while (stack[top].t > t_max_f);
+        ref = stack[top].ref;
+    }
+}
+
+} // namespace shade::detail

@@ -1,0 +1,173 @@
+#pragma once
+// shade::triangle_bvh: a bounding-volume hierarchy over triangles (a mesh), whose leaves
+// are tested with the SIMD batch kernel (shade::triangle_batch) for Möller-Trumbore, or
+// triangle by triangle with another algorithm (shade::watertight).
+//
+// Usage:
+//     std::vector<shade::triangle<float>> tris = ...;
+//     const shade::triangle_bvh<float> mesh(tris);                 // Möller-Trumbore
+//     if (auto h = mesh.closest(r))                                 // nearest hit
+//         use(h->primitive, h->hit.t, h->hit.p, h->hit.n, h->hit.barycentric);
+//     const bool shadowed = mesh.any(shadow_ray);
+//     const shade::triangle_bvh<double, shade::watertight> closed(tris_d); // no leaks
+//
+// closest() returns exactly what a loop of find_intersection<Algorithm> over all the
+// triangles keeps as nearest, with shade::make_hit's record (the hierarchy's box tests
+// are conservative, see shade/geometry/bvh.hpp; the batch gives the scalar test's bits):
+// the same t and record, and the same triangle unless several are hit at the very same t.
+
+#include <algorithm>
+#include <concepts>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include <shade/core/error.hpp>
+#include <shade/core/types.hpp>
+#include <shade/geometry/aabb.hpp>
+#include <shade/geometry/bvh.hpp>
+#include <shade/geometry/detail/bvh_build.hpp>
+#include <shade/geometry/detail/bvh_traverse.hpp>
+#include <shade/geometry/hit.hpp>
+#include <shade/geometry/ray.hpp>
+#include <shade/geometry/triangle.hpp>
+#include <shade/geometry/triangle_batch.hpp>
+
+namespace shade {
+
+/// A hierarchy over a copy of a list of triangles, intersected with Algorithm (a
+/// shade::triangle_algorithm; Möller-Trumbore by default, whose leaves run the batch
+/// kernel on leaf_width triangles at a time).
+template <std::floating_point T, class Algorithm = moller_trumbore>
+    requires triangle_algorithm<Algorithm, T>
+class triangle_bvh {
+public:
+    using scalar_type = T;
+    /// True when the leaves are tested with shade::triangle_batch.
+    static constexpr bool batched = std::is_same_v<Algorithm, moller_trumbore>;
+    /// Triangles per batch test in a leaf (1 for the scalar algorithms).
+    static constexpr std::size_t leaf_width = batched ? 4 : 1;
+
+private:
+    static constexpr std::size_t batch_width = 4;
+
+public:
+
+    /// An empty hierarchy: nothing is ever hit.
+    triangle_bvh() = default;
+
+    /// Builds over a copy of triangles. Throws shade::invalid_parameter naming
+    /// "triangles" when a vertex is not finite (NaN or infinite), or when there are 2^27
+    /// or more triangles. Degenerate (zero-area) triangles are kept and never hit.
+    explicit triangle_bvh(std::span<const triangle<T>> triangles) {
+        detail::require_bvh_size("triangles", triangles.size());
+        std::vector<detail::bvh_prim_ref> refs;
+        refs.reserve(triangles.size());
+        for (std::size_t i = 0; i < triangles.size(); ++i) {
+            const triangle<T>& tri = triangles[i];
+            if (!(is_finite(tri.v0) && is_finite(tri.v1) && is_finite(tri.v2)))
+                throw invalid_parameter("triangles",
+                                        "must have finite vertices (triangle " + std::to_string(i) + ")",
+                                        detail::to_text(tri.v0) + ", " + detail::to_text(tri.v1) + ", " +
+                                            detail::to_text(tri.v2));
+            refs.push_back(detail::make_prim_ref(bounds(tri), static_cast<std::uint32_t>(i)));
+        }
+        constexpr auto width = static_cast<std::uint32_t>(leaf_width);
+        detail::bvh_tree tree = detail::bvh_builder(batched ? 2 * width : 4, width).build(refs);
+        nodes_ = std::move(tree.nodes);
+        ids_ = std::move(tree.order);
+        triangles_.reserve(ids_.size());
+        for (const std::uint32_t id : ids_) triangles_.push_back(triangles[id]);
+        if constexpr (batched) pack_batches();
+    }
+
+    /// The nearest hit of r (double-sided unless cull is culling::back_faces): the index
+    /// of the triangle in the list given and shade::make_hit's record (t, p, n,
+    /// front_face, barycentrics), or nothing.
+    [[nodiscard]] std::optional<primitive_hit<triangle_hit<T>>> closest(ray<T> r,
+                                                                       culling cull = culling::none) const {
+        if (nodes_.empty() || !r.valid()) return std::nullopt;
+        std::uint32_t best = no_hit;
+        triangle_intersection<T> x;
+        detail::bvh_traverse<true>(nodes_.data(), r, r.t_max, [&](std::uint32_t first, std::uint32_t count) {
+            if constexpr (batched) {
+                for (std::uint32_t b = first; b < first + count; ++b) {
+                    const auto hits = intersect(r, batches_[b], cull);
+                    if (hits.hit_bits == 0) continue;
+                    const std::size_t lane = *hits.closest(); // every hit has t <= r.t_max
+                    r.t_max = hits.t[lane];
+                    x = triangle_intersection<T>{hits.t[lane],
+                                                 vec3<T>(hits.b0[lane], hits.b1[lane], hits.b2[lane]),
+                                                 hits.front_face(lane)};
+                    best = static_cast<std::uint32_t>(b * leaf_width + lane);
+                }
+            } else {
+                for (std::uint32_t i = first; i < first + count; ++i) {
+                    if (auto h = Algorithm::find(r, triangles_[i], cull)) {
+                        r.t_max = h->t;
+                        x = *h;
+                        best = i;
+                    }
+                }
+            }
+            return false;
+        });
+        if (best == no_hit) return std::nullopt;
+        const std::uint32_t slot = batched ? slot_of_lane_[best] : best;
+        return primitive_hit<triangle_hit<T>>{ids_[slot], make_hit(triangles_[slot], x)};
+    }
+
+    /// True when r hits some triangle within [t_min, t_max] (for shadow rays).
+    [[nodiscard]] bool any(const ray<T>& r, culling cull = culling::none) const {
+        if (nodes_.empty() || !r.valid()) return false;
+        bool found = false;
+        detail::bvh_traverse<false>(nodes_.data(), r, r.t_max, [&](std::uint32_t first, std::uint32_t count) {
+            if constexpr (batched) {
+                for (std::uint32_t b = first; b < first + count; ++b)
+                    if (intersect(r, batches_[b], cull).hit_bits != 0) return found = true;
+            } else {
+                for (std::uint32_t i = first; i < first + count; ++i)
+                    if (Algorithm::find(r, triangles_[i], cull)) return found = true;
+            }
+            return false;
+        });
+        return found;
+    }
+
+    /// Number of triangles.
+    [[nodiscard]] std::size_t size() const noexcept { return triangles_.size(); }
+    /// Number of nodes (of up to four children each).
+    [[nodiscard]] std::size_t node_count() const noexcept { return nodes_.size(); }
+
+private:
+    static constexpr std::uint32_t no_hit = ~std::uint32_t(0);
+
+    /// Replaces every leaf's range of triangles by its range of batches (ceil(count /
+    /// leaf_width) of them, the last one partly filled).
+    void pack_batches() {
+        for (detail::bvh_node4& node : nodes_) {
+            for (std::uint32_t& ref : node.child) {
+                if (!detail::is_leaf_ref(ref)) continue;
+                const std::uint32_t first = detail::leaf_first(ref), count = detail::leaf_count(ref);
+                const auto batch_first = static_cast<std::uint32_t>(batches_.size());
+                for (std::uint32_t i = first; i < first + count; i += leaf_width) {
+                    const std::uint32_t n = std::min<std::uint32_t>(leaf_width, first + count - i);
+                    batches_.emplace_back(std::span<const triangle<T>>(triangles_.data() + i, n));
+                    for (std::uint32_t j = 0; j < leaf_width; ++j) slot_of_lane_.push_back(i + std::min(j, n - 1));
+                }
+                ref = detail::make_leaf_ref(batch_first, static_cast<std::uint32_t>(batches_.size()) - batch_first);
+            }
+        }
+    }
+
+    std::vector<detail::bvh_node4> nodes_;
+    std::vector<triangle_batch<T, batch_width>> batches_; // batched only: the leaves' tests
+    std::vector<std::uint32_t> slot_of_lane_;            // batched only: lane -> triangles_ index
+    std::vector<triangle<T>> triangles_;                 // in leaf order
+    std::vector<std::uint32_t> ids_;                     // leaf order -> index given
+};
+
+} // namespace shade

@@ -1,0 +1,284 @@
+// Bounding-volume hierarchies (bvh, primitive_bvh, triangle_bvh): closest and any agree
+// with a brute-force loop over every primitive on random rays over random meshes; a
+// closed mesh behind the watertight test lets no ray through shared edges or vertices
+// escape; degenerate inputs (empty, one triangle, all coplanar, NaN vertices).
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include <doctest/doctest.h>
+#include <glm/geometric.hpp>
+
+#include <shade/core/error.hpp>
+#include <shade/core/random.hpp>
+#include <shade/geometry/bvh.hpp>
+#include <shade/geometry/triangle_bvh.hpp>
+
+namespace {
+
+template <class T>
+using v3 = shade::vec3<T>;
+
+template <class T>
+v3<T> in_cube(shade::rng& g, T half) {
+    return half * v3<T>(2 * g.uniform<T>() - 1, 2 * g.uniform<T>() - 1, 2 * g.uniform<T>() - 1);
+}
+
+// n random triangles of size ~size with centres in [-4, 4]^3.
+template <class T>
+std::vector<shade::triangle<T>> random_mesh(shade::rng& g, std::size_t n, T size) {
+    std::vector<shade::triangle<T>> tris;
+    for (std::size_t i = 0; i < n; ++i) {
+        const v3<T> c = in_cube<T>(g, T(4));
+        tris.push_back({c + in_cube<T>(g, size), c + in_cube<T>(g, size), c + in_cube<T>(g, size)});
+    }
+    return tris;
+}
+
+// The nearest hit of Algorithm over all triangles, as a loop would find it (t_max
+// shrinking, so the first of equal-t triangles is kept), with its index.
+template <class Algorithm, class T>
+std::optional<std::pair<std::uint32_t, shade::triangle_intersection<T>>>
+brute_force(shade::ray<T> r, std::span<const shade::triangle<T>> tris) {
+    std::optional<std::pair<std::uint32_t, shade::triangle_intersection<T>>> best;
+    for (std::uint32_t i = 0; i < tris.size(); ++i)
+        if (auto x = Algorithm::find(r, tris[i])) {
+            if (!best || x->t < best->second.t) best = {i, *x};
+            r.t_max = x->t;
+        }
+    return best;
+}
+
+struct tally {
+    std::size_t rays = 0, hits = 0;
+};
+
+// closest and any against brute force on rays; t, the record and the triangle must
+// match exactly (the triangle may differ only when another one is hit at the same t).
+template <class Algorithm, class T>
+void check_against_brute_force(const shade::triangle_bvh<T, Algorithm>& accel,
+                               std::span<const shade::triangle<T>> tris, const std::vector<shade::ray<T>>& rays,
+                               tally& count) {
+    for (const auto& r : rays) {
+        const auto expected = brute_force<Algorithm>(r, tris);
+        const auto got = accel.closest(r);
+        ++count.rays;
+        REQUIRE(got.has_value() == expected.has_value());
+        CHECK(accel.any(r) == expected.has_value());
+        if (!expected) continue;
+        ++count.hits;
+        CHECK(got->hit.t == expected->second.t);
+        if (got->primitive != expected->first) {
+            // Only a tie at the same t may pick another triangle.
+            const auto other = Algorithm::find(r, tris[got->primitive]);
+            REQUIRE(other);
+            CHECK(other->t == expected->second.t);
+            continue;
+        }
+        const auto h = shade::make_hit(tris[expected->first], expected->second);
+        CHECK(got->hit.barycentric == h.barycentric);
+        CHECK(got->hit.p == h.p);
+        CHECK(got->hit.n == h.n);
+        CHECK(got->hit.front_face == h.front_face);
+    }
+}
+
+template <class T>
+std::vector<shade::ray<T>> random_rays(shade::rng& g, std::size_t n) {
+    std::vector<shade::ray<T>> rays;
+    for (std::size_t i = 0; i < n; ++i) {
+        shade::ray<T> r{in_cube<T>(g, T(6)), in_cube<T>(g, T(1))};
+        if (i % 4 == 1) r.t_max = T(3) * g.uniform<T>(); // a bounded interval
+        if (i % 4 == 2) r.t_min = g.uniform<T>();
+        rays.push_back(r);
+    }
+    return rays;
+}
+
+// An icosahedron subdivided `levels` times, vertices projected on the unit sphere and
+// shared exactly between neighbouring triangles (a closed, watertight mesh).
+template <class T>
+std::vector<shade::triangle<T>> closed_sphere(int levels) {
+    const T g = (1 + std::sqrt(T(5))) / 2;
+    std::vector<v3<T>> p = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                            {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+    for (auto& v : p) v = glm::normalize(v);
+    std::vector<std::uint32_t> idx = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4,
+                                      11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8,
+                                      3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+    for (int level = 0; level < levels; ++level) {
+        std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mids;
+        const auto mid = [&](std::uint32_t a, std::uint32_t b) {
+            const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+            if (auto f = mids.find(key); f != mids.end()) return f->second;
+            p.push_back(glm::normalize(p[a] + p[b]));
+            return mids[key] = static_cast<std::uint32_t>(p.size() - 1);
+        };
+        std::vector<std::uint32_t> next;
+        for (std::size_t t = 0; t < idx.size(); t += 3) {
+            const std::uint32_t a = idx[t], b = idx[t + 1], c = idx[t + 2];
+            const std::uint32_t ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
+            next.insert(next.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+        }
+        idx = std::move(next);
+    }
+    std::vector<shade::triangle<T>> tris;
+    for (std::size_t t = 0; t < idx.size(); t += 3) tris.push_back({p[idx[t]], p[idx[t + 1]], p[idx[t + 2]]});
+    return tris;
+}
+
+} // namespace
+
+TEST_CASE_TEMPLATE("triangle_bvh: closest and any agree with brute force on random meshes", T, float, double) {
+    shade::rng g(42);
+    tally count;
+    // Sizes around the leaf and node widths, and larger meshes of small and large triangles.
+    for (const std::size_t n : {std::size_t(2), std::size_t(5), std::size_t(17), std::size_t(300), std::size_t(3000)}) {
+        const auto tris = random_mesh<T>(g, n, n > 1000 ? T(0.2) : T(1));
+        const auto rays = random_rays<T>(g, 400);
+        check_against_brute_force(shade::triangle_bvh<T>(tris), std::span<const shade::triangle<T>>(tris), rays, count);
+        check_against_brute_force(shade::triangle_bvh<T, shade::watertight>(tris),
+                                  std::span<const shade::triangle<T>>(tris), rays, count);
+    }
+    CHECK(count.hits > 200); // both outcomes exercised
+    CHECK(count.hits < count.rays);
+    // Back-face culling reaches the leaves: a closed sphere seen from inside has only
+    // back faces toward the origin.
+    const auto sphere = closed_sphere<T>(2);
+    const shade::triangle_bvh<T> accel(sphere);
+    const shade::ray<T> inside{{0, 0, 0}, {0.3, 0.2, 1}};
+    CHECK(accel.closest(inside));
+    CHECK_FALSE(accel.closest(inside, shade::culling::back_faces));
+    CHECK_FALSE(accel.any(inside, shade::culling::back_faces));
+}
+
+// Rays from inside a closed sphere mesh toward its vertices and points on its edges (the
+// places where a non-watertight test can let a ray through) must all hit with the
+// watertight test behind the hierarchy, as they do without it.
+TEST_CASE_TEMPLATE("triangle_bvh<watertight>: no ray escapes a closed mesh through shared edges or vertices", T,
+                   float, double) {
+    const auto tris = closed_sphere<T>(3); // 1280 triangles
+    const shade::triangle_bvh<T, shade::watertight> accel(tris);
+    shade::rng g(3);
+    std::size_t rays = 0, escaped = 0, escaped_brute = 0;
+    for (const auto& tri : tris) {
+        const v3<T> origin = in_cube<T>(g, T(0.3)); // inside the sphere, off-centre
+        const v3<T> targets[] = {tri.v0, tri.v1, (tri.v0 + tri.v1) * T(0.5), tri.v0 + (tri.v2 - tri.v0) * T(0.25)};
+        for (const v3<T>& target : targets) {
+            const shade::ray<T> r{origin, target - origin};
+            ++rays;
+            escaped += !accel.closest(r).has_value();
+            escaped += !accel.any(r);
+            escaped_brute += !brute_force<shade::watertight>(r, std::span<const shade::triangle<T>>(tris));
+        }
+    }
+    CHECK(rays == 4 * tris.size());
+    CHECK(escaped_brute == 0);
+    CHECK(escaped == 0);
+}
+
+TEST_CASE_TEMPLATE("triangle_bvh: degenerate inputs", T, float, double) {
+    const shade::ray<T> down{{0.25, 0.25, 1}, {0, 0, -1}};
+    SUBCASE("an empty mesh hits nothing") {
+        const shade::triangle_bvh<T> empty(std::span<const shade::triangle<T>>{});
+        CHECK(empty.size() == 0);
+        CHECK_FALSE(empty.closest(down));
+        CHECK_FALSE(empty.any(down));
+        const shade::triangle_bvh<T> defaulted;
+        CHECK_FALSE(defaulted.closest(down));
+    }
+    SUBCASE("one triangle") {
+        const std::vector<shade::triangle<T>> one{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}};
+        const shade::triangle_bvh<T> accel(one);
+        const auto h = accel.closest(down);
+        REQUIRE(h);
+        CHECK(h->primitive == 0);
+        CHECK(h->hit.t == T(1));
+        // b1 = b2 = 1/4, b0 = 1/2 at (1/4, 1/4, 0).
+        CHECK(h->hit.barycentric == v3<T>(0.5, 0.25, 0.25));
+        CHECK(h->hit.p == v3<T>(0.25, 0.25, 0));
+        CHECK_FALSE(accel.closest(shade::ray<T>{{0.75, 0.75, 1}, {0, 0, -1}}));
+        CHECK_FALSE(accel.closest(down, shade::culling::back_faces) == std::nullopt); // front face
+        CHECK(accel.any(down));
+    }
+    SUBCASE("all triangles coplanar: a flat boxes' hierarchy still finds every hit") {
+        // A 40 x 40 grid of unit squares in z = 0 (3200 triangles): every box is flat.
+        std::vector<shade::triangle<T>> grid;
+        for (int i = 0; i < 40; ++i)
+            for (int j = 0; j < 40; ++j) {
+                const v3<T> a(T(i), T(j), 0), b(T(i + 1), T(j), 0), c(T(i + 1), T(j + 1), 0), d(T(i), T(j + 1), 0);
+                grid.push_back({a, b, c});
+                grid.push_back({a, c, d});
+            }
+        const shade::triangle_bvh<T> accel(grid);
+        const shade::triangle_bvh<T, shade::watertight> tight(grid);
+        shade::rng g(9);
+        tally count;
+        std::vector<shade::ray<T>> rays;
+        for (int k = 0; k < 300; ++k) {
+            const v3<T> target(T(40) * g.uniform<T>(), T(40) * g.uniform<T>(), 0);
+            const v3<T> o = target + v3<T>(in_cube<T>(g, T(3)).x, in_cube<T>(g, T(3)).y, T(1) + g.uniform<T>());
+            rays.push_back({o, target - o});
+            // Rays inside the plane never hit (parallel to every triangle).
+            rays.push_back({v3<T>(T(-1), target.y, 0), v3<T>(1, 0, 0)});
+        }
+        check_against_brute_force(accel, std::span<const shade::triangle<T>>(grid), rays, count);
+        check_against_brute_force(tight, std::span<const shade::triangle<T>>(grid), rays, count);
+        CHECK(count.hits == 600); // every ray from above hits, none in the plane
+    }
+    SUBCASE("NaN or infinite vertices are rejected naming the triangle") {
+        std::vector<shade::triangle<T>> bad{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
+                                           {{0, 0, 0}, {1, std::numeric_limits<T>::quiet_NaN(), 0}, {0, 1, 0}}};
+        try {
+            const shade::triangle_bvh<T> accel(bad);
+            FAIL("a NaN vertex was accepted");
+        } catch (const shade::invalid_parameter& e) {
+            CHECK(e.parameter() == "triangles");
+            CHECK(std::string(e.what()).find("triangle 1") != std::string::npos);
+        }
+        bad[1].v1.y = std::numeric_limits<T>::infinity();
+        using tight_bvh = shade::triangle_bvh<T, shade::watertight>;
+        CHECK_THROWS_AS(tight_bvh{bad}, shade::invalid_parameter);
+    }
+}
+
+TEST_CASE_TEMPLATE("primitive_bvh and bvh: spheres against brute force", T, float, double) {
+    shade::rng g(5);
+    std::vector<shade::sphere<T>> spheres;
+    for (int i = 0; i < 500; ++i) spheres.emplace_back(in_cube<T>(g, T(5)), T(0.05) + T(0.3) * g.uniform<T>());
+    const shade::primitive_bvh<shade::sphere<T>> accel(spheres);
+    std::vector<shade::aabb<T>> boxes;
+    for (const auto& s : spheres) boxes.push_back(shade::bounds(s));
+    const shade::bvh<T> tree(boxes);
+    CHECK(tree.size() == spheres.size());
+    std::size_t hits = 0;
+    for (int k = 0; k < 2000; ++k) {
+        const shade::ray<T> r{in_cube<T>(g, T(7)), in_cube<T>(g, T(1))};
+        std::optional<std::pair<std::uint32_t, shade::hit<T>>> best;
+        for (std::uint32_t i = 0; i < spheres.size(); ++i)
+            if (auto h = shade::intersect(r, spheres[i]); h && (!best || h->t < best->second.t)) best = {i, *h};
+        const auto got = accel.closest(r);
+        const auto via_tree = tree.closest(r, [&](std::uint32_t i, const shade::ray<T>& rr) {
+            return shade::intersect(rr, spheres[i]);
+        });
+        REQUIRE(got.has_value() == best.has_value());
+        REQUIRE(via_tree.has_value() == best.has_value());
+        CHECK(accel.any(r) == best.has_value());
+        CHECK(tree.any(r, [&](std::uint32_t i, const shade::ray<T>& rr) { return shade::intersect(rr, spheres[i]).has_value(); }) ==
+              best.has_value());
+        if (!best) continue;
+        ++hits;
+        CHECK(got->hit.t == best->second.t);
+        CHECK(got->primitive == best->first);
+        CHECK(via_tree->hit.t == best->second.t);
+    }
+    CHECK(hits > 100);
+    CHECK(hits < 1900);
+    std::vector<shade::aabb<T>> bad_boxes{shade::aabb<T>{}};
+    CHECK_THROWS_AS(shade::bvh<T>{std::span<const shade::aabb<T>>(bad_boxes)}, shade::invalid_parameter);
+}
