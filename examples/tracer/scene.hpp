@@ -201,7 +201,8 @@ private:
         out.object = i;
         switch (o.shape) {
         case object::kind::sphere: {
-            const auto h = shade::intersect(r, *o.sphere);
+            // The lean test (t, p, n, face): the scene uses no surface parameterisation.
+            const auto h = shade::find_intersection(r, *o.sphere);
             if (!h) return std::nullopt;
             out.t = h->t;
             out.p = h->p;
