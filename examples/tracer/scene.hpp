@@ -143,10 +143,11 @@ struct scene {
     [[nodiscard]] bool occluded(const shade::ray<real>& r) const {
         for (const std::size_t i : unbounded_)
             if (intersect_object(i, r)) return true;
+        // Only whether something is hit: no hit record is built.
         return bounded_.any(r, [&](std::uint32_t k, const shade::ray<real>& rr) {
             const object& o = objects[bounded_objects_[k]];
             if (o.shape == object::kind::mesh) return o.mesh_bvh->any(rr);
-            return intersect_object(bounded_objects_[k], rr).has_value();
+            return shade::find_intersection(rr, *o.sphere).has_value();
         });
     }
 

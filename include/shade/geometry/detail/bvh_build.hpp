@@ -22,33 +22,34 @@
 
 namespace shade::detail {
 
-/// The next float above f (toward +infinity), for f not NaN and not +infinity: one step of the bit pattern
-/// (IEEE 754-2019 §3.4: for floats of one sign the encodings are ordered like the values),
-/// the inline equivalent of std::nextafter(f, +inf), which is a library call.
+/// The next float above f (toward +infinity), or f itself when f is +infinity; f not NaN.
+/// One step of the bit pattern (IEEE 754-2019 §3.4: for floats of one sign the encodings
+/// are ordered like the values), in integer arithmetic without branches: the signs of the
+/// coordinates it is applied to vary from ray to ray, which a branch would mispredict.
 [[nodiscard]] inline float next_float_up(float f) noexcept {
-    if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
-    const auto bits = std::bit_cast<std::uint32_t>(f);
-    return std::bit_cast<float>(f > 0.0f ? bits + 1 : bits - 1);
+    const auto b = std::bit_cast<std::uint32_t>(f + 0.0f); // -0 becomes +0
+    const std::uint32_t negative = b >> 31;
+    const std::uint32_t infinite = b == 0x7f80'0000u ? 1u : 0u;
+    // +1 for positive f, -1 (modulo 2^32) for negative f, 0 for +infinity.
+    return std::bit_cast<float>(b + (1u - 2u * negative) * (1u - infinite));
 }
-/// The next float below f (toward -infinity), for f not NaN and not -infinity.
+/// The next float below f (toward -infinity), or f itself when f is -infinity.
 [[nodiscard]] inline float next_float_down(float f) noexcept { return -next_float_up(-f); }
 
-/// x rounded to a float no larger than x (toward -infinity); x itself when it is a float.
+/// A float no larger than x: x itself when T is float; for double, x rounded to the
+/// nearest float and then stepped one float down (without comparing, so no branch: one
+/// step more than needed when x is a float already, which only widens what it bounds).
 template <std::floating_point T>
 [[nodiscard]] inline float float_down(T x) noexcept {
-    auto f = static_cast<float>(x);
-    if constexpr (sizeof(T) > sizeof(float))
-        if (static_cast<T>(f) > x) f = next_float_down(f);
-    return f;
+    if constexpr (sizeof(T) == sizeof(float)) return x;
+    else return next_float_down(static_cast<float>(x));
 }
 
-/// x rounded to a float no smaller than x (toward +infinity).
+/// A float no smaller than x (see float_down).
 template <std::floating_point T>
 [[nodiscard]] inline float float_up(T x) noexcept {
-    auto f = static_cast<float>(x);
-    if constexpr (sizeof(T) > sizeof(float))
-        if (static_cast<T>(f) < x) f = next_float_up(f);
-    return f;
+    if constexpr (sizeof(T) == sizeof(float)) return x;
+    else return next_float_up(static_cast<float>(x));
 }
 
 /// A node of the collapsed tree: the boxes of up to four children, stored per axis and
