@@ -148,6 +148,12 @@ private:
     /// Replaces every leaf's range of triangles by its range of batches (ceil(count /
     /// leaf_width) of them, the last one partly filled).
     void pack_batches() {
+        std::size_t batches = 0;
+        for (const detail::bvh_node4& node : nodes_)
+            for (const std::uint32_t ref : node.child)
+                if (detail::is_leaf_ref(ref)) batches += (detail::leaf_count(ref) + leaf_width - 1) / leaf_width;
+        batches_.reserve(batches);
+        slot_of_lane_.reserve(batches * leaf_width);
         for (detail::bvh_node4& node : nodes_) {
             for (std::uint32_t& ref : node.child) {
                 if (!detail::is_leaf_ref(ref)) continue;
