@@ -16,18 +16,15 @@
 #include <shade/shading/checker.hpp>
 #include <shade/shading/gradient.hpp>
 
+#include "model_point.hpp"
+
 namespace {
 
 using shade::rgb;
 
 template <class T>
 shade::surface_point<T> point() {
-    // Tilted normal and a tangent, so anisotropic models are tested off-axis.
-    const auto n = glm::normalize(shade::vec3<T>(T(0.2), T(0.3), T(1)));
-    shade::surface_point<T> at;
-    at.p = {T(0.25), T(-1.5), T(2)};
-    at.shading = shade::frame<T>::from_normal_tangent(n, {1, 0, 0});
-    return at;
+    return check_test::model_point<T>();
 }
 
 // Fewer strata than the default keep the suite quick; 128^2 stratified samples are still

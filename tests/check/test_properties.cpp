@@ -92,10 +92,14 @@ TEST_CASE_TEMPLATE("a white Lambert passes all three checks, with albedo exactly
     shade::check::doctest_expect(energy);
     CHECK(energy.worst == doctest::Approx(1.0).epsilon(1e-6));
     CHECK(energy.tried == 16 * 4);
-    // The default mixture estimator is unbiased but not exact for Lambert: within 0.5%.
+    // The default mixture estimator is unbiased but not exact for Lambert: within 0.5% at
+    // 64^2 samples, where its standard error (~0.002) is too large for a 4-sigma pass at
+    // some views, so the verdict may be inconclusive but never fail; at the default 256^2
+    // samples it passes.
     const auto mixed = shade::check::energy_conservation(white, at, {.strata = 64});
-    shade::check::doctest_expect(mixed);
+    CHECK(mixed.outcome != shade::check::verdict::fail);
     CHECK(mixed.worst == doctest::Approx(1.0).epsilon(0.005));
+    shade::check::doctest_expect(shade::check::energy_conservation(white, at));
 }
 
 TEST_CASE_TEMPLATE("the albedo estimator tells 1.00 from 1.02", T, float, double) {
@@ -116,7 +120,7 @@ TEST_CASE_TEMPLATE("the albedo estimator tells 1.00 from 1.02", T, float, double
     CHECK(over.failures == over.tried);
     CHECK(over.message.find("green 1.02") != std::string::npos);
     CHECK(over.message.find("FAILS") != std::string::npos);
-    CHECK(over.message.find("max albedo 1.02") != std::string::npos);
+    CHECK(over.message.find("albedo 1.02") != std::string::npos);
 }
 
 TEST_CASE_TEMPLATE("the white-furnace curve covers the requested views", T, float, double) {

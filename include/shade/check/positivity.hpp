@@ -53,7 +53,7 @@ result<scalar_of<B>> positivity(const B& model, const surface_point<scalar_of<B>
             r.value = f;
         }
     }
-    r.passed = r.failures == 0;
+    r.decide(r.failures == 0 ? verdict::pass : verdict::fail);
     const std::string tried = std::to_string(r.tried) + " direction pairs";
     if (r.passed) {
         r.message = "positivity holds for " + r.model + ": f(l, v) was finite and >= 0 for all " +

@@ -1,7 +1,9 @@
 #pragma once
 // All BRDF property checks: positivity, Helmholtz reciprocity and energy conservation,
-// for any type satisfying shade::brdf. Framework-neutral: each returns a
-// shade::check::result that converts to bool and prints as a sentence.
+// for any type satisfying shade::brdf, and the sampling checks (chi-square goodness of fit,
+// sample consistency, pdf normalization and coverage) for any shade::sampled_brdf.
+// Framework-neutral: each returns a shade::check::result that converts to bool, carries a
+// pass / fail / inconclusive verdict and prints as a sentence.
 //
 //   auto r = shade::check::reciprocity(my_brdf, at, {.model = "my BRDF"});
 //   if (!r) std::cerr << r << '\n';
@@ -11,3 +13,4 @@
 #include <shade/check/positivity.hpp>
 #include <shade/check/reciprocity.hpp>
 #include <shade/check/result.hpp>
+#include <shade/check/sampling.hpp>

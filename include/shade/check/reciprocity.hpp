@@ -91,7 +91,7 @@ result<scalar_of<B>> reciprocity(const B& model, const surface_point<scalar_of<B
             r.other = e.f_vl;
         }
     }
-    r.passed = r.failures == 0;
+    r.decide(r.failures == 0 ? verdict::pass : verdict::fail);
     const std::string tried = std::to_string(r.tried) + " direction pairs";
     if (r.passed) {
         r.message = "reciprocity holds for " + r.model + ": f(l, v) = f(v, l) within relative " +

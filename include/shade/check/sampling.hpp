@@ -1,0 +1,539 @@
+#pragma once
+// Checks of a BRDF's sampler (shade::sampled_brdf): that sample() draws directions with
+// the density pdf() reports (chi-square goodness of fit), that the sample it returns agrees
+// with f and pdf at its direction, that pdf integrates to at most 1 over the sphere, and
+// that pdf covers f (no direction where f > 0 has pdf = 0). Each works on any type
+// satisfying shade::sampled_brdf, and each returns a shade::check::result.
+
+#include <algorithm>
+#include <cmath>
+#include <concepts>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include <shade/brdf/brdf.hpp>
+#include <shade/check/chi2.hpp>
+#include <shade/check/directions.hpp>
+#include <shade/check/positivity.hpp>
+#include <shade/check/result.hpp>
+#include <shade/core/error.hpp>
+#include <shade/core/frame.hpp>
+#include <shade/core/math.hpp>
+#include <shade/core/random.hpp>
+
+namespace shade::check {
+
+/// Settings of chi2_goodness_of_fit and pdf_normalization.
+struct chi2_options {
+    std::size_t samples = 100000;  ///< directions drawn for the test
+    /// Rings of the bins around the lobe axis (the mirror direction of v). Their edges in
+    /// cos(angle to the axis) are quantiles of a separate pilot sample, so every ring holds
+    /// about the same share of the samples however narrow the lobe.
+    std::size_t rings = 10;
+    std::size_t sectors = 20;      ///< bins in azimuth around the axis, each 2 pi / sectors
+    double min_expected = 5;       ///< bins expecting fewer samples are pooled (pearson_chi2)
+    /// Chance of a false rejection allowed for the whole family of `tests` chi-square tests
+    /// the caller runs; each test rejects at sidak_significance(alpha, tests).
+    double alpha = 0.01;
+    std::size_t tests = 1;         ///< size of the family alpha is shared by
+    /// Tolerance of the pdf integral: quadrature refines until the estimated error of the
+    /// whole integral is about this absolute amount (1e-6 of the probability mass; with
+    /// 1e5 samples, a tenth of a count) or each bin's is below quadrature_relative of the
+    /// bin's integral (1e-4: with 1e6 samples, a twentieth of a bin's statistical spread).
+    double quadrature_tolerance = 1e-6;
+    double quadrature_relative = 1e-4; ///< see quadrature_tolerance
+    double normalization_tolerance = 1e-3; ///< pdf_normalization passes when ∫pdf <= 1 + this
+    std::uint64_t seed = 1;        ///< seed of the pilot and of the tested samples
+    std::string model = "BRDF";    ///< name used in the message
+};
+
+/// The outcome of chi2_goodness_of_fit. result::worst is the p-value and result::tolerance
+/// the per-test significance level it was compared against (fail when p < level).
+template <std::floating_point T>
+struct chi2_result : result<T> {
+    double statistic = 0;          ///< Pearson's chi-square over the pooled bins
+    std::size_t dof = 0;           ///< its degrees of freedom
+    double p_value = 1;            ///< probability of a statistic this large from a correct sampler
+    double significance = 0;       ///< the per-test level (Šidák-corrected alpha)
+    std::size_t bins = 0;          ///< bins after pooling (the "lost" bin included)
+    std::size_t pooled = 0;        ///< bins merged into the low-expectation pool
+    std::size_t samples = 0;       ///< directions drawn
+    std::size_t lost = 0;          ///< draws that returned nullopt (expected: N (1 - ∫pdf))
+    std::size_t invalid = 0;       ///< draws with a non-finite direction or pdf
+    double pdf_integral = 0;       ///< ∫ pdf over the sphere, by quadrature
+    double integration_error = 0;  ///< the quadrature's error estimate of that integral
+};
+
+namespace detail {
+
+/// An integral and an estimate of its absolute error.
+struct integral_estimate {
+    double value = 0;
+    double error = 0;
+};
+
+/// Stopping rule of adaptive_simpson: an interval is done when its halves agree with the
+/// whole to 15 max(absolute, relative |halves|). The absolute part halves with each split
+/// (so the parts sum to the total); the relative part does not, and keeps the recursion
+/// from chasing the rounding noise of a float integrand.
+struct quadrature_tolerance {
+    double absolute = 1e-9;
+    double relative = 1e-4;
+};
+
+/// One level of adaptive Simpson quadrature (Kuncir 1962, "Algorithm 103: Simpson's rule
+/// integrator", CACM 5(6); the Richardson correction as in Lyness 1969, "Notes on the
+/// adaptive Simpson quadrature routine", JACM 16(3)): S(a, b) = (b - a)/6 (f(a) + 4 f(m)
+/// + f(b)); the interval is split until the two halves agree with the whole (see
+/// quadrature_tolerance). f returns an integral_estimate (a value and the error already in
+/// it, from an inner quadrature); the errors are integrated with the same weights and
+/// added to the result's.
+template <class F>
+void simpson_refine(F& f, double a, double b, const integral_estimate& fa, const integral_estimate& fm,
+                    const integral_estimate& fb, double whole, quadrature_tolerance tolerance, int depth,
+                    integral_estimate& out) {
+    const double m = 0.5 * (a + b);
+    const double lm = 0.5 * (a + m);
+    const double rm = 0.5 * (m + b);
+    const integral_estimate flm = f(lm);
+    const integral_estimate frm = f(rm);
+    const double h = (b - a) / 12; // each half has width (b - a)/2, Simpson weight width/6
+    const double left = h * (fa.value + 4 * flm.value + fm.value);
+    const double right = h * (fm.value + 4 * frm.value + fb.value);
+    const double delta = left + right - whole;
+    const double allowed = 15 * std::max(tolerance.absolute, tolerance.relative * std::abs(left + right));
+    if (depth <= 0 || std::abs(delta) <= allowed || !std::isfinite(delta)) {
+        out.value += left + right + delta / 15;
+        // At the depth limit the correction is not trustworthy: count all of delta.
+        out.error += (depth <= 0 ? std::abs(delta) : std::abs(delta) / 15) +
+                     h * (fa.error + 4 * flm.error + 2 * fm.error + 4 * frm.error + fb.error);
+        return;
+    }
+    tolerance.absolute /= 2;
+    simpson_refine(f, a, m, fa, flm, fm, left, tolerance, depth - 1, out);
+    simpson_refine(f, m, b, fm, frm, fb, right, tolerance, depth - 1, out);
+}
+
+/// ∫_a^b f with adaptive Simpson quadrature to a tolerance, starting from `panels` equal
+/// panels so that a feature narrower than [a, b] is not stepped over by the first five
+/// points, with at most `max_depth` halvings per panel.
+template <class F>
+integral_estimate adaptive_simpson(F&& f, double a, double b, quadrature_tolerance tolerance, int panels = 4,
+                                   int max_depth = 14) {
+    tolerance.absolute /= panels;
+    integral_estimate out;
+    const double width = (b - a) / panels;
+    integral_estimate fa = f(a);
+    for (int k = 0; k < panels; ++k) {
+        const double x0 = a + width * k;
+        const double x1 = k + 1 == panels ? b : x0 + width;
+        const integral_estimate fm = f(0.5 * (x0 + x1));
+        const integral_estimate fb = f(x1);
+        const double whole = (x1 - x0) / 6 * (fa.value + 4 * fm.value + fb.value);
+        simpson_refine(f, x0, x1, fa, fm, fb, whole, tolerance, max_depth, out);
+        fa = fb;
+    }
+    return out;
+}
+
+/// The bins of the sampling checks: rings in c = cos(angle to the axis) with the given
+/// edges (from -1 to 1), each split into `sectors` equal azimuth sectors around the axis.
+struct sphere_bins {
+    frame<double> axis;          ///< the bins' frame; its normal is the axis
+    std::vector<double> edges;   ///< ring edges in c, increasing, from -1 to 1
+    std::size_t sectors = 1;
+
+    [[nodiscard]] std::size_t count() const noexcept { return (edges.size() - 1) * sectors; }
+
+    /// The bin of the unit direction w (world space).
+    [[nodiscard]] std::size_t index(const glm::dvec3& w) const {
+        const glm::dvec3 local = axis.to_local(w);
+        const double c = std::clamp(local.z, -1.0, 1.0);
+        const auto ring = std::size_t(std::clamp<std::ptrdiff_t>(
+            std::upper_bound(edges.begin(), edges.end(), c) - edges.begin() - 1, 0,
+            std::ptrdiff_t(edges.size()) - 2));
+        double phi = std::atan2(local.y, local.x);
+        if (phi < 0) phi += 2 * pi<double>;
+        const auto sector = std::min(std::size_t(phi / (2 * pi<double>) * double(sectors)), sectors - 1);
+        return ring * sectors + sector;
+    }
+};
+
+/// The mirror direction of v about the normal of `at`, in double: the axis the bins are
+/// built around (every shipped lobe peaks on or near it; a diffuse lobe is smooth around
+/// any axis).
+template <std::floating_point T>
+glm::dvec3 lobe_axis(const vec3<T>& v, const surface_point<T>& at) {
+    const glm::dvec3 n(at.n());
+    const glm::dvec3 vd(v);
+    return glm::normalize(2 * glm::dot(n, vd) * n - vd);
+}
+
+/// Bins whose rings hold about equal shares of `pilot` draws of the sampler (quantiles of
+/// c = cos(angle to the axis)); uniform rings when the pilot draws nothing. The pilot is
+/// independent of the tested samples, so the bins do not depend on the data they test.
+template <sampled_brdf B>
+sphere_bins pilot_bins(const B& model, const vec3<scalar_of<B>>& v, const surface_point<scalar_of<B>>& at,
+                       std::size_t rings, std::size_t sectors, std::size_t pilot, std::uint64_t seed) {
+    using T = scalar_of<B>;
+    sphere_bins bins{frame<double>::from_normal(lobe_axis(v, at)), {}, sectors};
+    std::vector<double> c;
+    c.reserve(pilot);
+    rng random(seed, 0x9e3779b97f4a7c15ULL); // its own stream: independent of the tested draws
+    for (std::size_t i = 0; i < pilot; ++i) {
+        const T uc = random.uniform<T>();
+        const vec2<T> u(random.uniform<T>(), random.uniform<T>());
+        const auto s = model.sample(v, uc, u, at);
+        if (s && is_finite(s->l)) c.push_back(glm::dot(glm::dvec3(s->l), bins.axis.n));
+    }
+    std::sort(c.begin(), c.end());
+    bins.edges.push_back(-1);
+    for (std::size_t k = 1; k < rings; ++k) {
+        const double edge = c.empty() ? -1 + 2 * double(k) / double(rings) : c[k * c.size() / rings];
+        // Equal quantiles (a sampler that repeats a direction) would make empty rings.
+        if (edge > bins.edges.back() + 1e-12 && edge < 1 - 1e-12) bins.edges.push_back(edge);
+    }
+    bins.edges.push_back(1);
+    return bins;
+}
+
+/// ∫ pdf(l, v) dl over each bin, by nested adaptive Simpson quadrature in (c, phi) around
+/// the bins' axis, where dl = dc dphi (the solid angle in those coordinates). The absolute
+/// tolerance is shared out among the bins; the relative one applies to each.
+template <sampled_brdf B>
+std::vector<integral_estimate> integrate_pdf(const B& model, const vec3<scalar_of<B>>& v,
+                                             const surface_point<scalar_of<B>>& at, const sphere_bins& bins,
+                                             quadrature_tolerance tolerance) {
+    using T = scalar_of<B>;
+    std::vector<integral_estimate> cells(bins.count());
+    const double sector_width = 2 * pi<double> / double(bins.sectors);
+    const double cell_tolerance = tolerance.absolute / double(bins.count());
+    for (std::size_t ring = 0; ring + 1 < bins.edges.size(); ++ring) {
+        const double c0 = bins.edges[ring];
+        const double c1 = bins.edges[ring + 1];
+        for (std::size_t sector = 0; sector < bins.sectors; ++sector) {
+            const double phi0 = sector_width * double(sector);
+            const double phi1 = sector + 1 == bins.sectors ? 2 * pi<double> : phi0 + sector_width;
+            const auto over_phi = [&](double c) {
+                const double s = std::sqrt(std::max(0.0, (1 - c) * (1 + c)));
+                const auto density = [&](double phi) {
+                    const glm::dvec3 w = bins.axis.to_world(glm::dvec3(s * std::cos(phi), s * std::sin(phi), c));
+                    const vec3<T> l = glm::normalize(vec3<T>(w));
+                    return integral_estimate{double(model.pdf(l, v, at)), 0};
+                };
+                // The inner integral is multiplied by at most (c1 - c0) in the outer one.
+                return adaptive_simpson(density, phi0, phi1,
+                                        {0.25 * cell_tolerance / (c1 - c0), 0.25 * tolerance.relative});
+            };
+            cells[ring * bins.sectors + sector] =
+                adaptive_simpson(over_phi, c0, c1, {0.5 * cell_tolerance, 0.5 * tolerance.relative});
+        }
+    }
+    return cells;
+}
+
+/// "theta_v = 30 deg, v = (...)".
+template <std::floating_point T>
+std::string view_text(const vec3<T>& v, const surface_point<T>& at) {
+    const double theta = std::acos(std::clamp(double(glm::dot(v, at.n())), -1.0, 1.0)) * 180.0 / pi<double>;
+    return "theta_v = " + number(theta, 4) + " deg, v = " + shade::detail::to_text(v);
+}
+
+template <std::floating_point T>
+void require_view_above(const vec3<T>& v, const surface_point<T>& at) {
+    if (!(glm::dot(v, at.n()) > T(0)))
+        throw invalid_parameter("v", "must be above the surface (n.v > 0)", shade::detail::to_text(v));
+}
+
+} // namespace detail
+
+/// Chi-square goodness-of-fit test of `sample` against `pdf` for the view v (world space,
+/// above the surface) at `at`: the method of pbrt-v4's BSDF tests (Pharr, Jakob, Humphreys
+/// 2023, "Physically Based Rendering", 4th ed., src/pbrt/bsdfs_test.cpp) and Mitsuba 3's
+/// chi2 module, on bins suited to narrow lobes.
+///
+/// The sphere of directions is cut into options.rings rings around the mirror direction of
+/// v (edges at quantiles of a pilot sample) times options.sectors azimuth sectors, plus one
+/// bin for draws that return nullopt. options.samples directions are drawn with independent
+/// uniform (uc, u); the expected count of a bin is N ∫_bin pdf dl, by adaptive quadrature,
+/// and of the nullopt bin N (1 - ∫_sphere pdf dl), since a sampler returns nullopt exactly
+/// for the mass pdf does not account for. Pearson's statistic over the pooled bins
+/// (pearson_chi2) gives the p-value; the test fails when p < sidak_significance(alpha,
+/// tests), when a draw has a non-finite direction or pdf, and is inconclusive when pooling
+/// leaves fewer than two bins. pdf must be 0 below the surface (sample never returns such
+/// directions), or the bins there show it.
+template <sampled_brdf B>
+chi2_result<scalar_of<B>> chi2_goodness_of_fit(const B& model, const vec3<scalar_of<B>>& v,
+                                               const surface_point<scalar_of<B>>& at,
+                                               const chi2_options& options = {}) {
+    using T = scalar_of<B>;
+    detail::require_view_above(v, at);
+    if (options.samples < 100)
+        throw invalid_parameter("samples", "must be >= 100", shade::detail::to_text(double(options.samples)));
+    if (options.rings < 1 || options.sectors < 1)
+        throw invalid_parameter(options.rings < 1 ? "rings" : "sectors", "must be >= 1", "0");
+    chi2_result<T> r;
+    r.property = "sampling (chi-square)";
+    r.model = options.model;
+    r.at = at;
+    r.v = v;
+    r.l = v;
+    r.significance = sidak_significance(options.alpha, options.tests);
+    r.tolerance = r.significance;
+    const std::size_t pilot = std::clamp<std::size_t>(options.samples / 10, 1000, 20000);
+    const detail::sphere_bins bins = detail::pilot_bins(model, v, at, options.rings, options.sectors, pilot,
+                                                        options.seed);
+    std::vector<double> observed(bins.count() + 1, 0.0);
+    rng random(options.seed);
+    for (std::size_t i = 0; i < options.samples; ++i) {
+        const T uc = random.uniform<T>();
+        const vec2<T> u(random.uniform<T>(), random.uniform<T>());
+        const auto s = model.sample(v, uc, u, at);
+        if (!s) {
+            ++r.lost;
+        } else if (!is_finite(s->l) || !std::isfinite(s->pdf)) {
+            ++r.invalid;
+            r.l = s->l;
+        } else {
+            observed[bins.index(glm::normalize(glm::dvec3(s->l)))] += 1;
+        }
+    }
+    r.samples = options.samples;
+    observed.back() = double(r.lost);
+    const auto cells = detail::integrate_pdf(model, v, at, bins,
+                                             {options.quadrature_tolerance, options.quadrature_relative});
+    std::vector<double> expected(cells.size() + 1, 0.0);
+    const double n = double(options.samples);
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+        expected[k] = n * cells[k].value;
+        r.pdf_integral += cells[k].value;
+        r.integration_error += cells[k].error;
+    }
+    expected.back() = n * std::max(0.0, 1 - r.pdf_integral);
+    const chi2_statistic s = pearson_chi2(observed, expected, options.min_expected);
+    r.statistic = s.statistic;
+    r.dof = s.dof;
+    r.bins = s.bins;
+    r.pooled = s.pooled;
+    r.tried = r.samples;
+    r.p_value = r.dof > 0 ? chi2_p_value(r.statistic, double(r.dof)) : 1.0;
+    r.worst = r.p_value;
+    const std::string numbers = "chi2 = " + detail::number(r.statistic) + " with " + std::to_string(r.dof) +
+                                " dof, p = " + detail::number(r.p_value, 3) + " (level " +
+                                detail::number(r.significance, 3) + "), " + std::to_string(r.samples) +
+                                " draws into " + std::to_string(r.bins) + " bins (" + std::to_string(r.pooled) +
+                                " pooled), " + std::to_string(r.lost) + " nullopt, integral of pdf " +
+                                detail::number(r.pdf_integral) + " +- " + detail::number(r.integration_error, 2) +
+                                ", at " + detail::view_text(v, at);
+    if (r.invalid > 0) {
+        r.failures = r.invalid;
+        r.decide(verdict::fail);
+        r.message = "sampling FAILS for " + r.model + ": " + std::to_string(r.invalid) +
+                    " draws returned a non-finite direction or pdf (e.g. l = " + shade::detail::to_text(r.l) +
+                    ") at " + detail::view_text(v, at) + ".";
+    } else if (r.dof == 0) {
+        r.decide(verdict::inconclusive);
+        r.message = "sampling is INCONCLUSIVE for " + r.model + ": too few bins left after pooling to test; " +
+                    numbers + ". Raise samples.";
+    } else if (r.p_value < r.significance) {
+        r.failures = 1;
+        r.decide(verdict::fail);
+        r.message = "sampling FAILS for " + r.model + ": sample() does not draw directions with the density pdf() "
+                    "reports; " + numbers + ". Check that pdf matches the sampling method (its normalisation, "
+                    "its axis, the lobe-selection probabilities).";
+    } else {
+        r.decide(verdict::pass);
+        r.message = "sampling matches pdf for " + r.model + ": " + numbers + ".";
+    }
+    return r;
+}
+
+/// Checks ∫ pdf(l, v) dl <= 1 over the sphere for the view v (world space, above the
+/// surface) at `at`: a density may lose mass (a sampler may return nullopt) but never
+/// create it. The integral is computed by adaptive quadrature over the bins of
+/// chi2_goodness_of_fit (options.rings, options.sectors, pilot from options.seed, tolerance
+/// options.quadrature_tolerance). result::worst is the integral and result::error the
+/// quadrature's error estimate; the verdict is decide_at_most(integral, error,
+/// 1 + options.normalization_tolerance, 1).
+template <sampled_brdf B>
+result<scalar_of<B>> pdf_normalization(const B& model, const vec3<scalar_of<B>>& v,
+                                       const surface_point<scalar_of<B>>& at, const chi2_options& options = {}) {
+    using T = scalar_of<B>;
+    detail::require_view_above(v, at);
+    result<T> r;
+    r.property = "pdf normalization";
+    r.model = options.model;
+    r.at = at;
+    r.v = v;
+    r.l = v;
+    r.tolerance = require_non_negative("normalization_tolerance", options.normalization_tolerance);
+    const std::size_t pilot = std::clamp<std::size_t>(options.samples / 10, 1000, 20000);
+    const auto bins = detail::pilot_bins(model, v, at, std::max<std::size_t>(options.rings, 1),
+                                         std::max<std::size_t>(options.sectors, 1), pilot, options.seed);
+    for (const auto& cell :
+         detail::integrate_pdf(model, v, at, bins, {options.quadrature_tolerance, options.quadrature_relative})) {
+        r.worst += cell.value;
+        r.error += cell.error;
+    }
+    r.tried = 1;
+    r.decide(decide_at_most(r.worst, r.error, 1 + r.tolerance, 1));
+    r.failures = r.outcome == verdict::fail ? 1 : 0;
+    const std::string numbers = "integral of pdf over the sphere " + detail::number(r.worst) + " +- " +
+                                detail::number(r.error, 2) + " (quadrature error) at " + detail::view_text(v, at);
+    if (r.outcome == verdict::pass) {
+        r.message = "pdf normalization holds for " + r.model + ": " + numbers + ", within 1 + " +
+                    detail::number(r.tolerance) + ".";
+    } else if (r.outcome == verdict::fail) {
+        r.message = "pdf normalization FAILS for " + r.model + ": " + numbers + " exceeds 1 + " +
+                    detail::number(r.tolerance) + ". pdf over-reports the density: check its normalisation "
+                    "constant and the lobe-selection probabilities.";
+    } else {
+        r.message = "pdf normalization is INCONCLUSIVE for " + r.model + ": " + numbers +
+                    " is within its error of 1 + " + detail::number(r.tolerance) + ". Lower quadrature_tolerance.";
+    }
+    return r;
+}
+
+/// Settings of sample_consistency.
+struct sample_options {
+    std::size_t views = 500;            ///< views v (from hemisphere_pairs: hard cases first)
+    std::size_t samples_per_view = 40;  ///< draws per view
+    /// Relative tolerance of the comparisons of f, pdf and weight; < 0 picks 1e-3 for float
+    /// and 1e-6 for double (the sampler and f may reach the same value along different
+    /// roundings, e.g. through the half vector or the microfacet normal).
+    double relative_tolerance = -1;
+    std::uint64_t seed = 1;             ///< seed of the views and the draws
+    std::string model = "BRDF";         ///< name used in the message
+};
+
+/// Checks, for options.views views (world space, above the surface) times
+/// options.samples_per_view draws, that every brdf_sample sample() returns is what the
+/// contract says: l is a unit direction above the surface, pdf is finite and > 0 and equals
+/// model.pdf(l, v), f equals model.f(l, v), and weight equals f |n·l| / pdf (each
+/// relative to the larger magnitude, within options.relative_tolerance); and that for views
+/// below the surface sample() returns nullopt. result::worst is the largest relative
+/// discrepancy found (+inf for a broken rule that has no size), and l, v the draw.
+template <sampled_brdf B>
+result<scalar_of<B>> sample_consistency(const B& model, const surface_point<scalar_of<B>>& at,
+                                        const sample_options& options = {}) {
+    using T = scalar_of<B>;
+    result<T> r;
+    r.property = "sample consistency";
+    r.model = options.model;
+    r.at = at;
+    r.tolerance = options.relative_tolerance >= 0 ? options.relative_tolerance : (sizeof(T) <= 4 ? 1e-3 : 1e-6);
+    const vec3<T> n = at.n();
+    std::string worst_what = "nothing";
+    const auto relative = [](double a, double b) {
+        const double scale = std::max(std::abs(a), std::abs(b));
+        return scale > 0 ? std::abs(a - b) / scale : 0.0;
+    };
+    const auto record = [&](double measure, const char* what, const vec3<T>& l, const vec3<T>& v) {
+        if (!(measure <= r.tolerance)) ++r.failures;
+        if (!(measure <= r.worst)) { // NaN and the first violation both land here
+            r.worst = std::isnan(measure) ? std::numeric_limits<double>::infinity() : measure;
+            worst_what = what;
+            r.l = l;
+            r.v = v;
+        }
+    };
+    const auto infinite = std::numeric_limits<double>::infinity();
+    rng random(options.seed ^ 0x5851f42d4c957f2dULL);
+    for (const auto& pair : hemisphere_pairs(at, options.views, options.seed)) {
+        const vec3<T> v = pair.v;
+        for (std::size_t i = 0; i < options.samples_per_view; ++i) {
+            const T uc = random.uniform<T>();
+            const vec2<T> u(random.uniform<T>(), random.uniform<T>());
+            const auto s = model.sample(v, uc, u, at);
+            ++r.tried;
+            if (!s) continue;
+            const vec3<T> l = s->l;
+            if (!is_finite(l) || std::abs(double(glm::length(l)) - 1) > r.tolerance) {
+                record(infinite, "|l| = 1", l, v);
+                continue;
+            }
+            if (!(glm::dot(n, l) > T(0))) {
+                record(infinite, "l above the surface", l, v);
+                continue;
+            }
+            if (!(s->pdf > T(0)) || !std::isfinite(s->pdf)) {
+                record(infinite, "pdf finite and > 0", l, v);
+                continue;
+            }
+            record(relative(double(s->pdf), double(model.pdf(l, v, at))), "pdf = pdf(l, v)", l, v);
+            const rgb<T> f = model.f(l, v, at);
+            const double abs_n_dot_l = std::abs(double(glm::dot(n, l)));
+            for (int c = 0; c < 3; ++c) {
+                record(relative(double(s->f[c]), double(f[c])), "f = f(l, v)", l, v);
+                record(relative(double(s->weight[c]), double(s->f[c]) * abs_n_dot_l / double(s->pdf)),
+                       "weight = f |n.l| / pdf", l, v);
+            }
+        }
+    }
+    // Views below the surface: the mirror images of a few tested views.
+    for (const auto& pair : hemisphere_pairs(at, 20, options.seed + 1)) {
+        const vec3<T> v = glm::normalize(pair.v - T(2) * glm::dot(n, pair.v) * n);
+        const auto s = model.sample(v, T(0.5), vec2<T>(T(0.3), T(0.6)), at);
+        ++r.tried;
+        if (s) record(infinite, "nullopt for v below the surface", s->l, v);
+    }
+    r.decide(r.failures == 0 ? verdict::pass : verdict::fail);
+    if (r.passed) {
+        r.message = "sample consistency holds for " + r.model + ": " + std::to_string(r.tried) +
+                    " draws agree with f and pdf, weight = f |n.l| / pdf, within " + detail::number(r.tolerance) +
+                    " (worst " + detail::number(r.worst, 3) + ").";
+    } else {
+        r.message = "sample consistency FAILS for " + r.model + ": " + std::to_string(r.failures) + " of " +
+                    std::to_string(r.tried) + " checks broke the rule '" + worst_what + "'; worst relative error " +
+                    detail::number(r.worst, 3) + " for " + detail::where(r.l, r.v, at) +
+                    ". A brdf_sample must hold exactly what f and pdf return at its direction.";
+    }
+    return r;
+}
+
+/// Checks that pdf covers f: for options.pairs direction pairs (hemisphere_pairs), wherever
+/// some channel of f(l, v) is > 0, pdf(l, v) > 0. A sampler that never draws where f
+/// reflects light makes every estimator built on it biased low, which no chi-square test
+/// of sample against pdf can see. result::worst is the largest f(l, v) |n·l| (any channel)
+/// found where pdf(l, v) = 0, and l, v that pair.
+template <sampled_brdf B>
+result<scalar_of<B>> pdf_coverage(const B& model, const surface_point<scalar_of<B>>& at,
+                                  const pair_options& options = {}) {
+    using T = scalar_of<B>;
+    result<T> r;
+    r.property = "pdf coverage";
+    r.model = options.model;
+    r.at = at;
+    const vec3<T> n = at.n();
+    for (const auto& [l, v] : hemisphere_pairs(at, options.pairs, options.seed)) {
+        const rgb<T> f = model.f(l, v, at);
+        ++r.tried;
+        const double top = double(std::max(f.x, std::max(f.y, f.z)));
+        if (!(top > 0) || model.pdf(l, v, at) > T(0)) continue;
+        ++r.failures;
+        const double missed = top * double(glm::dot(n, l));
+        if (r.failures == 1 || missed > r.worst) {
+            r.worst = missed;
+            r.l = l;
+            r.v = v;
+            r.value = f;
+        }
+    }
+    r.decide(r.failures == 0 ? verdict::pass : verdict::fail);
+    if (r.passed) {
+        r.message = "pdf coverage holds for " + r.model + ": pdf > 0 wherever f > 0 over " +
+                    std::to_string(r.tried) + " direction pairs.";
+    } else {
+        r.message = "pdf coverage FAILS for " + r.model + ": " + std::to_string(r.failures) + " of " +
+                    std::to_string(r.tried) + " pairs have f > 0 but pdf = 0, e.g. f = " +
+                    shade::detail::to_text(r.value) + " for " + detail::where(r.l, r.v, at) +
+                    ". The sampler never draws directions where the BRDF reflects light.";
+    }
+    return r;
+}
+
+} // namespace shade::check
