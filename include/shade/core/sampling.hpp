@@ -118,6 +118,31 @@ template <std::floating_point T>
     return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
+/// Uniform direction on the whole unit sphere (Archimedes: z uniform in [-1, 1)).
+/// pdf(w) = 1 / (4 pi) per steradian.
+template <std::floating_point T>
+[[nodiscard]] inline vec3<T> square_to_uniform_sphere(const vec2<T>& u) noexcept {
+    const T z = T(1) - T(2) * u.x;
+    const T r = safe_sqrt((T(1) - z) * (T(1) + z));
+    const T phi = T(2) * pi<T> * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+/// Uniform direction inside the cone of half-angle theta_max about +z, given
+/// one_minus_cos_max = 1 - cos(theta_max) in (0, 2] (passed in this form so that narrow
+/// cones, where cos(theta_max) rounds to 1, keep their width): 1 - cos(theta) is uniform
+/// in [0, one_minus_cos_max), so pdf(w) = 1 / (2 pi one_minus_cos_max) per steradian
+/// inside the cone (Archimedes' hat-box theorem, as in Shirley, Wang, Zimmerman 1996,
+/// "Monte Carlo Techniques for Direct Lighting Calculations", ACM TOG 15(1), §4.2).
+template <std::floating_point T>
+[[nodiscard]] inline vec3<T> square_to_uniform_cone(const vec2<T>& u, T one_minus_cos_max) noexcept {
+    const T one_minus_cos = u.x * one_minus_cos_max;
+    const T z = T(1) - one_minus_cos;
+    const T r = safe_sqrt(one_minus_cos * (T(2) - one_minus_cos)); // sin = sqrt((1-c)(1+c))
+    const T phi = T(2) * pi<T> * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
 /// Local direction with polar angle theta and azimuth phi (n = +z, t = +x).
 template <std::floating_point T>
 [[nodiscard]] inline vec3<T> spherical_direction(T theta, T phi) noexcept {

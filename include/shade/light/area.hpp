@@ -5,6 +5,7 @@
 #include <cmath>
 #include <concepts>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -14,14 +15,14 @@
 #include <shade/core/math.hpp>
 #include <shade/core/sampling.hpp>
 #include <shade/core/types.hpp>
+#include <shade/geometry/hit.hpp>
+#include <shade/geometry/ray.hpp>
+#include <shade/light/area_emitter.hpp>
 #include <shade/light/emission.hpp>
+#include <shade/light/incident_sample.hpp>
 #include <shade/light/light_sample.hpp>
 
 namespace shade {
-
-/// Which side of an area light emits: the side its normal cross(edge_u, edge_v) points
-/// to, or both.
-enum class sidedness { one_sided, two_sided };
 
 /// An area light: the parallelogram {corner + s edge_u + t edge_v : s, t in [0,1]}
 /// (usually a rectangle), emitting toward the side of n = normalize(cross(edge_u, edge_v)),
@@ -46,10 +47,17 @@ enum class sidedness { one_sided, two_sided };
 /// Degenerate samples carry the ambient colour only, no Inf/NaN: p on the light (l is then
 /// a placeholder and distance +inf), the back side of a one-sided light, and overflow of
 /// 1/|x - p|^2 (l and distance still set).
+///
+/// Physical mode: a Lambertian emitter of radiance L = emitted().physical() in
+/// W/(m^2 sr) on its emitting side(s), power pi L A per side; sample_incident chooses
+/// x uniformly by area (the same point_at(u)) and reports the solid-angle density
+/// r^2 / (A cos_light). As geometry its hits have uv = (s, t) of
+/// corner + s edge_u + t edge_v and dp/du = edge_u.
 template <std::floating_point T>
-class area_light {
+class area_light : public detail::area_emitter<area_light<T>, T> {
 public:
     using scalar_type = T;
+    using detail::area_emitter<area_light<T>, T>::radiance;
 
     /// A parallelogram light with the given corner and edges. Throws
     /// shade::invalid_parameter naming "corner" (non-finite), "edge_u" / "edge_v" (zero or
@@ -67,13 +75,17 @@ public:
             throw invalid_parameter("edge_v", "must not be parallel to edge_u",
                                     detail::to_text(edge_v));
         normal_ = glm::normalize(cross_hat);
+        // Dual vectors of the edges in the light's plane: dot(x - corner, dual_u_) = s and
+        // dot(x - corner, dual_v_) = t for x = corner + s edge_u + t edge_v.
+        const vec3<T> across_v = glm::cross(edge_v, normal_);
+        const vec3<T> across_u = glm::cross(normal_, edge_u);
+        dual_u_ = across_v / glm::dot(edge_u, across_v);
+        dual_v_ = across_u / glm::dot(edge_v, across_u);
         area_ = glm::length(edge_u) * glm::length(edge_v) * glm::length(cross_hat);
         if (!std::isfinite(area_) || !(area_ > T(0)))
             throw invalid_parameter("edge_u", "and edge_v must span a finite, non-zero area",
                                     detail::to_text(area_));
-        if (sides != sidedness::one_sided && sides != sidedness::two_sided)
-            throw invalid_parameter("sides", "must be one_sided or two_sided",
-                                    std::to_string(static_cast<int>(sides)));
+        (void)detail::require_sidedness(sides);
     }
 
     /// The corner the edges start from.
@@ -91,9 +103,6 @@ public:
     /// Whether one or both sides emit.
     [[nodiscard]] sidedness sides() const noexcept { return sides_; }
 
-    /// Always false: an area light needs many samples (sample(p, u) for several u).
-    [[nodiscard]] static constexpr bool is_delta() noexcept { return false; }
-
     /// The point of the light at sample pair u in [0,1]^2.
     [[nodiscard]] vec3<T> point_at(const vec2<T>& u) const noexcept {
         return corner_ + u.x * edge_u_ + u.y * edge_v_;
@@ -109,6 +118,37 @@ public:
         if (sides_ == sidedness::two_sided) cos_light = std::fabs(cos_light);
         if (!(cos_light > T(0))) cos_light = T(0); // back side of a one-sided light: dark
         return detail::make_sample(emission_, l, r, cos_light * area_ / (r * r));
+    }
+
+    /// The physical sample at p toward point_at(u), chosen uniformly by area (see the
+    /// class comment). Nothing for p on the light, the back of a one-sided light or an
+    /// overflowing density. Precondition: u in [0,1]^2.
+    [[nodiscard]] std::optional<incident_sample<T>> sample_incident(const vec3<T>& p,
+                                                                    const vec2<T>& u) const noexcept {
+        return detail::area_incident(p, point_at(u), normal_, area_, this->radiance(), sides_);
+    }
+
+    /// The first hit of r with the light's parallelogram, either side (see the class
+    /// comment for uv and dpdu), or nothing.
+    [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r) const noexcept {
+        std::optional<hit<T>> out;
+        const T n_dot_d = glm::dot(normal_, r.direction);
+        if (n_dot_d == T(0)) return out;
+        const T t = glm::dot(normal_, corner_ - r.origin) / n_dot_d;
+        if (!(t >= r.t_min && t <= r.t_max) || !std::isfinite(t)) return out;
+        const vec3<T> x = r.at(t);
+        const vec3<T> offset = x - corner_;
+        const T s = glm::dot(offset, dual_u_);
+        const T w = glm::dot(offset, dual_v_);
+        if (!(s >= T(0) && s <= T(1) && w >= T(0) && w <= T(1))) return out;
+        out.emplace();
+        out->t = t;
+        out->p = x;
+        out->n = normal_;
+        out->front_face = n_dot_d < T(0);
+        out->uv = vec2<T>(s, w);
+        out->dpdu = edge_u_;
+        return out;
     }
 
     /// Calls fn(sample) for the n x n stratified samples sample(p, stratified_u(i, j, n,
@@ -130,6 +170,8 @@ private:
     vec3<T> edge_u_;
     vec3<T> edge_v_;
     vec3<T> normal_{0, 0, 1};
+    vec3<T> dual_u_{1, 0, 0};
+    vec3<T> dual_v_{0, 1, 0};
     T area_ = T(0);
     emission<T> emission_;
     sidedness sides_;

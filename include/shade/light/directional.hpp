@@ -2,10 +2,14 @@
 // shade::directional_light: a light infinitely far away (the sun), same direction everywhere.
 
 #include <concepts>
+#include <optional>
 
 #include <shade/core/error.hpp>
+#include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
+#include <shade/light/delta_light.hpp>
 #include <shade/light/emission.hpp>
+#include <shade/light/incident_sample.hpp>
 #include <shade/light/light_sample.hpp>
 
 namespace shade {
@@ -13,10 +17,15 @@ namespace shade {
 /// A directional light: every shaded point receives light from the same unit direction,
 /// with no falloff. Its sample has l = direction(), distance = +inf, ambient = intensity x
 /// ambient colour and diffuse/specular = intensity x colour.
+///
+/// Physical mode: emitted().physical() is the irradiance E in W/m^2 on a surface facing
+/// the light (its power is not finite: the light covers all of space).
 template <std::floating_point T>
-class directional_light {
+class directional_light : public detail::delta_light<directional_light<T>, T> {
 public:
     using scalar_type = T;
+    using detail::delta_light<directional_light<T>, T>::sample;
+    using detail::delta_light<directional_light<T>, T>::sample_incident;
 
     /// A light shining from `direction` (pointing from the scene TOWARD the light; any
     /// finite non-zero length, normalised here) with emission e. Throws
@@ -30,19 +39,19 @@ public:
     /// The emitted intensity and colours.
     [[nodiscard]] const emission<T>& emitted() const noexcept { return emission_; }
 
-    /// Always true: a directional light is a delta light, one sample is exact.
-    [[nodiscard]] static constexpr bool is_delta() noexcept { return true; }
+    /// The irradiance E at normal incidence in W/m^2 (physical mode).
+    [[nodiscard]] rgb<T> irradiance() const noexcept { return emission_.physical(); }
 
-    /// The light's sample at point p (p is not used: the light is the same everywhere).
+    /// The light's classic sample at point p (p is not used: the light is the same everywhere).
     [[nodiscard]] light_sample<T> sample(const vec3<T>& p) const noexcept {
         (void)p;
         return detail::make_sample(emission_, direction_, infinity<T>, T(1));
     }
 
-    /// As sample(p); u is ignored (shade::light interface, shared with area lights).
-    [[nodiscard]] light_sample<T> sample(const vec3<T>& p, const vec2<T>& u) const noexcept {
-        (void)u;
-        return sample(p);
+    /// The physical sample at p: along direction(), at infinity, irradiance E (delta).
+    [[nodiscard]] std::optional<incident_sample<T>> sample_incident(const vec3<T>& p) const noexcept {
+        (void)p;
+        return detail::delta_incident(direction_, infinity<T>, irradiance());
     }
 
 private:

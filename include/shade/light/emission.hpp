@@ -17,6 +17,14 @@ namespace shade {
 /// colours times the intensity (ambient) or times intensity x falloff x cone factor
 /// (diffuse, specular). All values must be finite and >= 0; lights check this on
 /// construction with shade::validated.
+///
+/// The same emission gives the light's physical quantity (the physical mode,
+/// shade::incident_sample): physical() = pi x intensity x diffuse, which is the radiant
+/// intensity in W/sr of a point or spot light, the irradiance in W/m^2 at normal incidence
+/// of a directional light, and the radiance in W/(m^2 sr) of an area or environment
+/// light. The factor pi makes both modes agree on a Lambertian surface: the classic
+/// diffuse colour is the radiance a white Lambertian surface facing the light reflects,
+/// E / pi. The ambient and specular colours belong to the classic mode only.
 template <std::floating_point T>
 struct emission {
     using scalar_type = T;
@@ -25,6 +33,15 @@ struct emission {
     rgb<T> ambient{0, 0, 0};     ///< ambient colour I_a, per channel >= 0
     rgb<T> diffuse{1, 1, 1};     ///< diffuse colour I_d, per channel >= 0
     rgb<T> specular{1, 1, 1};    ///< specular colour I_s, per channel >= 0
+
+    /// The emission whose physical quantity is q (W/sr, W/m^2 or W/(m^2 sr) by light, see
+    /// above): intensity 1, diffuse = specular = q / pi, no ambient.
+    [[nodiscard]] static constexpr emission from_physical(const rgb<T>& q) noexcept {
+        return emission{T(1), rgb<T>(0), q / pi<T>, q / pi<T>};
+    }
+
+    /// pi x intensity x diffuse: the light's physical quantity (see above).
+    [[nodiscard]] constexpr rgb<T> physical() const noexcept { return (pi<T> * intensity) * diffuse; }
 };
 
 /// Returns e unchanged after checking it; throws shade::invalid_parameter naming

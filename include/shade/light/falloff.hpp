@@ -3,11 +3,13 @@
 // one body both lights compute their samples with.
 
 #include <concepts>
+#include <optional>
 #include <string>
 
 #include <shade/core/error.hpp>
 #include <shade/core/types.hpp>
 #include <shade/light/emission.hpp>
+#include <shade/light/incident_sample.hpp>
 #include <shade/light/light_sample.hpp>
 
 namespace shade {
@@ -59,6 +61,19 @@ template <std::floating_point T, class Directional>
     const auto [l, r] = split_direction(vec3<T>(position - p));
     if (!(r > T(0))) return ambient_only_sample(e);
     return make_sample(e, l, r, falloff_factor(f, r) * directional(l));
+}
+
+/// The physical incident sample at p of a positional light at `position` whose radiant
+/// intensity toward p is e.physical() x directional(l) (W/sr): the irradiance at normal
+/// incidence E = I / r^2 (the inverse-square law, whatever the classic falloff), as a
+/// delta sample. Nothing at r = 0, where E is zero or where it overflows.
+template <std::floating_point T, class Directional>
+[[nodiscard]] std::optional<incident_sample<T>>
+positional_incident(const emission<T>& e, const vec3<T>& position, const vec3<T>& p,
+                    const Directional& directional) noexcept {
+    const auto [l, r] = split_direction(vec3<T>(position - p));
+    if (!(r > T(0))) return std::nullopt;
+    return delta_incident(l, r, rgb<T>(e.physical() * (directional(l) / (r * r))));
 }
 
 } // namespace detail

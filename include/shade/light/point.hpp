@@ -3,11 +3,15 @@
 // selectable law (shade::falloff).
 
 #include <concepts>
+#include <optional>
 
 #include <shade/core/error.hpp>
+#include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
+#include <shade/light/delta_light.hpp>
 #include <shade/light/emission.hpp>
 #include <shade/light/falloff.hpp>
+#include <shade/light/incident_sample.hpp>
 #include <shade/light/light_sample.hpp>
 
 namespace shade {
@@ -19,10 +23,17 @@ namespace shade {
 /// At r = 0 (p at the light) the direction is undefined, and where the falloff overflows
 /// (r below ~1e-19 in float for 1/r^2) the light would be infinite: in both cases the
 /// sample carries the ambient colour only (no directional light, no Inf/NaN).
+///
+/// Physical mode: the light's radiant intensity is I = emitted().physical() in W/sr in
+/// every direction, its power 4 pi I in W, and the irradiance it gives at normal incidence
+/// at distance r is I / r^2 (the inverse-square law always: the falloff law belongs to
+/// the classic mode).
 template <std::floating_point T>
-class point_light {
+class point_light : public detail::delta_light<point_light<T>, T> {
 public:
     using scalar_type = T;
+    using detail::delta_light<point_light<T>, T>::sample;
+    using detail::delta_light<point_light<T>, T>::sample_incident;
 
     /// A point light at `position` with emission e and distance law f. Throws
     /// shade::invalid_parameter naming "position" (non-finite), "falloff" or the bad
@@ -39,22 +50,25 @@ public:
     /// The distance law.
     [[nodiscard]] falloff distance_falloff() const noexcept { return falloff_; }
 
-    /// Always true: a point light is a delta light, one sample is exact.
-    [[nodiscard]] static constexpr bool is_delta() noexcept { return true; }
+    /// The radiant intensity I in W/sr (physical mode).
+    [[nodiscard]] rgb<T> intensity() const noexcept { return emission_.physical(); }
+    /// The radiant power 4 pi I in W (physical mode).
+    [[nodiscard]] rgb<T> power() const noexcept { return (T(4) * pi<T>) * intensity(); }
 
-    /// The light's sample at point p (see the class comment).
+    /// The light's classic sample at point p (see the class comment).
     [[nodiscard]] light_sample<T> sample(const vec3<T>& p) const noexcept {
-        return detail::positional_sample(emission_, position_, falloff_, p,
-                                         [](const vec3<T>&) noexcept { return T(1); });
+        return detail::positional_sample(emission_, position_, falloff_, p, unit_factor);
     }
 
-    /// As sample(p); u is ignored (shade::light interface, shared with area lights).
-    [[nodiscard]] light_sample<T> sample(const vec3<T>& p, const vec2<T>& u) const noexcept {
-        (void)u;
-        return sample(p);
+    /// The physical sample at p: toward the light, at its distance r, irradiance I / r^2
+    /// at normal incidence (W/m^2), delta. Nothing at r = 0 or where I / r^2 overflows.
+    [[nodiscard]] std::optional<incident_sample<T>> sample_incident(const vec3<T>& p) const noexcept {
+        return detail::positional_incident(emission_, position_, p, unit_factor);
     }
 
 private:
+    static constexpr T unit_factor(const vec3<T>&) noexcept { return T(1); }
+
     vec3<T> position_;
     emission<T> emission_;
     falloff falloff_;

@@ -3,14 +3,17 @@
 
 #include <cmath>
 #include <concepts>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
+#include <shade/light/delta_light.hpp>
 #include <shade/light/emission.hpp>
 #include <shade/light/falloff.hpp>
+#include <shade/light/incident_sample.hpp>
 #include <shade/light/light_sample.hpp>
 
 namespace shade {
@@ -42,10 +45,18 @@ template <std::floating_point T>
 /// distance r, ambient = intensity x ambient colour and diffuse/specular = intensity x
 /// falloff_factor(f, r) x cone factor x colour. At r = 0 or where the falloff overflows the
 /// sample carries the ambient colour only (as for shade::point_light).
+///
+/// Physical mode: the radiant intensity toward p is I = emitted().physical() in W/sr
+/// times the cone factor, the irradiance at normal incidence I x cone / r^2 (always the
+/// inverse-square law), and the power, integrating the cone factor over the sphere
+/// (the smoothstep averages 1/2 over the edge),
+///     Phi = 2 pi I (1 - (cos_inner + cos_outer) / 2)   W.
 template <std::floating_point T>
-class spot_light {
+class spot_light : public detail::delta_light<spot_light<T>, T> {
 public:
     using scalar_type = T;
+    using detail::delta_light<spot_light<T>, T>::sample;
+    using detail::delta_light<spot_light<T>, T>::sample_incident;
 
     /// A spotlight at `position` pointing along `axis` (from the light INTO the scene; any
     /// finite non-zero length), with half-angles inner_angle <= outer_angle in radians,
@@ -83,26 +94,33 @@ public:
     /// The distance law.
     [[nodiscard]] falloff distance_falloff() const noexcept { return falloff_; }
 
-    /// Always true: a spotlight is a delta light, one sample is exact.
-    [[nodiscard]] static constexpr bool is_delta() noexcept { return true; }
-
-    /// The light's sample at point p (see the class comment).
-    [[nodiscard]] light_sample<T> sample(const vec3<T>& p) const noexcept {
-        // -l points from the light to p; its cosine with the axis is cos_s.
-        return detail::positional_sample(emission_, position_, falloff_, p,
-                                         [this](const vec3<T>& l) noexcept {
-                                             return spot_cone_factor(-glm::dot(axis_, l),
-                                                                     cos_inner_, cos_outer_);
-                                         });
+    /// The radiant intensity I on the axis in W/sr (physical mode).
+    [[nodiscard]] rgb<T> intensity() const noexcept { return emission_.physical(); }
+    /// The radiant power in W (physical mode; see the class comment).
+    [[nodiscard]] rgb<T> power() const noexcept {
+        return (T(2) * pi<T> * (T(1) - (cos_inner_ + cos_outer_) / T(2))) * intensity();
     }
 
-    /// As sample(p); u is ignored (shade::light interface, shared with area lights).
-    [[nodiscard]] light_sample<T> sample(const vec3<T>& p, const vec2<T>& u) const noexcept {
-        (void)u;
-        return sample(p);
+    /// The light's classic sample at point p (see the class comment).
+    [[nodiscard]] light_sample<T> sample(const vec3<T>& p) const noexcept {
+        return detail::positional_sample(emission_, position_, falloff_, p, cone_toward(this));
+    }
+
+    /// The physical sample at p: toward the light, irradiance I x cone / r^2 at normal
+    /// incidence (W/m^2), delta. Nothing at r = 0, outside the cone or on overflow.
+    [[nodiscard]] std::optional<incident_sample<T>> sample_incident(const vec3<T>& p) const noexcept {
+        return detail::positional_incident(emission_, position_, p, cone_toward(this));
     }
 
 private:
+    /// The cone factor as a function of l, the unit direction from p toward the light:
+    /// -l points from the light to p, and its cosine with the axis is cos_s.
+    [[nodiscard]] static auto cone_toward(const spot_light* light) noexcept {
+        return [light](const vec3<T>& l) noexcept {
+            return spot_cone_factor(-glm::dot(light->axis_, l), light->cos_inner_, light->cos_outer_);
+        };
+    }
+
     vec3<T> position_;
     vec3<T> axis_;
     T inner_angle_;
