@@ -26,6 +26,8 @@
 #include <shade/geometry/sphere.hpp>
 #include <shade/geometry/triangle.hpp>
 
+#include <shade/brdf/aliases.hpp>
+#include <shade/brdf/any_brdf.hpp>
 #include <shade/brdf/ashikhmin_shirley.hpp>
 #include <shade/brdf/blinn_phong.hpp>
 #include <shade/brdf/brdf.hpp>
@@ -38,12 +40,18 @@
 
 #include <shade/light/any_light.hpp>
 #include <shade/light/area.hpp>
+#include <shade/light/area_emitter.hpp>
+#include <shade/light/delta_light.hpp>
 #include <shade/light/directional.hpp>
+#include <shade/light/disk.hpp>
 #include <shade/light/emission.hpp>
+#include <shade/light/environment.hpp>
 #include <shade/light/falloff.hpp>
+#include <shade/light/incident_sample.hpp>
 #include <shade/light/light.hpp>
 #include <shade/light/light_sample.hpp>
 #include <shade/light/point.hpp>
+#include <shade/light/sphere.hpp>
 #include <shade/light/spot.hpp>
 
 #include <shade/shading/checker.hpp>
