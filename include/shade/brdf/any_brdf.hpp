@@ -3,7 +3,6 @@
 // whose materials are of several types (a std::vector<any_brdf<double>>).
 
 #include <concepts>
-#include <memory>
 #include <optional>
 #include <type_traits>
 #include <utility>
@@ -16,7 +15,8 @@
 namespace shade {
 
 /// Any BRDF of scalar type T behind one type (type erasure, like shade::any_light for
-/// lights), immutable and cheap to copy (the model is shared). It is a shade::brdf, a
+/// lights): it owns a copy of the BRDF on the heap (copying an any_brdf copies the BRDF;
+/// <memory> is left out to keep the header cheap). It is a shade::brdf, a
 /// shade::sampled_brdf and a shade::split_brdf:
 ///   * f forwards to the held BRDF;
 ///   * sample and pdf forward to the held BRDF's when it is a shade::sampled_brdf; for a
@@ -37,7 +37,23 @@ public:
     template <brdf B>
         requires(!std::same_as<std::remove_cvref_t<B>, any_brdf> && std::same_as<scalar_of<B>, T>)
     any_brdf(B b) // NOLINT: implicit by design
-        : model_(std::make_shared<const model<B>>(std::move(b))) {}
+        : model_(new model<B>(std::move(b))) {}
+
+    any_brdf(const any_brdf& other) : model_(other.model_->clone()) {}
+    any_brdf(any_brdf&& other) noexcept : model_(std::exchange(other.model_, nullptr)) {}
+    any_brdf& operator=(const any_brdf& other) {
+        if (this != &other) {
+            interface* copy = other.model_->clone();
+            delete model_;
+            model_ = copy;
+        }
+        return *this;
+    }
+    any_brdf& operator=(any_brdf&& other) noexcept {
+        std::swap(model_, other.model_);
+        return *this;
+    }
+    ~any_brdf() { delete model_; }
 
     /// The held BRDF's value (1/sr, no cosine).
     [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const {
@@ -79,6 +95,7 @@ private:
         virtual rgb<T> f_diffuse(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const = 0;
         virtual rgb<T> f_specular(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const = 0;
         virtual bool has_own_sampler() const noexcept = 0;
+        virtual interface* clone() const = 0;
     };
 
     template <class B>
@@ -122,11 +139,13 @@ private:
             }
         }
         bool has_own_sampler() const noexcept override { return sampled_brdf<B>; }
+        interface* clone() const override { return new model(held); }
 
         B held;
     };
 
-    std::shared_ptr<const interface> model_;
+    interface* model_; // owned; null only in a moved-from any_brdf (which may only be
+                       // assigned to or destroyed)
 };
 
 } // namespace shade
