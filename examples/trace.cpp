@@ -1,10 +1,13 @@
-// trace: shade's reference ray tracer. Renders one of the built-in scenes to a PNG.
+// trace: shade's reference ray tracer. Renders one of the built-in scenes to a PNG, or to
+// a PFM (linear radiance, no tone map) when the output name ends in .pfm.
 //
 //   trace --scene gallery --width 640 --height 360 --spp 4 --out gallery.png
+//   trace --scene furnace --integrator path --out out/furnace.pfm
 //
-// Direct lighting from every light with shadow rays (area lights sampled n x n), several
-// jittered samples per pixel, exposure + Reinhard tone map + sRGB encoding. The same
-// arguments give the same bytes whatever --threads is.
+// Direct lighting in the classic mode (area lights sampled n x n), or path tracing in
+// physical units (next-event estimation and BRDF sampling combined by MIS, Russian
+// roulette); several jittered samples per pixel; for PNG, exposure + Reinhard tone map +
+// sRGB encoding. The same arguments give the same bytes whatever --threads is.
 
 #include <chrono>
 #include <cstdio>
@@ -19,6 +22,7 @@
 
 #include "support/cli.hpp"
 #include "support/image.hpp"
+#include "tracer/pfm.hpp"
 #include "tracer/render.hpp"
 #include "tracer/scenes.hpp"
 
@@ -26,12 +30,21 @@ namespace {
 
 constexpr std::string_view usage = R"(usage: trace [options]
 
-Renders one of shade's reference scenes to a PNG image.
+Renders one of shade's reference scenes to a PNG image (or a PFM: linear radiance).
 
 options:
   --scene NAME     gallery (default): one sphere per shading model on a checker plane;
                    mesh: a tessellated torus with flat, Gouraud and Phong shading;
-                   lights: hard shadows from point/directional lights, soft from an area light
+                   lights: hard shadows from point/directional lights, soft from an area light;
+                   furnace: a white Lambert sphere in a white environment (path: all 1);
+                   furnace-conductor: the same with a rough conductor of F = 1;
+                   enclosure: inside a glowing sphere of albedo 0.8 (path: all 5);
+                   veach: glossy plates and four sphere lights (compare --strategy)
+  --integrator M   direct (default): classic direct lighting; path: path tracing in
+                   physical units with next-event estimation, MIS and Russian roulette
+  --strategy S     path integrator only: mis (default), light or brdf sampling alone
+  --bounces N      path integrator only: scattering events at most, 1 to 100000
+                   (default 1024; 1 is direct lighting)
   --width N        image width in pixels, 1 to 16384 (default 640)
   --height N       image height in pixels, 1 to 16384 (default 360)
   --spp N          samples per pixel, 1 to 65536 (default 4)
@@ -40,7 +53,8 @@ options:
   --area-samples N area lights are sampled N x N times per hit, 1 to 256 (default 4)
   --exposure X     exposure multiplier before tone mapping, in (0, 1e6] (default 1)
   --seed N         seed of the per-pixel random numbers (default 1)
-  --out FILE       output PNG (default <scene>.png); written to a temporary file next
+  --out FILE       output PNG, or PFM when FILE ends in .pfm (default <scene>.png);
+                   written to a temporary file next
                    to it and renamed when complete, so a failed or interrupted run
                    never leaves a partial FILE
   --quiet          no progress bar (it is drawn only when stderr is a terminal)
@@ -97,6 +111,18 @@ arguments parse(int argc, char** argv) {
         else if (args.option("--height")) a.render.height = args.integer(1, max_side);
         else if (args.option("--spp")) a.render.spp = args.integer(1, max_spp);
         else if (args.option("--threads")) a.render.threads = args.integer(1, max_threads);
+        else if (args.option("--integrator")) {
+            const std::string m(args.text());
+            if (m == "direct") a.render.method = tracer::integrator::direct;
+            else if (m == "path") a.render.method = tracer::integrator::path;
+            else throw ex::usage_error("option --integrator must be direct or path, got '" + m + "'");
+        } else if (args.option("--strategy")) {
+            const std::string m(args.text());
+            if (m == "mis") a.render.path.sampling = tracer::strategy::mis;
+            else if (m == "light") a.render.path.sampling = tracer::strategy::light;
+            else if (m == "brdf") a.render.path.sampling = tracer::strategy::brdf;
+            else throw ex::usage_error("option --strategy must be mis, light or brdf, got '" + m + "'");
+        } else if (args.option("--bounces")) a.render.path.max_bounces = args.integer(1, 100000);
         else if (args.option("--area-samples")) a.render.lighting.area_samples_per_side = args.integer(1, max_area_samples);
         else if (args.option("--seed")) a.render.seed = args.integer<std::uint64_t>(0, UINT64_MAX);
         else if (args.option("--exposure")) a.exposure = args.real(0, 1e6, ex::lower_limit::exclusive);
@@ -132,7 +158,10 @@ int main(int argc, char** argv) {
         tracer::render_options options = args.render;
         options.progress = !args.quiet && stderr_is_terminal();
         const auto radiance = tracer::render(scene, options);
-        shade::examples::save_png(out.temporary(), tracer::to_srgb8(radiance, args.exposure));
+        if (args.out.extension() == ".pfm")
+            tracer::save_pfm(out.temporary(), radiance);
+        else
+            shade::examples::save_png(out.temporary(), tracer::to_srgb8(radiance, args.exposure));
         out.commit();
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::printf("%s: %dx%d, %d spp -> %s (%.2f s)\n", args.scene.c_str(), args.render.width,

@@ -20,9 +20,14 @@
 
 #include "support/image.hpp"
 
+#include "path.hpp"
 #include "scene.hpp"
 
 namespace tracer {
+
+/// How radiance is estimated: direct lighting in the classic mode (shade::lit, area lights
+/// sampled n x n), or path tracing in physical units (tracer::trace_path).
+enum class integrator { direct, path };
 
 /// Settings of one render.
 struct render_options {
@@ -32,6 +37,8 @@ struct render_options {
     int threads = 0;        ///< 0: all hardware threads
     std::uint64_t seed = 1; ///< seed of all per-pixel generators
     lighting_options lighting{};
+    integrator method = integrator::direct;
+    path_options path{};    ///< settings of the path integrator
     bool progress = false;  ///< draw a progress bar on stderr once a render passes 1 s
 };
 
@@ -49,6 +56,17 @@ inline rgb trace(const scene& s, const shade::ray<real>& r, shade::rng& random, 
     if (!h) return s.background;
     const vec3 v = -glm::normalize(r.direction);
     return s.shade_hit(*h, v, random, options);
+}
+
+/// One sample of pixel (x, y): a camera ray through a point of the pixel (its centre when
+/// spp is 1, else jittered with two numbers from `random`) and the radiance the chosen
+/// integrator estimates along it.
+inline rgb sample_pixel(const scene& s, const render_options& options, int x, int y, shade::rng& random) {
+    const real jx = options.spp == 1 ? real(0.5) : random.uniform<real>();
+    const real jy = options.spp == 1 ? real(0.5) : random.uniform<real>();
+    const auto r = s.camera->ray_for_raster(real(x) + jx, real(y) + jy, options.width, options.height);
+    if (options.method == integrator::path) return trace_path(s, r, random, options.path);
+    return trace(s, r, random, options.lighting);
 }
 
 /// Renders the scene with its camera. Throws std::invalid_argument for a scene without a
@@ -74,13 +92,7 @@ inline radiance_image render(const scene& s, const render_options& options) {
                 const std::uint64_t index = std::uint64_t(y) * std::uint64_t(options.width) + std::uint64_t(x);
                 shade::rng random(options.seed, index);
                 rgb sum(0);
-                for (int k = 0; k < options.spp; ++k) {
-                    // One sample at the pixel centre, the rest jittered over the pixel.
-                    const real jx = options.spp == 1 ? real(0.5) : random.uniform<real>();
-                    const real jy = options.spp == 1 ? real(0.5) : random.uniform<real>();
-                    const auto r = s.camera->ray_for_raster(real(x) + jx, real(y) + jy, options.width, options.height);
-                    sum += trace(s, r, random, options.lighting);
-                }
+                for (int k = 0; k < options.spp; ++k) sum += sample_pixel(s, options, x, y, random);
                 image.pixels[std::size_t(index)] = sum / real(options.spp);
             }
             ++rows_done;

@@ -12,6 +12,8 @@
 
 #include <glm/geometric.hpp>
 
+#include <shade/brdf/any_brdf.hpp>
+#include <shade/brdf/lambert.hpp>
 #include <shade/core/random.hpp>
 #include <shade/core/surface_point.hpp>
 #include <shade/geometry/aabb.hpp>
@@ -78,6 +80,8 @@ struct object {
     std::shared_ptr<const shade::triangle_bvh<real, shade::watertight>> mesh_bvh;
     mesh_shading shading = mesh_shading::phong;
     material surface;
+    std::optional<shade::any_brdf<real>> brdf; ///< physical material (path integrator); none: black
+    int emitter = -1; ///< index into scene::lights of the light this object is the geometry of
 };
 
 /// Settings of the direct-lighting integrator.
@@ -110,6 +114,25 @@ struct scene {
         o.surface = std::move(m);
         objects.push_back(std::move(o));
         index_objects();
+    }
+    /// A sphere with a physical material (lit with the classic mode by the direct
+    /// integrator).
+    void add_physical_sphere(const shade::sphere<real>& s, const shade::any_brdf<real>& b) {
+        add_sphere(s, make_material(b));
+        objects.back().brdf = b;
+    }
+    /// A mesh with a physical material.
+    void add_physical_mesh(tracer::mesh m, const shade::any_brdf<real>& b) {
+        add_mesh(std::move(m), mesh_shading::flat, make_material(b));
+        objects.back().brdf = b;
+    }
+    /// A sphere light that is also visible geometry, with an optional material for the
+    /// light it reflects (none: it absorbs).
+    void add_emitting_sphere(const shade::sphere_light<real>& light, const std::optional<shade::any_brdf<real>>& b) {
+        lights.emplace_back(light);
+        add_sphere(light.shape(), make_material(b ? *b : shade::any_brdf<real>(shade::lambert<real>(rgb(0)))));
+        objects.back().brdf = b;
+        objects.back().emitter = int(lights.size()) - 1;
     }
     void add_mesh(tracer::mesh m, mesh_shading shading, material mat) {
         object o;

@@ -19,16 +19,18 @@
 #include <shade/shading/gradient.hpp>
 #include <shade/shading/toon.hpp>
 
+#include "physical_scenes.hpp"
 #include "scene.hpp"
 
 namespace tracer {
 
 /// The names make_scene accepts, comma-separated (for messages).
-inline std::string scene_names() { return "gallery, mesh, lights"; }
+inline std::string scene_names() { return "gallery, mesh, lights, furnace, furnace-conductor, enclosure, veach"; }
 
 /// True when make_scene knows `name`.
 inline bool is_scene_name(const std::string& name) {
-    return name == "gallery" || name == "mesh" || name == "lights";
+    return name == "gallery" || name == "mesh" || name == "lights" || name == "furnace" ||
+           name == "furnace-conductor" || name == "enclosure" || name == "veach";
 }
 
 namespace detail {
@@ -139,6 +141,10 @@ inline scene make_scene(const std::string& name, real aspect) {
     if (name == "gallery") return make_gallery(aspect);
     if (name == "mesh") return make_mesh_scene(aspect);
     if (name == "lights") return make_lights_scene(aspect);
+    if (name == "furnace") return make_furnace(aspect, false);
+    if (name == "furnace-conductor") return make_furnace(aspect, true);
+    if (name == "enclosure") return make_enclosure(aspect);
+    if (name == "veach") return make_veach(aspect);
     throw std::invalid_argument("unknown scene '" + name + "' (known: " + scene_names() + ")");
 }
 

@@ -1,0 +1,107 @@
+#pragma once
+// The reference tracer's scenes in physical units, for the path integrator:
+//   furnace:           a white Lambert sphere (k_d = 1) in a uniform white environment
+//                      (radiance 1): every pixel is 1, whatever the number of bounces;
+//   furnace-conductor: the same with a rough GGX conductor of F = 1 (single-scattering
+//                      microfacets lose energy at high roughness: pixels below 1);
+//   enclosure:         the camera inside a closed sphere whose inside is a Lambert of
+//                      albedo 0.8 that also emits radiance 1: every pixel is
+//                      1 + 0.8 + 0.8^2 + ... = 1 / (1 - 0.8) = 5;
+//   veach:             four glossy plates of increasing roughness lit by four spherical
+//                      lights of equal power and very different sizes (after Veach 1997,
+//                      fig. 9.2), for comparing light sampling, BRDF sampling and MIS.
+
+#include <array>
+#include <cmath>
+#include <utility>
+
+#include <glm/geometric.hpp>
+
+#include <shade/brdf/aliases.hpp>
+#include <shade/brdf/any_brdf.hpp>
+#include <shade/brdf/lambert.hpp>
+#include <shade/light/environment.hpp>
+#include <shade/light/sphere.hpp>
+
+#include "scene.hpp"
+
+namespace tracer {
+
+namespace detail {
+
+inline shade::pinhole_camera<real> look(vec3 position, vec3 target, real fov_degrees, real aspect) {
+    return {position, target, vec3(0, 1, 0), fov_degrees * shade::pi<real> / 180, aspect};
+}
+
+inline shade::emission<real> radiance(real L) { return shade::emission<real>::from_physical(rgb(L)); }
+
+} // namespace detail
+
+/// furnace (conductor = false) or furnace-conductor (conductor = true).
+inline scene make_furnace(real aspect, bool conductor) {
+    scene s;
+    s.name = conductor ? "furnace-conductor" : "furnace";
+    s.camera = detail::look(vec3(0, 0, 4), vec3(0), 40, aspect);
+    s.lights.emplace_back(shade::environment_light<real>(detail::radiance(1)));
+    s.background = rgb(1);
+    if (conductor)
+        s.add_physical_sphere(shade::sphere<real>(vec3(0), 1), shade::make_ggx_conductor(real(0.6), rgb(1)));
+    else
+        s.add_physical_sphere(shade::sphere<real>(vec3(0), 1), shade::lambert<real>(rgb(1)));
+    return s;
+}
+
+/// enclosure: see the file comment.
+inline scene make_enclosure(real aspect) {
+    scene s;
+    s.name = "enclosure";
+    s.camera = detail::look(vec3(0.5, 0.3, 1), vec3(0, 0, -3), 60, aspect);
+    s.add_emitting_sphere(shade::sphere_light<real>(vec3(0), 4, detail::radiance(1), shade::sidedness::two_sided),
+                          shade::lambert<real>(rgb(0.8)));
+    return s;
+}
+
+/// The roughness (GGX alpha) of the veach scene's plates, back to front.
+inline constexpr std::array<real, 4> veach_alphas{0.008, 0.03, 0.09, 0.25};
+
+/// veach: see the file comment. Objects 0-3 are the plates (back to front), 4-7 the lights.
+inline scene make_veach(real aspect) {
+    scene s;
+    s.name = "veach";
+    const vec3 eye(0, 1.5, 12);
+    s.camera = detail::look(eye, vec3(0, -1.2, 1.5), 32, aspect);
+    s.background = rgb(0);
+    // Each plate is tilted so that it mirrors the row of lights toward the camera: its
+    // normal halves the angle between the directions to the eye and to the lights.
+    const vec3 lights_centre(0, 2.5, -2.5);
+    const std::array<real, 4> depth{-0.5, 1.0, 2.5, 4.0};
+    for (std::size_t i = 0; i < 4; ++i) {
+        const vec3 c(0, -2 - 0.25 * real(i), depth[i]);
+        const vec3 n = glm::normalize(glm::normalize(eye - c) + glm::normalize(lights_centre - c));
+        const vec3 across(1, 0, 0);
+        const vec3 along = glm::normalize(glm::cross(n, across)); // in the plate, across x
+        mesh m;
+        const real half_x = 4.2;
+        const real half_y = 0.55;
+        for (const real sx : {-1.0, 1.0})
+            for (const real sy : {-1.0, 1.0}) {
+                m.positions.push_back(c + (sx * half_x) * across + (sy * half_y) * along);
+                m.normals.push_back(n);
+            }
+        // Corners 0 (-,-), 1 (-,+), 2 (+,-), 3 (+,+): counter-clockwise seen along -n.
+        m.indices = {0, 2, 3, 0, 3, 1};
+        s.add_physical_mesh(std::move(m), shade::make_ggx_conductor(veach_alphas[i], rgb(0.7)));
+    }
+    // Four lights of equal power (radiance x radius^2 constant), small to large.
+    const std::array<real, 4> radii{0.04, 0.12, 0.35, 0.9};
+    const std::array<rgb, 4> colours{rgb(1, 0.4, 0.3), rgb(1, 0.9, 0.3), rgb(0.3, 1, 0.4), rgb(0.3, 0.5, 1)};
+    for (std::size_t i = 0; i < 4; ++i) {
+        const real L = real(0.05) / (radii[i] * radii[i]);
+        const vec3 centre(-3.75 + 2.5 * real(i), lights_centre.y, lights_centre.z);
+        s.add_emitting_sphere(shade::sphere_light<real>(centre, radii[i], shade::emission<real>::from_physical(L * colours[i])),
+                              std::nullopt);
+    }
+    return s;
+}
+
+} // namespace tracer
