@@ -1,6 +1,8 @@
 // The path integrator of the reference tracer: scenes whose every pixel is known exactly
-// (furnace 1, enclosure 5), and that the checks catch a biased integrator.
+// (furnace 1, enclosure 5), that the checks catch a biased integrator, MIS against light
+// and BRDF sampling alone on the veach scene, and the error falling as 1 / sqrt(spp).
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -113,4 +115,76 @@ TEST_CASE("path: the checks above catch a biased integrator") {
     options.path.max_bounces = 4;
     const auto e = estimate(s, options);
     CHECK(std::abs(e.mean.x - 5) > 3 * e.standard_error.x);
+}
+
+namespace {
+
+// Mean squared difference between two radiance images over the pixels where mask[i] is
+// true.
+double mse(const tracer::radiance_image& a, const tracer::radiance_image& b, const std::vector<bool>& mask) {
+    double sum = 0;
+    int count = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        if (!mask[i]) continue;
+        const rgb d = a.pixels[i] - b.pixels[i];
+        sum += double(glm::dot(d, d));
+        ++count;
+    }
+    return sum / std::max(count, 1);
+}
+
+} // namespace
+
+TEST_CASE("path: veach plates: MIS is no worse than the better single strategy") {
+    // Direct lighting (one bounce) as in Veach's figure 9.2. The errors of a few samples
+    // per pixel are heavy-tailed (a rare sample hits a small, bright light), so each
+    // strategy's error is the mean squared error against a 2048-spp reference averaged
+    // over 8 independent renders (seeds) of 16 spp.
+    const int w = 40, h = 24;
+    const auto s = tracer::make_veach(real(w) / real(h));
+    auto options = path_options(w, h, 2048);
+    options.path.max_bounces = 1;
+    options.threads = 0;
+    const auto reference = tracer::render(s, options);
+    std::vector<std::vector<bool>> plate(4, std::vector<bool>(std::size_t(w * h), false));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (const auto hit = s.intersect(s.camera->ray_for_raster(real(x) + 0.5, real(y) + 0.5, w, h)))
+                if (hit->object < 4) plate[hit->object][std::size_t(y * w + x)] = true;
+    options.spp = 16;
+    double error[3][4] = {};
+    const tracer::strategy strategies[3] = {tracer::strategy::mis, tracer::strategy::light, tracer::strategy::brdf};
+    for (int k = 0; k < 3; ++k) {
+        options.path.sampling = strategies[k];
+        for (std::uint64_t seed = 2; seed < 10; ++seed) {
+            options.seed = seed;
+            const auto image = tracer::render(s, options);
+            for (std::size_t i = 0; i < 4; ++i) error[k][i] += mse(image, reference, plate[i]) / 8;
+        }
+    }
+    for (std::size_t i = 0; i < 4; ++i) {
+        CAPTURE(i);
+        MESSAGE("plate ", i, " (alpha ", tracer::veach_alphas[i], "): mean squared error MIS ", error[0][i],
+                ", light ", error[1][i], ", BRDF ", error[2][i]);
+        CHECK(std::count(plate[i].begin(), plate[i].end(), true) > 20);
+        CHECK(error[0][i] <= std::min(error[1][i], error[2][i]));
+    }
+}
+
+TEST_CASE("path: the error falls as 1 / sqrt(spp)") {
+    // The enclosure's exact value is 5 in every pixel, so the root-mean-square error of an
+    // image is measured without a reference; four times the samples halve it.
+    const auto s = tracer::make_enclosure(real(16) / real(12));
+    std::vector<double> errors;
+    for (const int spp : {4, 16, 64}) {
+        auto options = path_options(16, 12, spp);
+        options.threads = 0;
+        const auto image = tracer::render(s, options);
+        double sum = 0;
+        for (const rgb& c : image.pixels) sum += double(glm::dot(c - rgb(5), c - rgb(5)));
+        errors.push_back(std::sqrt(sum / double(image.pixels.size())));
+    }
+    MESSAGE("rms error at 4, 16, 64 spp: ", errors[0], ", ", errors[1], ", ", errors[2]);
+    CHECK(errors[0] / errors[1] == doctest::Approx(2).epsilon(0.2));
+    CHECK(errors[1] / errors[2] == doctest::Approx(2).epsilon(0.2));
 }
