@@ -195,11 +195,16 @@ private:
     [[nodiscard]] vec3<T> sample_h(const vec2<T>& u, const frame<T>& fr) const noexcept {
         // u.x picks the quadrant (its integer part after scaling by 4) and the position
         // within it (the fraction), where the paper's formula gives phi in [0, pi/2).
+        // tan(phi_q) = scale tan(pi/2 t) = scale sin / cos, so (cos, sin)(phi_q) is
+        // (cos, scale sin)(pi/2 t) normalised: no tangent, arctangent or division by a
+        // cosine that reaches 0.
         const T u4 = T(4) * u.x;
         const T quadrant = glm::min(std::floor(u4), T(3));
-        const T phi_q = std::atan(phi_scale_ * std::tan(T(0.5) * pi<T> * (u4 - quadrant)));
-        const T cos_phi_q = std::cos(phi_q);
-        const T sin_phi_q = std::sin(phi_q);
+        const detail::sin_cos<T> sc = detail::sin_cos_half_pi(u4 - quadrant);
+        const T y_q = phi_scale_ * sc.sin;
+        const T inv_len = T(1) / std::sqrt(sc.cos * sc.cos + y_q * y_q);
+        const T cos_phi_q = sc.cos * inv_len;
+        const T sin_phi_q = y_q * inv_len;
         const T exponent = p_u_ * cos_phi_q * cos_phi_q + p_v_ * sin_phi_q * sin_phi_q;
         const polar_cosines<T> c = power_cosine_polar(u.y, exponent);
         // Quadrants 1 and 2 mirror x (phi = pi - phi_q, pi + phi_q), 2 and 3 mirror y.

@@ -167,7 +167,9 @@ struct half_vector_cosine {
 /// (the two parts' albedos at normal incidence; P_s = 1/2 when both are 0), and pdf() is the
 /// mixture (1 - P_s) n·l / pi + P_s (s + 1)/(2 pi) cos^s jacobian. The part of the lobe
 /// below the surface is never returned (sample() gives nullopt there), so pdf integrates
-/// to at most 1 over the hemisphere.
+/// to at most 1 over the hemisphere. One gap: with shininess 0, Phong's lobe is k_s c also
+/// where r·v <= 0 (0^0 = 1) but the power cosine draws only r·l > 0, so with k_d = 0 those
+/// directions have f > 0 and pdf 0 (with k_d > 0 the cosine lobe covers them).
 template <std::floating_point T, class Form, class Cosine>
     requires power_lobe_form<Form, T> && lobe_cosine<Cosine, T>
 class power_lobe_brdf {
