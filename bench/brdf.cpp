@@ -1,10 +1,22 @@
-// BRDF evaluation: f(l, v, at) of every reflection model in shade/brdf, in float and
-// double, on the same 512 precomputed direction pairs (both above the surface, so no
-// model takes its early "below the horizon" exit). Includes the trig-based and the
-// trig-free Oren-Nayar evaluation, and Cook-Torrance with each distribution / masking
-// pair. See bench/support.hpp for names, counters and the callgrind mode.
+// BRDF evaluation and sampling of every reflection model in shade/brdf, in float and double.
+//
+//   brdf/<type>/<model>                      f(l, v) on 512 precomputed direction pairs (both
+//                                            above the surface, so no model takes its early
+//                                            "below the horizon" exit); baseline lambert.
+//   brdf_sampling/<type>/<model>/<variant>   the same model's f, sample(v, uc, u) and pdf(l, v)
+//                                            on the same pairs and 512 random (uc, u) (sample
+//                                            and pdf for the models that sample), and
+//                                            legacy_f: f of the model as it was before the
+//                                            sampling redesign (bench/legacy/, the same
+//                                            parameters); baseline f.
+//
+// The binary runs its benchmarks in random interleaved order (Google Benchmark's
+// --benchmark_enable_random_interleaving, switched on in main below unless given), so
+// that the ratios inside a group are not biased by the order in which they ran.
+// See bench/support.hpp for names, counters and the callgrind mode.
 
 #include <cstddef>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -21,6 +33,12 @@
 #include <shade/core/random.hpp>
 #include <shade/core/surface_point.hpp>
 
+#include "legacy/ashikhmin_shirley.hpp"
+#include "legacy/blinn_phong.hpp"
+#include "legacy/cook_torrance.hpp"
+#include "legacy/lambert.hpp"
+#include "legacy/oren_nayar.hpp"
+#include "legacy/phong.hpp"
 #include "support.hpp"
 
 namespace {
@@ -31,8 +49,10 @@ template <class T>
 using v3 = shade::vec3<T>;
 
 template <class T>
-struct directions {
+struct inputs {
     std::vector<v3<T>> l, v;
+    std::vector<T> uc;
+    std::vector<shade::vec2<T>> u;
     shade::surface_point<T> at;
 };
 
@@ -48,13 +68,17 @@ v3<T> random_upper(shade::rng& g) {
 }
 
 template <class T>
-const directions<T>& data() {
-    static const directions<T> d = [] {
+const inputs<T>& data() {
+    static const inputs<T> d = [] {
         shade::rng g(41);
-        directions<T> out;
+        inputs<T> out;
         for (std::size_t i = 0; i < pair_count; ++i) {
             out.l.push_back(random_upper<T>(g));
             out.v.push_back(random_upper<T>(g));
+        }
+        for (std::size_t i = 0; i < pair_count; ++i) {
+            out.uc.push_back(g.uniform<T>());
+            out.u.emplace_back(g.uniform<T>(), g.uniform<T>());
         }
         out.at = shade::surface_point<T>::at(v3<T>(0, 0, 0), v3<T>(0, 0, 1));
         return out;
@@ -63,10 +87,10 @@ const directions<T>& data() {
 }
 
 template <class B>
-void add_model(const std::string& group, const std::string& name, const B& model) {
+void add_f(const std::string& name, const B& model) {
     using T = typename B::scalar_type;
-    const directions<T>& d = data<T>();
-    shade_bench::add(group + name, double(pair_count), [&d, model] {
+    const inputs<T>& d = data<T>();
+    shade_bench::add(name, double(pair_count), [&d, model] {
         for (std::size_t i = 0; i < pair_count; ++i) {
             shade::rgb<T> f = model.f(d.l[i], d.v[i], d.at);
             benchmark::DoNotOptimize(f);
@@ -74,31 +98,73 @@ void add_model(const std::string& group, const std::string& name, const B& model
     });
 }
 
+template <class B>
+void add_sampling(const std::string& group, const B& model);
+
+// f of the new model under brdf/<type>/<name>, and f, sample, pdf (when it samples) of the
+// new model and f of the legacy one under brdf_sampling/<type>/<name>/.
+template <class B, class Legacy>
+void add_model(const std::string& type, const std::string& name, const B& model, const Legacy& legacy) {
+    add_f("brdf/" + type + "/" + name, model);
+    const std::string group = "brdf_sampling/" + type + "/" + name + "/";
+    add_f(group + "f", model);
+    add_f(group + "legacy_f", legacy);
+    if constexpr (shade::sampled_brdf<B>) add_sampling(group, model);
+}
+
+// sample(v, uc, u) and pdf(l, v) of `model` under group + "sample" and group + "pdf".
+template <class B>
+void add_sampling(const std::string& group, const B& model) {
+    using T = typename B::scalar_type;
+    const inputs<T>& d = data<T>();
+    shade_bench::add(group + "sample", double(pair_count), [&d, model] {
+        for (std::size_t i = 0; i < pair_count; ++i) {
+            auto s = model.sample(d.v[i], d.uc[i], d.u[i], d.at);
+            benchmark::DoNotOptimize(s);
+        }
+    });
+    shade_bench::add(group + "pdf", double(pair_count), [&d, model] {
+        for (std::size_t i = 0; i < pair_count; ++i) {
+            T p = model.pdf(d.l[i], d.v[i], d.at);
+            benchmark::DoNotOptimize(p);
+        }
+    });
+}
+
 template <class T>
-void register_all(const char* type) {
-    const std::string group = std::string("brdf/") + type + "/";
+void register_all(const std::string& type) {
+    namespace old = shade_legacy;
     const shade::rgb<T> k_d(T(0.5), T(0.4), T(0.3));
     const shade::rgb<T> k_s(T(0.04));
     const shade::rgb<T> f0(T(0.95), T(0.64), T(0.54));
-    add_model(group, "lambert", shade::lambert<T>(k_d));
-    add_model(group, "phong", shade::phong<T>(k_d, k_s, T(32)));
-    add_model(group, "blinn_phong", shade::blinn_phong<T>(k_d, k_s, T(32)));
-    add_model(group, "oren_nayar_trig", shade::oren_nayar_trig<T>(k_d, T(0.3)));
-    add_model(group, "oren_nayar_trig_free", shade::oren_nayar<T>(k_d, T(0.3)));
-    add_model(group, "ashikhmin_shirley", shade::ashikhmin_shirley<T>(k_d, k_s, T(10), T(100)));
+    add_model(type, "lambert", shade::lambert<T>(k_d), old::lambert<T>(k_d));
+    add_model(type, "phong", shade::phong<T>(k_d, k_s, T(32)), old::phong<T>(k_d, k_s, T(32)));
+    add_model(type, "blinn_phong", shade::blinn_phong<T>(k_d, k_s, T(32)), old::blinn_phong<T>(k_d, k_s, T(32)));
+    add_model(type, "oren_nayar_trig", shade::oren_nayar_trig<T>(k_d, T(0.3)), old::oren_nayar_trig<T>(k_d, T(0.3)));
+    add_model(type, "oren_nayar_trig_free", shade::oren_nayar<T>(k_d, T(0.3)), old::oren_nayar<T>(k_d, T(0.3)));
+    add_model(type, "ashikhmin_shirley", shade::ashikhmin_shirley<T>(k_d, k_s, T(10), T(100)),
+              old::ashikhmin_shirley<T>(k_d, k_s, T(10), T(100)));
     using shade::beckmann, shade::ggx, shade::schlick;
-    add_model(group, "cook_torrance_beckmann_v_groove",
-              shade::cook_torrance<beckmann<T>, schlick<T>, shade::v_groove<T>>(
-                  beckmann<T>(T(0.3)), schlick<T>(f0), shade::rgb<T>(1), k_d));
-    add_model(group, "cook_torrance_beckmann_smith",
+    add_model(type, "cook_torrance_beckmann_v_groove",
+              shade::cook_torrance<beckmann<T>, schlick<T>, shade::v_groove<T>>(beckmann<T>(T(0.3)), schlick<T>(f0),
+                                                                               shade::rgb<T>(1), k_d),
+              old::cook_torrance<old::beckmann<T>, old::schlick<T>, old::v_groove<T>>(
+                  old::beckmann<T>(T(0.3)), old::schlick<T>(f0), shade::rgb<T>(1), k_d));
+    add_model(type, "cook_torrance_beckmann_smith",
               shade::cook_torrance<beckmann<T>, schlick<T>, shade::smith_beckmann<T>>(
-                  beckmann<T>(T(0.3)), schlick<T>(f0), shade::rgb<T>(1), k_d));
-    add_model(group, "cook_torrance_ggx_v_groove",
-              shade::cook_torrance<ggx<T>, schlick<T>, shade::v_groove<T>>(
-                  ggx<T>(T(0.3)), schlick<T>(f0), shade::rgb<T>(1), k_d));
-    add_model(group, "cook_torrance_ggx_smith",
-              shade::cook_torrance<ggx<T>, schlick<T>, shade::smith_ggx<T>>(
-                  ggx<T>(T(0.3)), schlick<T>(f0), shade::rgb<T>(1), k_d));
+                  beckmann<T>(T(0.3)), schlick<T>(f0), shade::rgb<T>(1), k_d),
+              old::cook_torrance<old::beckmann<T>, old::schlick<T>, old::smith_beckmann<T>>(
+                  old::beckmann<T>(T(0.3)), old::schlick<T>(f0), shade::rgb<T>(1), k_d));
+    add_model(type, "cook_torrance_ggx_v_groove",
+              shade::cook_torrance<ggx<T>, schlick<T>, shade::v_groove<T>>(ggx<T>(T(0.3)), schlick<T>(f0),
+                                                                          shade::rgb<T>(1), k_d),
+              old::cook_torrance<old::ggx<T>, old::schlick<T>, old::v_groove<T>>(
+                  old::ggx<T>(T(0.3)), old::schlick<T>(f0), shade::rgb<T>(1), k_d));
+    add_model(type, "cook_torrance_ggx_smith",
+              shade::cook_torrance<ggx<T>, schlick<T>, shade::smith_ggx<T>>(ggx<T>(T(0.3)), schlick<T>(f0),
+                                                                           shade::rgb<T>(1), k_d),
+              old::cook_torrance<old::ggx<T>, old::schlick<T>, old::smith_ggx<T>>(
+                  old::ggx<T>(T(0.3)), old::schlick<T>(f0), shade::rgb<T>(1), k_d));
 }
 
 const bool registered = [] {
@@ -108,3 +174,20 @@ const bool registered = [] {
 }();
 
 } // namespace
+
+// Google Benchmark's main with random interleaving switched on unless the command line
+// sets it: every repetition of every benchmark runs as its own instance, in random order.
+int main(int argc, char** argv) {
+    std::vector<char*> args(argv, argv + argc);
+    static char interleave[] = "--benchmark_enable_random_interleaving=true";
+    bool given = false;
+    for (int i = 1; i < argc; ++i)
+        given = given || std::strncmp(argv[i], "--benchmark_enable_random_interleaving", 38) == 0;
+    if (!given) args.insert(args.begin() + 1, interleave);
+    int n = static_cast<int>(args.size());
+    benchmark::Initialize(&n, args.data());
+    if (benchmark::ReportUnrecognizedArguments(n, args.data())) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

@@ -1,0 +1,147 @@
+#pragma once
+// Fresnel terms F of the microfacet models: Schlick's approximation and the exact
+// unpolarized Fresnel reflectance of a dielectric interface. Each exists as a function
+// (F_schlick, F_dielectric) and as a small term type (schlick<T>, dielectric_fresnel<T>)
+// for shade::cook_torrance and shade::ashikhmin_shirley.
+//
+// The argument cos_theta is the cosine between the incident direction and the normal of
+// the reflecting (micro)facet, e.g. l·h = v·h in a microfacet model.
+
+#include <algorithm>
+#include <cmath>
+#include <concepts>
+#include <limits>
+
+#include <shade/brdf/brdf.hpp>
+#include <shade/core/error.hpp>
+#include <shade/core/math.hpp>
+#include <shade/core/types.hpp>
+#include "namespace.hpp"
+
+namespace shade_legacy {
+
+/// Schlick's approximation of the Fresnel reflectance, per channel.
+///
+/// Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering", Computer
+/// Graphics Forum 13(3): 233-246 (the Fresnel approximation):
+///
+///     F(cos_theta) = f0 + (1 - f0) (1 - cos_theta)^5
+///
+/// Returns the reflectance (dimensionless, in [f0, 1] per channel for f0 in [0, 1]);
+/// F(1) = f0 (normal incidence), F(0) = 1 (grazing). cos_theta is clamped to [0, 1] (a
+/// cosine slightly outside by rounding would otherwise push F outside [f0, 1]).
+template <std::floating_point T>
+[[nodiscard]] constexpr rgb<T> F_schlick(const rgb<T>& f0, T cos_theta) noexcept {
+    const T c = std::clamp(cos_theta, T(0), T(1));
+    const T m = T(1) - c;
+    const T m2 = m * m;
+    const T m5 = m2 * m2 * m;
+    return f0 + (rgb<T>(1) - f0) * m5;
+}
+
+/// Reflectance at normal incidence of an interface with relative index of refraction
+/// eta = eta_t / eta_i: ((eta - 1)/(eta + 1))^2 (e.g. 0.04 for glass, eta = 1.5). The
+/// usual way to get Schlick's f0 for a dielectric.
+template <std::floating_point T>
+[[nodiscard]] constexpr T f0_from_ior(T eta) noexcept {
+    return sqr((eta - T(1)) / (eta + T(1)));
+}
+
+/// The exact Fresnel reflectance of a dielectric interface for unpolarized light.
+///
+/// Cook, Torrance 1982, "A Reflectance Model for Computer Graphics", ACM ToG 1(1): 7-24
+/// (the Fresnel equation in the form they give it), also Walter, Marschner, Li, Torrance
+/// 2007, "Microfacet Models for Refraction through Rough Surfaces", EGSR, eq. 22:
+///
+///     g = sqrt(eta^2 - 1 + c^2),   c = cos_theta
+///     F = 1/2 (g - c)^2/(g + c)^2 (1 + (c (g + c) - 1)^2 / (c (g - c) + 1)^2)
+///
+/// which is the average of the s- and p-polarized reflectances. eta = eta_t / eta_i is
+/// the relative index of refraction (transmitted side over incident side), > 0; eta < 1
+/// means light arrives from the denser medium, and when eta^2 - 1 + c^2 < 0 it is totally
+/// internally reflected: F = 1. Returns the reflectance in [0, 1]; F(1) = f0_from_ior(eta).
+/// cos_theta is clamped to [0, 1] (see F_schlick). eta = 1 (no interface) returns 0, also
+/// at c = 0 where the formula would be 0/0.
+template <std::floating_point T>
+[[nodiscard]] inline T F_dielectric(T cos_theta, T eta) noexcept {
+    const T c = std::clamp(cos_theta, T(0), T(1));
+    const T g2 = eta * eta - T(1) + c * c;
+    if (g2 < T(0)) return T(1); // total internal reflection
+    // eta^2 overflows for a huge (valid, finite) eta, e.g. 1e20 in float: then g = inf and
+    // a = inf/inf = NaN. F tends to 1 as eta -> inf at every angle (a -> 1, b^2 -> 1).
+    if (!(g2 <= std::numeric_limits<T>::max())) return T(1);
+    const T g = std::sqrt(g2);
+    const T g_plus_c = g + c;
+    if (!(g_plus_c > T(0))) return T(0); // g = c = 0 only when eta = 1: no interface
+    const T g_minus_c = g - c;
+    const T a = g_minus_c / g_plus_c;
+    // c (g - c) + 1 > 0: for eta > 1, g > c; for eta < 1 without TIR, c (c - g) < c^2 <= 1.
+    // In floating point it is 0 at c = 1 when eta^2 is lost in eta^2 - 1 + c^2 (g = 0;
+    // eta < ~2e-4 in float): numerator and denominator then both equal g in exact
+    // arithmetic, so b takes its limit 1 instead of 0/0 = NaN.
+    const T denominator = c * g_minus_c + T(1);
+    const T b = denominator > T(0) ? (c * g_plus_c - T(1)) / denominator : T(1);
+    return std::min(T(0.5) * a * a * (T(1) + b * b), T(1));
+}
+
+/// Fresnel term type: Schlick's approximation with per-channel f0 (see F_schlick).
+template <std::floating_point T>
+class schlick {
+public:
+    using scalar_type = T;
+
+    /// Throws shade::invalid_parameter naming "f0" unless every channel is in [0, 1].
+    explicit schlick(const rgb<T>& f0) : f0_(require_in_range("f0", f0, T(0), T(1))) {}
+
+    /// Unchecked: the caller guarantees f0 in [0, 1] per channel.
+    constexpr schlick(unchecked_t, const rgb<T>& f0) noexcept : f0_(f0) {}
+
+    /// Schlick's f0 for a dielectric of relative index of refraction eta (see
+    /// f0_from_ior). Throws shade::invalid_parameter naming "eta" unless eta is finite and
+    /// > 0.
+    [[nodiscard]] static schlick from_ior(T eta) {
+        return schlick(unchecked, rgb<T>(f0_from_ior(require_positive("eta", eta))));
+    }
+
+    /// Reflectance at normal incidence.
+    [[nodiscard]] constexpr const rgb<T>& f0() const noexcept { return f0_; }
+
+    /// F(cos_theta) per channel, dimensionless, in [f0, 1].
+    [[nodiscard]] constexpr rgb<T> F(T cos_theta) const noexcept { return F_schlick(f0_, cos_theta); }
+
+private:
+    rgb<T> f0_;
+};
+
+/// Fresnel term type: the exact unpolarized dielectric Fresnel reflectance (see
+/// F_dielectric), the same in every channel.
+template <std::floating_point T>
+class dielectric_fresnel {
+public:
+    using scalar_type = T;
+
+    /// eta = eta_t / eta_i. Throws shade::invalid_parameter naming "eta" unless eta is
+    /// finite and > 0.
+    explicit dielectric_fresnel(T eta) : eta_(require_positive("eta", eta)) {}
+
+    /// Unchecked: the caller guarantees eta finite and > 0.
+    constexpr dielectric_fresnel(unchecked_t, T eta) noexcept : eta_(eta) {}
+
+    /// The relative index of refraction eta_t / eta_i.
+    [[nodiscard]] constexpr T eta() const noexcept { return eta_; }
+
+    /// F(cos_theta), dimensionless, in [0, 1], as a grey colour.
+    [[nodiscard]] rgb<T> F(T cos_theta) const noexcept { return rgb<T>(F_dielectric(cos_theta, eta_)); }
+
+private:
+    T eta_;
+};
+
+/// X is a Fresnel term over scalar T: `x.F(cos_theta)` returns the reflectance as rgb<T>,
+/// each channel in [0, 1].
+template <class X, class T>
+concept fresnel_term = std::floating_point<T> && requires(const X& x, T c) {
+    { x.F(c) } -> std::same_as<rgb<T>>;
+};
+
+} // namespace shade_legacy
