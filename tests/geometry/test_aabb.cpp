@@ -11,6 +11,7 @@
 
 #include <shade/core/random.hpp>
 #include <shade/geometry/aabb.hpp>
+#include <shade/geometry/bvh.hpp> // bounds(triangle), bounds(sphere)
 
 namespace {
 

@@ -4,7 +4,8 @@
 //
 // Usage:
 //     shade::aabb<float> box;                        // empty
-//     box.grow(p); box.grow(shade::bounds(tri));     // any points, triangles, spheres
+//     box.grow(p); box.grow(other_box);              // points and boxes
+//     // shade::bounds(triangle) and bounds(sphere): shade/geometry/bvh.hpp
 //     if (auto span = shade::intersect(r, box))      // where r is inside the box
 //         use(span->t_enter, span->t_exit);
 //
@@ -12,7 +13,6 @@
 // that the exact ray touches, so an exact primitive test behind it (shade::watertight)
 // loses nothing to the boxes.
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <limits>
@@ -23,8 +23,6 @@
 #include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
 #include <shade/geometry/ray.hpp>
-#include <shade/geometry/sphere.hpp>
-#include <shade/geometry/triangle.hpp>
 
 namespace shade {
 
@@ -72,28 +70,6 @@ struct aabb {
         return T(2) * (e.x * e.y + e.y * e.z + e.z * e.x);
     }
 };
-
-/// The bounds of a triangle: the smallest box holding its three vertices.
-template <std::floating_point T>
-[[nodiscard]] aabb<T> bounds(const triangle<T>& tri) noexcept {
-    return aabb<T>{glm::min(tri.v0, glm::min(tri.v1, tri.v2)),
-                   glm::max(tri.v0, glm::max(tri.v1, tri.v2))};
-}
-
-/// The bounds of a sphere: center ± radius on every axis, each rounded outward (one step
-/// toward infinity), so the box holds the exact sphere although c ± r is rounded.
-template <std::floating_point T>
-[[nodiscard]] aabb<T> bounds(const sphere<T>& s) noexcept {
-    const vec3<T> r(s.radius());
-    const vec3<T> lo = s.center() - r;
-    const vec3<T> hi = s.center() + r;
-    aabb<T> box;
-    for (int k = 0; k < 3; ++k) {
-        box.lo[k] = std::nextafter(lo[k], -infinity<T>);
-        box.hi[k] = std::nextafter(hi[k], infinity<T>);
-    }
-    return box;
-}
 
 /// The part of a ray inside a box: t from t_enter to t_exit (ray parameters, in units of
 /// the ray's direction), already clipped to the ray's [t_min, t_max].

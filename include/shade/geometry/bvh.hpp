@@ -41,8 +41,32 @@
 #include <shade/geometry/detail/bvh_build.hpp>
 #include <shade/geometry/detail/bvh_traverse.hpp>
 #include <shade/geometry/ray.hpp>
+#include <shade/geometry/sphere.hpp>
+#include <shade/geometry/triangle.hpp>
 
 namespace shade {
+
+/// The bounds of a triangle: the smallest box holding its three vertices.
+template <std::floating_point T>
+[[nodiscard]] aabb<T> bounds(const triangle<T>& tri) noexcept {
+    return aabb<T>{glm::min(tri.v0, glm::min(tri.v1, tri.v2)),
+                   glm::max(tri.v0, glm::max(tri.v1, tri.v2))};
+}
+
+/// The bounds of a sphere: center ± radius on every axis, each rounded outward (one step
+/// toward infinity), so the box holds the exact sphere although c ± r is rounded.
+template <std::floating_point T>
+[[nodiscard]] aabb<T> bounds(const sphere<T>& s) noexcept {
+    const vec3<T> r(s.radius());
+    const vec3<T> lo = s.center() - r;
+    const vec3<T> hi = s.center() + r;
+    aabb<T> box;
+    for (int k = 0; k < 3; ++k) {
+        box.lo[k] = std::nextafter(lo[k], -infinity<T>);
+        box.hi[k] = std::nextafter(hi[k], infinity<T>);
+    }
+    return box;
+}
 
 /// The nearest hit found by a hierarchy: the primitive's index (its position in the
 /// span the hierarchy was built from) and the primitive test's record.
