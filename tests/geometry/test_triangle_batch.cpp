@@ -47,9 +47,11 @@ struct tally {
 
 // Compares every lane of batch against the scalar algorithm on the same triangle, and
 // intersect_closest against the nearest scalar hit (lowest lane on equal t).
-template <class T, std::size_t N>
+template <class T, std::size_t N, class Triangles>
 void check_against_scalar(const shade::ray<T>& r, const shade::triangle_batch<T, N>& batch,
+                          const Triangles& packed, // the triangles the batch holds, in lane order
                           shade::culling cull, tally& count) {
+    const std::span<const shade::triangle<T>> tris(packed);
     const auto all = shade::intersect(r, batch, cull);
     // Every form of the kernel must give the same bits as the one intersect chose here:
     // the portable one-lane-at-a-time kernel (compilers without GNU vector extensions),
@@ -80,7 +82,7 @@ void check_against_scalar(const shade::ray<T>& r, const shade::triangle_batch<T,
     std::optional<shade::triangle_hit<T>> nearest_hit;
     for (std::size_t i = 0; i < N; ++i) {
         std::optional<shade::triangle_hit<T>> h;
-        if (i < batch.size()) h = shade::intersect<shade::moller_trumbore>(r, batch.triangle_at(i), cull);
+        if (i < batch.size()) h = shade::intersect<shade::moller_trumbore>(r, tris[i], cull);
         ++count.lanes;
         REQUIRE(all.hit(i) == h.has_value());
         if (!h) {
@@ -98,7 +100,7 @@ void check_against_scalar(const shade::ray<T>& r, const shade::triangle_batch<T,
             nearest_hit = h;
         }
     }
-    const auto closest = shade::intersect_closest(r, batch, cull);
+    const auto closest = shade::intersect_closest(r, batch, tris, cull);
     REQUIRE(closest.has_value() == nearest.has_value());
     CHECK(all.closest() == nearest);
     if (!closest) return;
@@ -140,7 +142,7 @@ TEST_CASE_TEMPLATE("triangle_batch: known hit in one lane, misses and empty lane
     CHECK(all.b2[1] == T(0.25));
     CHECK(all.front_face(1));
     for (std::size_t i = 2; i < 8; ++i) CHECK_FALSE(all.hit(i));
-    const auto c = shade::intersect_closest(r, batch);
+    const auto c = shade::intersect_closest(r, batch, std::span<const shade::triangle<T>>(tris));
     REQUIRE(c.has_value());
     CHECK(c->index == 1);
     CHECK(c->hit.p == v3<T>(T(0.5), T(0.5), 0));
@@ -167,10 +169,11 @@ TEST_CASE_TEMPLATE("triangle_batch: packing validates the count and keeps the tr
     }
     const shade::triangle_batch<T, 16> wide{std::span<const shade::triangle<T>>(tris)};
     CHECK(wide.size() == 9);
-    const shade::triangle<T> back = wide.triangle_at(3);
-    CHECK(back.v0 == tris[3].v0);
-    CHECK(back.v1 == tris[3].v1);
-    CHECK(back.v2 == tris[3].v2);
+    // intersect_closest needs the packed triangles themselves, all of them.
+    const shade::ray<T> r{{0.25, 0.25, 1}, {0, 0, -1}};
+    const std::span<const shade::triangle<T>> packed(tris.data(), 9);
+    CHECK(shade::intersect_closest(r, wide, packed).has_value());
+    CHECK_THROWS_AS((void)shade::intersect_closest(r, wide, packed.first(8)), shade::invalid_parameter);
 }
 
 // Random triangles and rays, about half of them aimed inside a triangle of the batch, so
@@ -205,8 +208,8 @@ void random_batches(std::uint64_t seed, int rays_per_batch, int batches, tally& 
             }
             if (direction == v3<T>(0, 0, 0)) continue;
             for (const shade::culling cull : {shade::culling::none, shade::culling::back_faces}) {
-                check_against_scalar(shade::ray<T>{origin, direction}, batch, cull, count);
-                check_against_scalar(shade::ray<T>{origin, direction, T(0), T(1)}, batch, cull, count);
+                check_against_scalar(shade::ray<T>{origin, direction}, batch, tris, cull, count);
+                check_against_scalar(shade::ray<T>{origin, direction, T(0), T(1)}, batch, tris, cull, count);
             }
         }
     }
@@ -253,15 +256,15 @@ TEST_CASE_TEMPLATE("triangle_batch: bitwise equal to scalar on edges, vertices a
                         p[axis] = std::nextafter(p[axis], step > 0 ? inf<T> : -inf<T>);
                     const v3<T> direction = p - origin;
                     if (direction == v3<T>(0, 0, 0)) continue;
-                    check_against_scalar(shade::ray<T>{origin, direction}, batch,
+                    check_against_scalar(shade::ray<T>{origin, direction}, batch, tris,
                                          shade::culling::none, count);
                 }
             }
         }
         // Rays starting exactly on a vertex and on an edge midpoint (t = 0 hits).
-        check_against_scalar(shade::ray<T>{tri.v1, random_point(1)}, batch, shade::culling::none,
+        check_against_scalar(shade::ray<T>{tri.v1, random_point(1)}, batch, tris, shade::culling::none,
                              count);
-        check_against_scalar(shade::ray<T>{(tri.v0 + tri.v2) * T(0.5), random_point(1)}, batch,
+        check_against_scalar(shade::ray<T>{(tri.v0 + tri.v2) * T(0.5), random_point(1)}, batch, tris,
                              shade::culling::none, count);
     }
     MESSAGE("lanes compared: " << count.lanes << ", hits: " << count.hits);
@@ -288,10 +291,10 @@ TEST_CASE_TEMPLATE("triangle_batch: t_min and t_max bounds at the exact hit t", 
         if (!h) continue;
         const T t = h->t;
         ++bounded;
-        check_against_scalar(shade::ray<T>{origin, direction, t, t}, batch, shade::culling::none, count);
-        check_against_scalar(shade::ray<T>{origin, direction, std::nextafter(t, inf<T>), inf<T>}, batch,
+        check_against_scalar(shade::ray<T>{origin, direction, t, t}, batch, tris, shade::culling::none, count);
+        check_against_scalar(shade::ray<T>{origin, direction, std::nextafter(t, inf<T>), inf<T>}, batch, tris,
                              shade::culling::none, count);
-        check_against_scalar(shade::ray<T>{origin, direction, T(0), std::nextafter(t, T(0))}, batch,
+        check_against_scalar(shade::ray<T>{origin, direction, T(0), std::nextafter(t, T(0))}, batch, tris,
                              shade::culling::none, count);
         // Lane 0 itself: hit on the exact interval, missed just beyond either bound.
         CHECK(shade::intersect(shade::ray<T>{origin, direction, t, t}, batch).hit(0));
@@ -339,7 +342,7 @@ TEST_CASE_TEMPLATE("triangle_batch: degenerate, non-finite, tiny and huge triang
         rays.push_back({{unit(rng), unit(rng), T(10) * unit(rng)}, {unit(rng), unit(rng), unit(rng)}});
     for (const auto& r : rays)
         for (const shade::culling cull : {shade::culling::none, shade::culling::back_faces})
-            check_against_scalar(r, batch, cull, count);
+            check_against_scalar(r, batch, tris, cull, count);
     CHECK(count.hits > 10);
 
     // Rays from (max/2, y, z), |y|, |z| <= 1/2, to random points of the triangle in the
@@ -355,7 +358,7 @@ TEST_CASE_TEMPLATE("triangle_batch: degenerate, non-finite, tiny and huge triang
         const T b1 = T(0.5) * unit01(rng), b2 = T(0.5) * unit01(rng);
         const v3<T> origin(max / 2, unit(rng) / 2, unit(rng) / 2);
         const shade::ray<T> r{origin, v3<T>(max, b1, b2) - origin};
-        check_against_scalar(r, batch, shade::culling::none, count);
+        check_against_scalar(r, batch, tris, shade::culling::none, count);
         REQUIRE(shade::intersect(r, batch).hit(5));
         const auto h = shade::intersect(r, tris[5]);
         REQUIRE(h.has_value());
@@ -379,7 +382,7 @@ TEST_CASE_TEMPLATE("triangle_batch: degenerate, non-finite, tiny and huge triang
         const shade::triangle_batch<T, 8> one(huge);
         for (const T z0 : {T(1), T(-1)}) {
             const shade::ray<T> r{{1, 1, z0}, {0, 0, -z0 * T(1e10)}};
-            check_against_scalar(r, one, shade::culling::none, count);
+            check_against_scalar(r, one, huge, shade::culling::none, count);
             CHECK_FALSE(shade::intersect(r, one).hit(0));
         }
     }

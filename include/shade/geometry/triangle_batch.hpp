@@ -6,7 +6,7 @@
 //     std::array<shade::triangle<float>, 8> tris = ...;
 //     const shade::triangle_batch<float, 8> batch(tris);       // pack once
 //     const auto all = shade::intersect(r, batch);              // every lane: hit, t, b
-//     if (auto c = shade::intersect_closest(r, batch))          // nearest lane, full record
+//     if (auto c = shade::intersect_closest(r, batch, tris))    // nearest lane, full record
 //         use(c->index, c->hit.t, c->hit.p, c->hit.n);
 //
 // Results are bitwise identical to the scalar shade::moller_trumbore (shade/geometry/
@@ -63,11 +63,14 @@ namespace shade {
 /// never hit. Degenerate or non-finite triangles may be packed; like the scalar test they
 /// never hit.
 ///
-/// Storage: the hot arrays v0, a = v0 - v1, e2 = v2 - v0 and m = a × e2 (12 N scalars)
-/// are read by every intersection; v1 and v2 (6 N scalars) only by triangle_at and
-/// intersect_closest. The class is over-aligned (up to 64 bytes, see
-/// detail::batch_array_alignment) so that the kernel's vector loads stay within cache
-/// lines; std::vector and new handle that since C++17.
+/// Storage: only what every intersection reads, contiguous: the arrays v0, a = v0 - v1,
+/// e2 = v2 - v0 and m = a × e2, 12 N scalars (48 bytes per triangle in float, 96 in
+/// double) and the count. The vertices v1 and v2, which only a full hit record needs, are
+/// not copied: the caller keeps its triangles and passes them to intersect_closest (so an
+/// array of batches, such as the leaves of shade::triangle_bvh, streams nothing else).
+/// The class is over-aligned (up to 64 bytes, see detail::batch_array_alignment) so that
+/// the kernel's vector loads stay within cache lines; std::vector and new handle that
+/// since C++17.
 template <std::floating_point T, std::size_t N = 8>
 class alignas(detail::batch_array_alignment<T, N>()) triangle_batch {
     static_assert(N > 0, "a triangle batch needs at least one lane");
@@ -98,18 +101,11 @@ public:
             set(a_, i, a);
             set(e2_, i, e2);
             set(m_, i, glm::cross(a, e2));
-            set(v1_, i, tri.v1);
-            set(v2_, i, tri.v2);
         }
     }
 
     /// Number of packed triangles (lanes 0 .. size()-1).
     [[nodiscard]] std::size_t size() const noexcept { return count_; }
-
-    /// The triangle in lane i, as packed. Precondition: i < size().
-    [[nodiscard]] triangle<T> triangle_at(std::size_t i) const noexcept {
-        return triangle<T>{get(v0_, i), get(v1_, i), get(v2_, i)};
-    }
 
 private:
     using lanes = std::array<T, N>;
@@ -122,12 +118,8 @@ private:
         a.y[i] = v.y;
         a.z[i] = v.z;
     }
-    static vec3<T> get(const soa3& a, std::size_t i) noexcept {
-        return vec3<T>(a.x[i], a.y[i], a.z[i]);
-    }
 
-    soa3 v0_, a_, e2_, m_; // hot; empty lanes are all zero, so their det is 0: no hit
-    soa3 v1_, v2_;          // cold: triangle_at and hit points only
+    soa3 v0_, a_, e2_, m_; // empty lanes are all zero, so their det is 0: no hit
     std::size_t count_ = 0;
 
     template <std::floating_point U, std::size_t M>
@@ -183,7 +175,7 @@ struct triangle_batch_hits {
 };
 
 /// The nearest hit in a triangle_batch: its lane and the full hit record, equal bit for
-/// bit to shade::intersect<moller_trumbore>(ray, batch.triangle_at(index), culling).
+/// bit to shade::intersect<moller_trumbore>(ray, triangle of that lane, culling).
 template <std::floating_point T>
 struct batch_hit {
     std::size_t index = 0; ///< lane of the nearest triangle hit
@@ -254,18 +246,27 @@ template <std::floating_point T, std::size_t N>
 
 /// The nearest hit of r among the lanes of batch (the lowest lane on equal t), with the
 /// full hit record exactly as shade::intersect<moller_trumbore> returns it for that
-/// triangle, or nothing when no lane is hit.
+/// triangle, or nothing when no lane is hit. triangles are the ones the batch was packed
+/// from, in lane order (the batch keeps only what the test reads; the record needs the
+/// vertices). Throws shade::invalid_parameter naming "triangles" when their number is
+/// not batch.size().
 template <std::floating_point T, std::size_t N>
 [[nodiscard]] std::optional<batch_hit<T>> intersect_closest(const ray<T>& r,
                                                             const triangle_batch<T, N>& batch,
-                                                            culling cull = culling::none) noexcept {
+                                                            std::span<const triangle<T>> triangles,
+                                                            culling cull = culling::none) {
+    if (triangles.size() != batch.size())
+        throw invalid_parameter("triangles",
+                                "must be the " + std::to_string(batch.size()) +
+                                    " triangles the batch was packed from",
+                                std::to_string(triangles.size()) + " triangles");
     const triangle_batch_hits<T, N> all = intersect(r, batch, cull);
     const std::optional<std::size_t> best = all.closest();
     if (!best) return std::nullopt;
     const std::size_t i = *best;
     const triangle_intersection<T> x{all.t[i], vec3<T>(all.b0[i], all.b1[i], all.b2[i]),
                                      all.front_face(i)};
-    return batch_hit<T>{i, make_hit(batch.triangle_at(i), x)};
+    return batch_hit<T>{i, make_hit(triangles[i], x)};
 }
 
 } // namespace shade
