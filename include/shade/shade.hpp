@@ -34,6 +34,7 @@
 #include <shade/brdf/cook_torrance.hpp>
 #include <shade/brdf/fresnel.hpp>
 #include <shade/brdf/lambert.hpp>
+#include <shade/brdf/metals.hpp>
 #include <shade/brdf/microfacet.hpp>
 #include <shade/brdf/oren_nayar.hpp>
 #include <shade/brdf/phong.hpp>

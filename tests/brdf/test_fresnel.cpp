@@ -1,6 +1,7 @@
 #include <cmath>
-
+#include <complex>
 #include <limits>
+#include <utility>
 
 #include <doctest/doctest.h>
 
@@ -110,4 +111,105 @@ TEST_CASE_TEMPLATE("fresnel terms: invalid parameters throw naming the parameter
     check_throws_naming([] { (void)shade::dielectric_fresnel<T>(T(-1.5)); }, "eta");
     check_throws_naming([] { (void)shade::dielectric_fresnel<T>(std::numeric_limits<T>::quiet_NaN()); }, "eta");
     CHECK_NOTHROW((void)shade::dielectric_fresnel<T>(shade::unchecked, T(-1)));
+}
+
+// ---------------------------------------------------------------------------------------
+// Conductor Fresnel.
+
+namespace {
+
+// The unpolarized conductor reflectance computed directly in complex long double
+// arithmetic (Born & Wolf: r_s = (c - eta_c cos_t)/(c + eta_c cos_t),
+// r_p = (eta_c c - cos_t)/(eta_c c + cos_t), cos_t = sqrt(1 - s^2/eta_c^2)): an
+// independent reference for the real-arithmetic form of F_conductor.
+long double conductor_reference(long double c, long double eta, long double kappa) {
+    const std::complex<long double> n(eta, kappa);
+    const long double s2 = 1.0L - c * c;
+    const std::complex<long double> cos_t = std::sqrt(1.0L - s2 / (n * n));
+    const std::complex<long double> rs = (c - n * cos_t) / (c + n * cos_t);
+    const std::complex<long double> rp = (n * c - cos_t) / (n * c + cos_t);
+    return (std::norm(rs) + std::norm(rp)) / 2.0L;
+}
+
+} // namespace
+
+TEST_CASE_TEMPLATE("F_conductor: normal incidence ((eta - 1)^2 + kappa^2) / ((eta + 1)^2 + kappa^2)", T, float, double) {
+    // At c = 1, s = 0: Snell gives cos_t = 1, so r_s = (1 - eta_c)/(1 + eta_c) and
+    // r_p = (eta_c - 1)/(eta_c + 1); |1 - eta_c|^2 = (1 - eta)^2 + kappa^2 and
+    // |1 + eta_c|^2 = (1 + eta)^2 + kappa^2, the same for both polarizations.
+    for (const auto& parameters : {std::pair{T(0.14), T(3.697)}, std::pair{T(1.5), T(0)}, std::pair{T(0.05), T(4.483)},
+                                     std::pair{T(2), T(1)}, std::pair{T(1e-4), T(1e4)}, std::pair{T(1e4), T(0)}}) {
+        const auto eta = parameters.first;
+        const auto kappa = parameters.second;
+        CAPTURE(eta);
+        CAPTURE(kappa);
+        const T expected = ((eta - 1) * (eta - 1) + kappa * kappa) / ((eta + 1) * (eta + 1) + kappa * kappa);
+        CHECK(close(shade::F_conductor(T(1), eta, kappa), expected, T(10) * tol<T>));
+    }
+    // Gold's red channel (0.14 + 3.697i): (0.86^2 + 3.697^2)/(1.14^2 + 3.697^2) =
+    // 14.407409/14.967409 = 0.96258537...
+    CHECK(close(shade::F_conductor(T(1), T(0.14), T(3.697)), T(0.9625853746630428), T(10) * tol<T>));
+}
+
+TEST_CASE_TEMPLATE("F_conductor: F -> 1 at grazing", T, float, double) {
+    // c = 0: r_s = -w/w = -1 and r_p = -w/w = -1.
+    for (const auto& parameters : {std::pair{T(0.14), T(3.697)}, std::pair{T(1.5), T(0)}, std::pair{T(1.02), T(2.577)}}) {
+        const auto eta = parameters.first;
+        const auto kappa = parameters.second;
+        CHECK(close(shade::F_conductor(T(0), eta, kappa), T(1), T(10) * tol<T>));
+        T previous = shade::F_conductor(T(0.05), eta, kappa);
+        for (const T c : {T(1e-2), T(1e-3), T(1e-5)}) {
+            const T f = shade::F_conductor(c, eta, kappa);
+            CHECK(f >= previous); // increasing toward grazing below 0.05
+            previous = f;
+        }
+        CHECK(previous > T(0.999));
+    }
+}
+
+TEST_CASE_TEMPLATE("F_conductor: kappa = 0 is the dielectric Fresnel", T, float, double) {
+    for (const T eta : {T(1.5), T(1.33), T(2.4), T(0.67), T(1)}) {
+        for (int i = 0; i <= 50; ++i) {
+            const T c = T(i) / T(50);
+            CAPTURE(eta);
+            CAPTURE(c);
+            const T dielectric = shade::F_dielectric(c, eta);
+            CHECK(std::abs(shade::F_conductor(c, eta, T(0)) - dielectric) <= T(100) * tol<T> * std::max(dielectric, T(1e-3)));
+        }
+    }
+}
+
+TEST_CASE_TEMPLATE("F_conductor: agrees with a complex long double reference (1e-4 float, 1e-9 double)", T, float, double) {
+    const T rel = sizeof(T) <= 4 ? T(1e-4) : T(1e-9);
+    for (const auto& parameters : {std::pair{T(0.14), T(3.697)}, std::pair{T(0.05), T(4.483)}, std::pair{T(1.38), T(1.914)},
+                                     std::pair{T(1.4665), T(7.5603)}, std::pair{T(3), T(0.1)}, std::pair{T(0.5), T(0.01)},
+                                     std::pair{T(1e-4), T(2)}, std::pair{T(100), T(300)}}) {
+        const auto eta = parameters.first;
+        const auto kappa = parameters.second;
+        for (const T c : {T(1), T(0.9), T(0.5), T(0.2), T(0.05), T(1e-3)}) {
+            CAPTURE(eta);
+            CAPTURE(kappa);
+            CAPTURE(c);
+            const long double reference = conductor_reference(c, eta, kappa);
+            const T f = shade::F_conductor(c, eta, kappa);
+            CHECK(std::abs(f - reference) <= rel * reference);
+            CHECK(f >= T(0));
+            CHECK(f <= T(1));
+        }
+    }
+}
+
+TEST_CASE_TEMPLATE("conductor_fresnel: per channel, f0, validation", T, float, double) {
+    static_assert(shade::fresnel_term<shade::conductor_fresnel<T>, T>);
+    const shade::conductor_fresnel<T> f(rgb<T>(T(0.14), T(1.5), T(2)), rgb<T>(T(3.697), T(0), T(1)));
+    const rgb<T> at_60 = f.F(T(0.5));
+    CHECK(at_60.x == shade::F_conductor(T(0.5), T(0.14), T(3.697)));
+    CHECK(at_60.y == shade::F_conductor(T(0.5), T(1.5), T(0)));
+    CHECK(at_60.z == shade::F_conductor(T(0.5), T(2), T(1)));
+    // f0 = F(1): 0.96258537..., 0.04 (glass), (1 + 1)/(9 + 1) = 0.2.
+    CHECK(close(f.f0(), rgb<T>(T(0.9625853746630428), T(0.04), T(0.2)), T(10) * tol<T>));
+    check_throws_naming([] { (void)shade::conductor_fresnel<T>(rgb<T>(T(0)), rgb<T>(T(1))); }, "eta");
+    check_throws_naming([] { (void)shade::conductor_fresnel<T>(rgb<T>(T(1), T(2e4), T(1)), rgb<T>(T(1))); }, "eta");
+    check_throws_naming([] { (void)shade::conductor_fresnel<T>(rgb<T>(T(1)), rgb<T>(T(1), T(-1), T(1))); }, "kappa");
+    check_throws_naming([] { (void)shade::conductor_fresnel<T>(rgb<T>(T(1)), rgb<T>(std::numeric_limits<T>::quiet_NaN())); }, "kappa");
 }

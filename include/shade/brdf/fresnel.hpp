@@ -1,8 +1,9 @@
 #pragma once
 // Fresnel terms F of the microfacet models: Schlick's approximation and the exact
-// unpolarized Fresnel reflectance of a dielectric interface. Each exists as a function
-// (F_schlick, F_dielectric) and as a small term type (schlick<T>, dielectric_fresnel<T>)
-// for shade::cook_torrance and shade::ashikhmin_shirley.
+// unpolarized Fresnel reflectance of a dielectric interface and of a conductor (complex
+// index of refraction). Each exists as a function (F_schlick, F_dielectric, F_conductor)
+// and as a small term type (schlick<T>, dielectric_fresnel<T>, conductor_fresnel<T>) for
+// shade::cook_torrance and shade::ashikhmin_shirley. Measured metals: shade/brdf/metals.hpp.
 //
 // The argument cos_theta is the cosine between the incident direction and the normal of
 // the reflecting (micro)facet, e.g. l·h = v·h in a microfacet model.
@@ -84,6 +85,61 @@ template <std::floating_point T>
     return glm::min(T(0.5) * a * a * (T(1) + b * b), T(1));
 }
 
+/// The exact Fresnel reflectance of a conductor (complex index of refraction) for
+/// unpolarized light.
+///
+/// Born, Wolf 1999, "Principles of Optics", 7th ed., sec. 14.2 (reflection at an absorbing
+/// medium: Snell's law and the Fresnel coefficients hold with the complex index
+/// eta_c = eta + i kappa); the same closed form as Pharr, Jakob, Humphreys 2023, "Physically
+/// Based Rendering", 4th ed., sec. 9.3.6. With c = cos_theta and s^2 = 1 - c^2 of the
+/// incident direction, Snell's law gives eta_c cos(theta_t) = w = sqrt(eta_c^2 - s^2), and
+///
+///     r_s = (c - w) / (c + w),          r_p = (eta_c^2 c - w) / (eta_c^2 c + w)
+///     F   = (|r_s|^2 + |r_p|^2) / 2
+///
+/// (r_p is (eta_c c - cos(theta_t)) / (eta_c c + cos(theta_t)) multiplied through by
+/// eta_c). With eta_c^2 = A + i B (A = eta^2 - kappa^2, B = 2 eta kappa) and w = a + i b
+/// (the root with a >= 0; b >= 0 since B >= 0), in real arithmetic:
+///
+///     |r_s|^2 = ((c - a)^2 + b^2) / ((c + a)^2 + b^2)
+///     |r_p|^2 = ((A c - a)^2 + (B c - b)^2) / ((A c + a)^2 + (B c + b)^2)
+///
+/// At normal incidence (c = 1, w = eta_c) both are ((eta - 1)^2 + kappa^2) /
+/// ((eta + 1)^2 + kappa^2); at grazing (c = 0) both are 1; with kappa = 0 this is the
+/// dielectric Fresnel of F_dielectric (w real, or w = i b under total internal reflection,
+/// where |r_s| = |r_p| = 1). w is the square root of z = A - s^2 + i B taken in the stable
+/// form (Re z >= 0: a = sqrt((|z| + Re z)/2), b = B/(2a); Re z < 0: b = sqrt((|z| - Re z)/2),
+/// a = B/(2b)), which does not cancel when A - s^2 is large and negative (metals: kappa > eta).
+///
+/// cos_theta is clamped to [0, 1]; eta > 0 and kappa >= 0 are the real and imaginary parts
+/// of the conductor's index relative to the incident medium (eta in [1e-4, 1e4], kappa in
+/// [0, 1e4], as conductor_fresnel validates). Returns the reflectance in [0, 1].
+/// eta = 1, kappa = 0 at c = 0 (no interface, 0/0) returns 0, as F_dielectric does.
+template <std::floating_point T>
+[[nodiscard]] inline T F_conductor(T cos_theta, T eta, T kappa) noexcept {
+    const T c = glm::clamp(cos_theta, T(0), T(1));
+    const T s2 = (T(1) - c) * (T(1) + c);
+    const T A = (eta - kappa) * (eta + kappa);
+    const T B = T(2) * eta * kappa;
+    const T re = A - s2;
+    const T modulus = std::hypot(re, B);
+    T a;
+    T b;
+    if (re >= T(0)) {
+        a = std::sqrt(T(0.5) * (modulus + re));
+        b = a > T(0) ? B / (T(2) * a) : T(0);
+    } else {
+        b = std::sqrt(T(0.5) * (modulus - re));
+        a = B / (T(2) * b);
+    }
+    const T rs_den = sqr(c + a) + b * b;
+    if (!(rs_den > T(0))) return T(0); // c = a = b = 0: eta_c = 1 at grazing, no interface
+    const T rs = (sqr(c - a) + b * b) / rs_den;
+    const T rp_den = sqr(A * c + a) + sqr(B * c + b);
+    const T rp = rp_den > T(0) ? (sqr(A * c - a) + sqr(B * c - b)) / rp_den : rs;
+    return glm::min(T(0.5) * (rs + rp), T(1));
+}
+
 /// Fresnel term type: Schlick's approximation with per-channel f0 (see F_schlick).
 template <std::floating_point T>
 class schlick {
@@ -135,6 +191,53 @@ public:
 
 private:
     T eta_;
+};
+
+/// Largest accepted eta and kappa of a conductor: 1e4 (keeps every intermediate of
+/// F_conductor, up to (eta^2 + kappa^2)^2 ~ 4e16, finite in float).
+template <std::floating_point T>
+inline constexpr T conductor_index_max = T(1e4);
+
+/// Smallest accepted eta of a conductor: 1e-4 (eta^2 = 1e-8 stays a normal float, so the
+/// reflectance at normal incidence keeps its precision; measured metals in the visible
+/// have eta >= 0.03).
+template <std::floating_point T>
+inline constexpr T conductor_eta_min = T(1e-4);
+
+/// Fresnel term type: the exact unpolarized reflectance of a conductor (see F_conductor)
+/// with a complex index of refraction eta + i kappa per RGB channel, relative to the
+/// incident medium. shade/brdf/metals.hpp has measured values for a few metals.
+template <std::floating_point T>
+class conductor_fresnel {
+public:
+    using scalar_type = T;
+
+    /// Throws shade::invalid_parameter naming "eta" unless every channel of eta lies in
+    /// [1e-4, 1e4], or "kappa" unless every channel of kappa lies in [0, 1e4].
+    conductor_fresnel(const rgb<T>& eta, const rgb<T>& kappa)
+        : eta_(require_in_range("eta", eta, conductor_eta_min<T>, conductor_index_max<T>)),
+          kappa_(require_in_range("kappa", kappa, T(0), conductor_index_max<T>)) {}
+
+    /// Unchecked: the caller guarantees eta and kappa in the ranges above.
+    constexpr conductor_fresnel(unchecked_t, const rgb<T>& eta, const rgb<T>& kappa) noexcept
+        : eta_(eta), kappa_(kappa) {}
+
+    [[nodiscard]] constexpr const rgb<T>& eta() const noexcept { return eta_; }     ///< real part of the index
+    [[nodiscard]] constexpr const rgb<T>& kappa() const noexcept { return kappa_; } ///< extinction coefficient
+
+    /// F(cos_theta) per channel, dimensionless, in [0, 1].
+    [[nodiscard]] rgb<T> F(T cos_theta) const noexcept {
+        return rgb<T>(F_conductor(cos_theta, eta_.x, kappa_.x), F_conductor(cos_theta, eta_.y, kappa_.y),
+                      F_conductor(cos_theta, eta_.z, kappa_.z));
+    }
+
+    /// The reflectance at normal incidence, ((eta - 1)^2 + kappa^2) / ((eta + 1)^2 + kappa^2)
+    /// per channel (Schlick's f0 for this conductor).
+    [[nodiscard]] rgb<T> f0() const noexcept { return F(T(1)); }
+
+private:
+    rgb<T> eta_;
+    rgb<T> kappa_;
 };
 
 /// X is a Fresnel term over scalar T: `x.F(cos_theta)` returns the reflectance as rgb<T>,
