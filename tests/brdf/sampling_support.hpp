@@ -10,8 +10,9 @@
 // dw = sin(theta') 2 pi u du dphi'); the samples sample()
 // declines (nullopt) form one more category, expected N (1 - integral of pdf). Categories
 // expected below 5 are pooled (as pbrt-v4's chi2 test and Mitsuba's do), and the p-value of
-// the chi^2 statistic comes from the Wilson-Hilferty normal approximation of the chi^2
-// distribution (Wilson, Hilferty 1931, "The distribution of chi-square", PNAS 17(12)).
+// the chi^2 statistic comes from chi2_upper_tail of brdf/sampling.hpp (the shared sampling
+// checks of the other models; this file adds the refined quadrature that the microfacet
+// lobes at grazing views need, and a statistic that callers can compare with a threshold).
 
 #include <cmath>
 #include <cstddef>
@@ -28,6 +29,8 @@
 #include <shade/core/random.hpp>
 #include <shade/core/surface_point.hpp>
 
+#include "brdf/sampling.hpp"
+
 namespace brdf_test {
 
 struct chi2_result {
@@ -37,15 +40,6 @@ struct chi2_result {
     double pdf_integral = 0; ///< integral of pdf over the sphere, from the bins
     std::size_t declined = 0; ///< samples for which sample() returned nullopt
 };
-
-/// Upper-tail probability of a chi^2 variable with k degrees of freedom above x (Wilson-
-/// Hilferty: (x/k)^(1/3) is nearly normal with mean 1 - 2/(9k) and variance 2/(9k)).
-inline double chi2_upper_tail(double x, int k) {
-    if (k <= 0) return 1;
-    const double kk = k;
-    const double z = (std::cbrt(x / kk) - (1 - 2 / (9 * kk))) / std::sqrt(2 / (9 * kk));
-    return 0.5 * std::erfc(z / std::sqrt(2.0));
-}
 
 /// chi^2 test of b.sample(v, uc, u, at) against b.pdf(l, v, at), with `count` samples from
 /// a seeded generator, bins around `axis` (world space, unit).

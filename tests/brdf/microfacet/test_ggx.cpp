@@ -199,3 +199,28 @@ TEST_CASE_TEMPLATE("ggx: constructors, accessors and errors", T, float, double) 
     check_throws_naming([] { (void)shade::ggx<T>(T(0.5), std::numeric_limits<T>::quiet_NaN()); }, "alpha_y");
     CHECK_NOTHROW((void)shade::ggx<T>(shade::unchecked, T(-1), T(0)));
 }
+
+TEST_CASE("ggx: sampled visible normals at 89.9 degrees: the share reflected below the horizon is the D_v mass of those normals") {
+    // sample_visible_normal draws m with density D_v(m); the mirror direction of v about m
+    // is below the horizon for a set of normals whose D_v mass is computed here by
+    // quadrature over m (where even the sharpest lobe is smooth). The share of draws
+    // landing in that set must agree with it (binomial standard deviation, 5 sigma).
+    const double theta = 89.9 * shade::pi<double> / 180;
+    const vec3<double> v(std::sin(theta) * std::cos(0.4), std::sin(theta) * std::sin(0.4), std::cos(theta));
+    for (const double r : {0.01, 0.5}) {
+        const shade::ggx<double> d(r, 2 * r);
+        const auto below = [&](const vec3<double>& m) { return (2 * glm::dot(v, m) * m - v).z <= 0; };
+        const double mass = hemisphere_integral([&](const vec3<double>& m) { return below(m) ? shade::D_visible(d, v, m) : 0.0; }, 4000, 800);
+        shade::rng random(21);
+        const int count = 400000;
+        int hits = 0;
+        for (int i = 0; i < count; ++i)
+            hits += below(d.sample_visible_normal(v, shade::vec2<double>(random.uniform<double>(), random.uniform<double>()))) ? 1 : 0;
+        const double share = double(hits) / count;
+        CAPTURE(r);
+        CAPTURE(mass);
+        CHECK(std::abs(share - mass) <= 5 * std::sqrt(mass * (1 - mass) / count) + 1e-5);
+        // and the whole D_v integrates to 1 (Heitz 2014, eq. 2 divided by n.v).
+        CHECK(hemisphere_integral([&](const vec3<double>& m) { return shade::D_visible(d, v, m); }, 4000, 800) == doctest::Approx(1.0).epsilon(1e-3));
+    }
+}
