@@ -31,8 +31,8 @@
 //     intermediate product overflows (coordinates beyond about 1e18 in float, 1e150 in
 //     double).
 // They differ on rays through edges and vertices: only `watertight` guarantees that such a
-// ray hits at least one of the triangles sharing the edge or vertex, also when the
-// compiler fuses multiply-adds (tests/robustness builds its tests with -mfma).
+// ray hits at least one of the triangles sharing the edge or vertex, whatever the compiler
+// fuses into multiply-adds (see watertight; docs/robustness.md lists the builds tested).
 
 #include <cmath>
 #include <concepts>
@@ -204,34 +204,66 @@ accept_intersection(const ray<T>& r, T t, const vec3<T>& b, bool front_face) noe
     return triangle_intersection<T>{t, b, front_face};
 }
 
-/// The next wider floating-point type, used by the watertight test's fallback: double for
-/// float (where products of floats and their differences keep the exact sign), long
-/// double for double (wider than double on x86-64 Linux; on platforms where long double
-/// is double the fallback adds nothing and the test is watertight only for float).
+/// The type in which the watertight test evaluates its 2D edge functions: double for
+/// float, where a product of two floats is exact (24 + 24 significant bits fit in 53), and
+/// T itself otherwise (double and long double use difference_of_products).
 template <std::floating_point T>
-struct wider {
-    using type = long double;
+struct edge_scalar {
+    using type = T;
 };
 template <>
-struct wider<float> {
+struct edge_scalar<float> {
     using type = double;
 };
 
-/// The 2D edge function p_x q_y - p_y q_x of the watertight test, evaluated over the two
-/// points in a canonical (lexicographic) order and negated when that order swaps them.
-/// So the two triangles sharing an edge, which pass its end points in opposite orders,
-/// run the very same operations and get results of exactly opposite sign, even when the
-/// compiler fuses a*b - c*d into a fused multiply-add (which rounds the two products
-/// differently, so that a x b - c x d and c x d - a x b need not be opposite).
+/// a b - c d by Kahan's algorithm: w = c d rounded, e = w - c d (exact, one fused
+/// multiply-add), f = a b - w (rounded once, one fused multiply-add), result f + e.
+/// Its relative error is at most 2 units in the last place, so its sign is the sign of the
+/// exact a b - c d and it is 0 exactly when a b = c d, as long as no product underflows
+/// or overflows (magnitudes of a b and c d between about 1e-290 and 1e308 in double).
+/// std::fma rounds once whether or not the processor has a fused multiply-add (without
+/// one the library computes it exactly in software), and the compiler cannot fuse or
+/// split any step, so the result does not depend on -ffp-contract or -march.
+///
+/// Kahan, W. (unpublished notes, see Higham 2002, "Accuracy and Stability of Numerical
+/// Algorithms", 2nd ed., SIAM, §2.6 and problem 27.17); error bound: Jeannerod, Louvet,
+/// Muller 2013, "Further analysis of Kahan's algorithm for the accurate computation of
+/// 2x2 determinants", Mathematics of Computation 82(284):2245-2264, Theorem 1.
 template <std::floating_point T>
-[[nodiscard]] inline T edge_function(T p_x, T p_y, T q_x, T q_y) noexcept {
-    const bool swap = q_x < p_x || (q_x == p_x && q_y < p_y);
-    const T lo_x = swap ? q_x : p_x;
-    const T lo_y = swap ? q_y : p_y;
-    const T hi_x = swap ? p_x : q_x;
-    const T hi_y = swap ? p_y : q_y;
-    const T e = lo_x * hi_y - lo_y * hi_x;
-    return swap ? -e : e;
+[[nodiscard]] inline T difference_of_products(T a, T b, T c, T d) noexcept {
+    const T w = c * d;
+    const T e = std::fma(-c, d, w);
+    const T f = std::fma(a, b, -w);
+    return f + e;
+}
+
+/// The 2D edge function p_x q_y - p_y q_x of the watertight test, in edge_scalar<T>, with
+/// the sign of the exact value (0 exactly when the exact value is 0), so the two
+/// triangles sharing an edge, which pass its end points in opposite orders, always get
+/// opposite signs (or both 0), whatever the compiler fuses. For float it is the product
+/// difference of exact double products, rounded once: the correctly rounded exact value,
+/// fused or not, and so exactly the negative of the value with p and q swapped. For
+/// double it is difference_of_products (exact sign; the two magnitudes may differ in the
+/// last place, which changes barycentrics by an ulp and no decision).
+template <std::floating_point T>
+[[nodiscard]] inline typename edge_scalar<T>::type edge_function(T p_x, T p_y, T q_x, T q_y) noexcept {
+    using E = typename edge_scalar<T>::type;
+    if constexpr (std::same_as<E, T>)
+        return difference_of_products(p_x, q_y, p_y, q_x);
+    else
+        return E(p_x) * E(q_y) - E(p_y) * E(q_x);
+}
+
+/// The sheared coordinate a - s b of the watertight test, as the same bits in every
+/// triangle that shares the vertex, whatever the compiler fuses: for float computed in
+/// double, where s b is exact, so the fused and the unfused difference are the same
+/// rounded value (then rounded to float); otherwise one fused multiply-add, rounded once.
+template <std::floating_point T>
+[[nodiscard]] inline T shear(T a, T s, T b) noexcept {
+    if constexpr (std::same_as<typename edge_scalar<T>::type, T>)
+        return std::fma(-s, b, a);
+    else
+        return static_cast<T>(double(a) - double(s) * double(b));
 }
 
 } // namespace detail
@@ -385,13 +417,19 @@ struct plane_then_areas {
 ///   * vertices relative to the origin, A = v0 - o (B, C likewise), sheared:
 ///     A_x' = A_x - S_x A_z, A_y' = A_y - S_y A_z;
 ///   * 2D edge functions U = C_x' B_y' - C_y' B_x', V = A_x' C_y' - A_y' C_x',
-///     W = B_x' A_y' - B_y' A_x' (weights of v0, v1, v2); an edge function that is exactly
-///     0 is recomputed in the next wider type so its sign is right;
+///     W = B_x' A_y' - B_y' A_x' (weights of v0, v1, v2), whose signs must be exact: the
+///     paper recomputes an edge function that is exactly 0 in higher precision;
 ///   * hit when U, V, W all have the same sign (zero counts as either), det = U + V + W
 ///     != 0; t = (U A_z' + V B_z' + W C_z') / det with A_z' = S_z A_z.
-/// An edge shared by two triangles gives edge-function values of exactly opposite sign in
-/// the two (same vertices, same operations), so a ray crossing it is inside at least one.
-/// det > 0 is the front face.
+/// Watertightness rests on two things, both made independent of what the compiler fuses
+/// into multiply-adds (-ffp-contract, -march): a vertex gets the same sheared coordinates
+/// in every triangle that shares it (detail::shear), and each edge function has the sign
+/// of its exact value (detail::edge_function: exact double products for float, Kahan's
+/// difference of products for double). Then the two triangles sharing an edge see a ray
+/// on opposite sides of it, or both on it, so a ray crossing it is inside at least one
+/// (Woop et al. §3.2). This holds while the sheared coordinates are finite and, for
+/// double, their products neither underflow nor overflow (each 0 or between about 1e-292
+/// and 1e308 in magnitude): always for finite float input. det > 0 is the front face.
 struct watertight {
     static constexpr std::string_view name = "watertight"; ///< for test and benchmark output
 
@@ -416,40 +454,38 @@ struct watertight {
         const vec3<T> a = tri.v0 - r.origin;
         const vec3<T> b = tri.v1 - r.origin;
         const vec3<T> c = tri.v2 - r.origin;
-        const T a_x = a[k_x] - s_x * a[k_z];
-        const T a_y = a[k_y] - s_y * a[k_z];
-        const T b_x = b[k_x] - s_x * b[k_z];
-        const T b_y = b[k_y] - s_y * b[k_z];
-        const T c_x = c[k_x] - s_x * c[k_z];
-        const T c_y = c[k_y] - s_y * c[k_z];
+        const T a_x = detail::shear(a[k_x], s_x, a[k_z]);
+        const T a_y = detail::shear(a[k_y], s_y, a[k_z]);
+        const T b_x = detail::shear(b[k_x], s_x, b[k_z]);
+        const T b_y = detail::shear(b[k_y], s_y, b[k_z]);
+        const T c_x = detail::shear(c[k_x], s_x, c[k_z]);
+        const T c_y = detail::shear(c[k_y], s_y, c[k_z]);
 
-        T u = detail::edge_function(c_x, c_y, b_x, b_y); // c_x b_y - c_y b_x
-        T v = detail::edge_function(a_x, a_y, c_x, c_y); // a_x c_y - a_y c_x
-        T w = detail::edge_function(b_x, b_y, a_x, a_y); // b_x a_y - b_y a_x
-        if (u == T(0) || v == T(0) || w == T(0)) {
-            using W = typename detail::wider<T>::type;
-            u = static_cast<T>(W(c_x) * W(b_y) - W(c_y) * W(b_x));
-            v = static_cast<T>(W(a_x) * W(c_y) - W(a_y) * W(c_x));
-            w = static_cast<T>(W(b_x) * W(a_y) - W(b_y) * W(a_x));
-        }
+        // The edge functions, det and t in E (double for float): only their signs decide
+        // a hit, and those are exact (detail::edge_function).
+        using E = typename detail::edge_scalar<T>::type;
+        const E u = detail::edge_function(c_x, c_y, b_x, b_y); // c_x b_y - c_y b_x
+        const E v = detail::edge_function(a_x, a_y, c_x, c_y); // a_x c_y - a_y c_x
+        const E w = detail::edge_function(b_x, b_y, a_x, a_y); // b_x a_y - b_y a_x
 
-        const bool any_negative = u < T(0) || v < T(0) || w < T(0);
-        const bool any_positive = u > T(0) || v > T(0) || w > T(0);
+        const bool any_negative = u < E(0) || v < E(0) || w < E(0);
+        const bool any_positive = u > E(0) || v > E(0) || w > E(0);
         if (cull == culling::back_faces ? any_negative : (any_negative && any_positive))
             return std::nullopt;
-        const T det = u + v + w;
-        if (det == T(0)) return std::nullopt; // parallel ray or degenerate triangle
+        const E det = u + v + w;
+        if (det == E(0)) return std::nullopt; // parallel ray or degenerate triangle
         // The common rule for degenerate and non-finite triangles (triangle::normal is zero
         // for them), checked only for rays that passed the edge tests: rounded edge
         // functions of a zero-area triangle need not sum to exactly zero.
         if (!detail::is_unit_normal(tri.normal())) return std::nullopt;
 
-        const T a_z = s_z * a[k_z];
-        const T b_z = s_z * b[k_z];
-        const T c_z = s_z * c[k_z];
-        const T t = (u * a_z + v * b_z + w * c_z) / det;
-        return detail::accept_intersection(r, t, vec3<T>(u / det, v / det, w / det),
-                                           det > T(0));
+        const E a_z = E(s_z * a[k_z]);
+        const E b_z = E(s_z * b[k_z]);
+        const E c_z = E(s_z * c[k_z]);
+        const T t = static_cast<T>((u * a_z + v * b_z + w * c_z) / det);
+        return detail::accept_intersection(
+            r, t, vec3<T>(static_cast<T>(u / det), static_cast<T>(v / det), static_cast<T>(w / det)),
+            det > E(0));
     }
 };
 
