@@ -128,6 +128,37 @@ TEST_CASE_TEMPLATE("sphere: a subnormal radius still gives the unit normal", T, 
     CHECK(shade::is_finite(h->p));
 }
 
+TEST_CASE_TEMPLATE("sphere: a radius whose square overflows is hit like a unit sphere", T, float, double) {
+    // R = 1e20 in float (R^2 = 1e40 > FLT_MAX = 3.4e38) and R = 1e160 in double (R^2 =
+    // 1e320 > DBL_MAX = 1.8e308). The sphere is the unit sphere scaled by R: the ray from
+    // (0, 0, -3R) along +z enters at t = 2R (point (0, 0, -R), normal (0, 0, -1)), and the
+    // ray from the centre leaves at t = R (point (0, 0, R), normal (0, 0, 1)).
+    const T radius = std::is_same_v<T, float> ? T(1e20) : T(1e160);
+    REQUIRE(std::isinf(radius * radius));
+    const shade::sphere<T> s({0, 0, 0}, radius);
+    const auto enter = shade::intersect(shade::ray<T>{{0, 0, -3 * radius}, {0, 0, 1}}, s);
+    REQUIRE(enter.has_value());
+    CHECK(enter->front_face);
+    CHECK(near_rel(enter->t, 2 * radius, 4 * eps<T>));
+    CHECK(near_vec(enter->p / radius, v3<T>(0, 0, -1), 4 * eps<T>));
+    CHECK(near_vec(enter->n, v3<T>(0, 0, -1), 4 * eps<T>));
+    const auto leave = shade::intersect(shade::ray<T>{{0, 0, 0}, {0, 0, 1}}, s);
+    REQUIRE(leave.has_value());
+    CHECK_FALSE(leave->front_face);
+    CHECK(near_rel(leave->t, radius, 4 * eps<T>));
+    CHECK(near_vec(leave->n, v3<T>(0, 0, 1), 4 * eps<T>));
+    // Off-centre and oblique: centre (R, 2R, -R), ray from the centre + (0, 0, -4R) toward
+    // the point centre + R (0.6, 0, -0.8): direction R (0.6, 0, 3.2), which reaches the
+    // sphere at t = 1 (|(0.6, 0, -0.8)| = 1), the entering root.
+    const v3<T> c(radius, 2 * radius, -radius);
+    const shade::sphere<T> off(c, radius);
+    const v3<T> o = c + v3<T>(0, 0, -4 * radius);
+    const auto oblique = shade::intersect(shade::ray<T>{o, radius * v3<T>(T(0.6), 0, T(3.2))}, off);
+    REQUIRE(oblique.has_value());
+    CHECK(near_rel(oblique->t, T(1), 16 * eps<T>));
+    CHECK(near_vec(oblique->n, v3<T>(T(0.6), 0, T(-0.8)), 16 * eps<T>));
+}
+
 TEST_CASE_TEMPLATE("sphere: tangent ray touches once; a hair outside misses", T, float, double) {
     // Centre (0,0,-5), radius 2. The ray from (-5, 2, -5) along +x passes the centre at
     // distance exactly 2: f = o - c = (-5,2,0), l = f - (f·d/d·d) d = (0,2,0), so the

@@ -1,3 +1,5 @@
+#include <limits>
+
 #include <doctest/doctest.h>
 
 #include <shade/light/directional.hpp>
@@ -59,4 +61,20 @@ TEST_CASE_TEMPLATE("shade_of calls a shader and lifts a BRDF with lit (no ambien
     CHECK(shade::shade_of(constant_shader<T>{c(1, 2, 3)}, at, v(0, 0, 1), s) == c(1, 2, 3));
     // Lambert k_d = 0.5 facing the light: 0.5, and the light's ambient 1 is not used.
     CHECK(near(shade::shade_of(lambert<T>{c(T(0.5))}, at, v(0, 0, 1), s), c(T(0.5)), T(1e-6)));
+}
+
+TEST_CASE_TEMPLATE("lit rejects an ambient reflectance that is negative or not finite, by name", T, float, double) {
+    using c = shade::rgb<T>;
+    const lambert<T> brdf{c(T(0.5))};
+    const T nan = std::numeric_limits<T>::quiet_NaN();
+    const T inf = std::numeric_limits<T>::infinity();
+    for (const c bad : {c(-1), c(0, 0, T(-1e-30)), c(nan), c(T(0.1), nan, T(0.1)), c(inf)}) {
+        CHECK_THROWS_WITH_AS(shade::lit<lambert<T>>(brdf, bad), doctest::Contains("'ambient'"),
+                             shade::invalid_parameter);
+    }
+    // The documented domain: finite and >= 0 per channel, 0 the default.
+    CHECK_NOTHROW(shade::lit<lambert<T>>(brdf, c(0)));
+    CHECK_NOTHROW(shade::lit<lambert<T>>(brdf, c(T(0.1), 0, 5)));
+    CHECK(shade::lit<lambert<T>>(brdf).ambient() == c(0));
+    CHECK(shade::lit<lambert<T>>(brdf, c(T(0.25))).ambient() == c(T(0.25)));
 }

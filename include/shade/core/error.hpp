@@ -146,6 +146,16 @@ vec3<T> require_in_range(std::string_view name, const vec3<T>& v, T lo, T hi) {
     return v;
 }
 
+/// Throws invalid_parameter unless v is finite and of unit length (is_unit_length: |v|^2
+/// within 1e-3 of 1). For directions a caller promises are normalised; require_direction
+/// normalises instead.
+template <std::floating_point T>
+vec3<T> require_unit_length(std::string_view name, const vec3<T>& v) {
+    if (!is_unit_length(v))
+        throw invalid_parameter(name, "must be a finite unit vector (|v|^2 within 1e-3 of 1)", detail::to_text(v));
+    return v;
+}
+
 /// Returns v normalised; throws invalid_parameter if v is non-finite or zero. Any finite,
 /// non-zero v works, however tiny or huge: v is first divided by its largest component so
 /// that squaring can neither underflow to 0 nor overflow to infinity.

@@ -53,6 +53,26 @@ template <std::floating_point T>
     return std::isfinite(v.x) && std::isfinite(v.y);
 }
 
+/// How far |v|^2 may be from 1 for is_unit_length: 1e-3, about 8000 float ulps, so a
+/// vector normalised in float (a few ulps off) or in float and converted to double passes,
+/// and a forgotten normalisation (an interpolated normal, a ray direction of length 2)
+/// fails.
+template <std::floating_point T>
+inline constexpr T unit_length_tolerance = T(1e-3);
+
+/// True when v is finite and | |v|^2 - 1 | <= unit_length_tolerance: the "unit length"
+/// precondition of directions and normals (SHADE_ASSERT, surface_point::checked).
+template <std::floating_point T>
+[[nodiscard]] inline bool is_unit_length(const vec3<T>& v) noexcept {
+    return std::abs(glm::dot(v, v) - T(1)) <= unit_length_tolerance<T>; // NaN fails
+}
+
+/// True when u lies in [0,1)^2, the domain of the square_to_* sampling maps.
+template <std::floating_point T>
+[[nodiscard]] constexpr bool is_in_unit_square(const vec2<T>& u) noexcept {
+    return u.x >= T(0) && u.x < T(1) && u.y >= T(0) && u.y < T(1);
+}
+
 /// max(a·b, 0): the clamped cosine used by every reflection model.
 template <std::floating_point T>
 [[nodiscard]] inline T clamped_dot(const vec3<T>& a, const vec3<T>& b) noexcept {

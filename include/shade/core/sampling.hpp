@@ -9,6 +9,7 @@
 
 #include <glm/common.hpp>
 
+#include <shade/core/config.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
@@ -30,9 +31,10 @@ struct cell_centre {
 /// (in [0,1)^2) inside the stratum: ((i + jitter.x) / n, (j + jitter.y) / n). Averaging
 /// an integrand over the n^2 pairs of a jittered grid is stratified sampling (one sample
 /// per stratum), which never has more variance than n^2 independent uniform samples.
-/// Preconditions: 0 <= i, j < n.
+/// Preconditions: 0 <= i, j < n and jitter in [0,1)^2 (SHADE_ASSERT in debug builds).
 template <std::floating_point T>
 [[nodiscard]] constexpr vec2<T> stratified_u(int i, int j, int n, const vec2<T>& jitter) noexcept {
+    SHADE_ASSERT(0 <= i && i < n && 0 <= j && j < n && is_in_unit_square(jitter));
     return vec2<T>((T(i) + jitter.x) / T(n), (T(j) + jitter.y) / T(n));
 }
 
@@ -107,8 +109,11 @@ template <std::floating_point T>
 /// stratified square samples stay stratified on the disk. Uniform: pdf = 1/pi per area.
 /// The angle is pi/4 (b/a) or pi/2 - pi/4 (a/b), so its sine and cosine come from
 /// detail::sin_cos_quarter_pi of pi/4 times the smaller ratio.
+/// Precondition: u in [0,1)^2 (SHADE_ASSERT in debug builds; outside it the point leaves
+/// the disk).
 template <std::floating_point T>
 [[nodiscard]] inline vec2<T> square_to_concentric_disk(const vec2<T>& u) noexcept {
+    SHADE_ASSERT(is_in_unit_square(u));
     const T a = T(2) * u.x - T(1);
     const T b = T(2) * u.y - T(1);
     // r = the larger of a, b in magnitude; phi = pi/4 (b/a) when it is a, else
@@ -123,8 +128,11 @@ template <std::floating_point T>
 
 /// Cosine-weighted direction on the upper hemisphere (Malley's method: a uniform disk
 /// point lifted to the hemisphere). pdf(w) = cos(theta) / pi per steradian.
+/// Precondition: u in [0,1)^2 (SHADE_ASSERT in debug builds; outside it the result is not
+/// a unit vector).
 template <std::floating_point T>
 [[nodiscard]] inline vec3<T> square_to_cosine_hemisphere(const vec2<T>& u) noexcept {
+    SHADE_ASSERT(is_in_unit_square(u));
     const vec2<T> d = square_to_concentric_disk(u);
     const T z = safe_sqrt(T(1) - d.x * d.x - d.y * d.y);
     return {d.x, d.y, z};
@@ -164,9 +172,11 @@ template <std::floating_point T>
 }
 
 /// Uniform direction on the upper hemisphere (Archimedes: z uniform in [0,1)).
-/// pdf(w) = 1 / (2 pi) per steradian.
+/// pdf(w) = 1 / (2 pi) per steradian. Precondition: u in [0,1)^2 (SHADE_ASSERT in debug
+/// builds; outside it the result is not a unit vector).
 template <std::floating_point T>
 [[nodiscard]] inline vec3<T> square_to_uniform_hemisphere(const vec2<T>& u) noexcept {
+    SHADE_ASSERT(is_in_unit_square(u));
     const T z = u.x;
     const T r = safe_sqrt(T(1) - z * z);
     const T phi = T(2) * pi<T> * u.y;

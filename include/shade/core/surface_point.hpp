@@ -6,7 +6,10 @@
 
 #include <glm/geometric.hpp>
 
+#include <shade/core/config.hpp>
+#include <shade/core/error.hpp>
 #include <shade/core/frame.hpp>
+#include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
 
 namespace shade {
@@ -25,8 +28,12 @@ struct surface_point {
     /// The shading normal.
     [[nodiscard]] constexpr const vec3<T>& n() const noexcept { return shading.n; }
 
-    /// A point at p with normal n (unit length) and an arbitrary tangent frame.
+    /// A point at p with normal n and an arbitrary tangent frame. Unchecked: the caller
+    /// promises a finite p and a unit-length n (checked only by SHADE_ASSERT in debug
+    /// builds); a longer or shorter n gives a frame that is not orthonormal and wrong
+    /// shading. Use checked() for untrusted input.
     [[nodiscard]] static surface_point at(const vec3<T>& p, const vec3<T>& n) noexcept {
+        SHADE_ASSERT(is_unit_length(n));
         surface_point s;
         s.p = p;
         s.shading = frame<T>::from_normal(n);
@@ -50,6 +57,15 @@ struct surface_point {
         s.shading.t = w / glm::length(w);
         s.shading.b = glm::cross(n, s.shading.t);
         return s;
+    }
+
+    /// As at(), validated: throws shade::invalid_parameter naming "p" unless p is finite
+    /// and naming "n" unless n is a finite unit vector (|n|^2 within 1e-3 of 1,
+    /// shade::is_unit_length). n is used as given, not renormalised.
+    [[nodiscard]] static surface_point checked(const vec3<T>& p, const vec3<T>& n) {
+        (void)require_finite("p", p);
+        (void)require_unit_length("n", n);
+        return at(p, n);
     }
 };
 

@@ -83,7 +83,10 @@ template <std::floating_point T>
 ///     so no root is computed as a difference of nearly equal numbers (Press, Teukolsky,
 ///     Vetterling, Flannery, Numerical Recipes, §5.6, eqs. 5.6.4-5.6.5).
 /// The direction is first rescaled by a power of two (exact) so that a = d·d cannot
-/// overflow or underflow for huge or tiny directions; t is scaled back.
+/// overflow or underflow for huge or tiny directions, and positions relative to the centre
+/// are scaled by a power of two that brings a radius above 1 into [0.5, 1), so that R^2
+/// cannot overflow: every finite radius works (R = 1e20 in float, whose square is not a
+/// float, is hit like R = 1); t is scaled back.
 ///
 /// Returns the nearer root in [t_min, t_max] (front_face = true: the ray enters), else the
 /// farther one (front_face = false: the ray leaves, e.g. when the origin is inside).
@@ -116,11 +119,22 @@ template <std::floating_point T>
     const vec3<T> d(detail::times_power_of_two(r.direction.x, scale),
                     detail::times_power_of_two(r.direction.y, scale),
                     detail::times_power_of_two(r.direction.z, scale));
-    const vec3<T> f = r.origin - s.center();
-    const T radius = s.radius();
     // 2^k with R 2^k in [0.5, 1) (+infinity for a subnormal R), for the normal below
     // (|p - c| is R up to the rounding of p); computed here, where it waits for nothing.
-    const T normal_scale = detail::times_power_of_two(T(1), detail::power_of_two_rescale_exponent(radius));
+    const int radius_exponent = detail::power_of_two_rescale_exponent(s.radius());
+    const T normal_scale = detail::times_power_of_two(T(1), radius_exponent);
+    // Positions (f and R) scaled by 2^k, k = min(radius_exponent, 0): a radius above 1 is
+    // brought into [0.5, 1), so R^2, |l|^2 and |f|^2 near R^2 cannot overflow (R = 1e20 in
+    // float has R^2 = 1e40). Every quantity below then scales by a power of two (a, b / a
+    // and the roots' ratios not at all), so the results are those of the unscaled
+    // arithmetic wherever that does not overflow, up to components of f more than 2^-149
+    // (float) times R, which underflow. Never scaled up: that could overflow f.
+    const int position_exponent = radius_exponent < 0 ? radius_exponent : 0;
+    const vec3<T> f_unscaled = r.origin - s.center();
+    const vec3<T> f(detail::times_power_of_two(f_unscaled.x, position_exponent),
+                    detail::times_power_of_two(f_unscaled.y, position_exponent),
+                    detail::times_power_of_two(f_unscaled.z, position_exponent));
+    const T radius = detail::times_power_of_two(s.radius(), position_exponent);
 
     const T a = glm::dot(d, d);
     const T b = -glm::dot(f, d);
@@ -134,8 +148,9 @@ template <std::floating_point T>
     // are 0; c_0 / q would be 0/0.
     const T root_a = q / a;
     const T root_b = q != T(0) ? c0 / q : T(0);
-    const T t_near = detail::times_power_of_two(glm::min(root_a, root_b), scale);
-    const T t_far = detail::times_power_of_two(glm::max(root_a, root_b), scale);
+    // t for the user's direction and unscaled positions: root 2^(scale - position_exponent).
+    const T t_near = detail::times_power_of_two(glm::min(root_a, root_b), scale - position_exponent);
+    const T t_far = detail::times_power_of_two(glm::max(root_a, root_b), scale - position_exponent);
 
     T t;
     bool entering;

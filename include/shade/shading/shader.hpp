@@ -8,8 +8,11 @@
 // only; every BRDF becomes one through shade::lit.
 
 #include <concepts>
+#include <utility>
 
 #include <shade/brdf/brdf.hpp>
+#include <shade/core/config.hpp>
+#include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/surface_point.hpp>
 #include <shade/light/light_sample.hpp>
@@ -35,26 +38,41 @@ concept shader = has_scalar_type<S> &&
 /// the classic term k_d I_d (n.l) exactly. `ambient` is the ambient reflectance k_a
 /// (0 by default: physically based renders have no ambient term).
 template <brdf B>
-struct lit {
+class lit {
+public:
     using scalar_type = scalar_of<B>;
     using T = scalar_type;
 
-    B brdf;                  ///< the reflection model
-    rgb<T> ambient{0, 0, 0}; ///< ambient reflectance k_a, per channel, >= 0
+    /// `brdf` lit with ambient reflectance `ambient` (k_a, per channel). Throws
+    /// invalid_parameter naming "ambient" unless every channel is finite and >= 0.
+    explicit lit(B brdf, const rgb<T>& ambient = rgb<T>(0))
+        : brdf_(std::move(brdf)), ambient_(require_non_negative("ambient", ambient)) {}
 
+    /// The reflection model.
+    [[nodiscard]] const B& brdf() const noexcept { return brdf_; }
+    /// The ambient reflectance k_a, finite and >= 0 in every channel.
+    [[nodiscard]] const rgb<T>& ambient() const noexcept { return ambient_; }
+
+    /// Radiance toward v from one light sample (the formula above). Preconditions: v,
+    /// s.l and at.n() unit length (checked by SHADE_ASSERT in debug builds).
     [[nodiscard]] rgb<T> shade(const surface_point<T>& at, const vec3<T>& v,
                                const light_sample<T>& s) const {
-        rgb<T> out = ambient * s.ambient;
+        SHADE_ASSERT(is_unit_length(v) && is_unit_length(s.l) && is_unit_length(at.n()));
+        rgb<T> out = ambient_ * s.ambient;
         const T n_dot_l = clamped_dot(at.n(), s.l);
         if (n_dot_l <= T(0)) return out;
         if constexpr (split_brdf<B>) {
             out += pi<T> * n_dot_l *
-                   (brdf.f_diffuse(s.l, v, at) * s.diffuse + brdf.f_specular(s.l, v, at) * s.specular);
+                   (brdf_.f_diffuse(s.l, v, at) * s.diffuse + brdf_.f_specular(s.l, v, at) * s.specular);
         } else {
-            out += pi<T> * n_dot_l * brdf.f(s.l, v, at) * s.diffuse;
+            out += pi<T> * n_dot_l * brdf_.f(s.l, v, at) * s.diffuse;
         }
         return out;
     }
+
+private:
+    B brdf_;
+    rgb<T> ambient_;
 };
 
 template <brdf B>
