@@ -11,15 +11,25 @@
 //     2  v = -l (h undefined)                 6  l grazing: decoded, made orthogonal to n
 //     3  v = the mirror of l about n (h = n)  7  raw: l and v as decoded, not normalised,
 //                                                possibly non-finite
+// then the random numbers of sample(): uc and u = (u_x, u_y), three scalars each mapped into
+// [0, 1) (to_unit_interval).
 // Checks, for a BRDF built by its validating constructor (parameters it rejects must throw
 // exactly shade::invalid_parameter, caught by the target):
 //   * situations 0-6 (unit l, v, n): f, and f_diffuse and f_specular for a split BRDF,
 //     are finite and >= 0 in every channel, and f is exactly 0 when n·l <= 0 or n·v <= 0;
-//   * situation 7: f is evaluated (ASan/UBSan watch it); nothing is promised for it.
+//   * for a BRDF that samples (shade::sampled_brdf), in situations 0-6: pdf(l, v, at) is
+//     finite and >= 0, sample(v, uc, u, at) returns nothing for v not above the surface,
+//     and a sample that is returned has a finite unit l
+//     above the surface (n·l > 0), a finite pdf > 0, f and weight finite and >= 0, and
+//     weight = f |n·l| / pdf (relative 1e-4 per channel, brdf.hpp's contract);
+//   * situation 7: f (and pdf and sample) are evaluated (ASan/UBSan watch them); nothing is
+//     promised for them.
 
+#include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <utility>
 
@@ -28,6 +38,7 @@
 #include <shade/brdf/brdf.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/frame.hpp>
+#include <shade/core/math.hpp>
 #include <shade/core/surface_point.hpp>
 
 #include "expect.hpp"
@@ -43,7 +54,18 @@ struct brdf_situation {
     vec3<T> l;
     vec3<T> v;
     bool unit = true;
+    T uc = T(0);    ///< sample()'s lobe-selection number, in [0, 1)
+    vec2<T> u{0, 0}; ///< sample()'s direction numbers, in [0, 1)^2
 };
+
+/// x mapped into [0, 1): its fractional part x - floor(x) (so -0.25 -> 0.75), 0 for a
+/// non-finite x, and the largest number below 1 where that part rounds to 1 (x = -1e-30).
+template <std::floating_point T>
+[[nodiscard]] T to_unit_interval(T x) noexcept {
+    if (!std::isfinite(x)) return T(0);
+    const T y = x - std::floor(x);
+    return y < T(1) ? y : T(1) - std::numeric_limits<T>::epsilon() / 2;
+}
 
 /// Normalises w, or returns nothing when w is zero or not finite.
 template <std::floating_point T>
@@ -71,6 +93,9 @@ template <std::floating_point T>
     const unsigned how = in.choice(8);
     const vec3<T> a = in.vector<T>();
     const vec3<T> b = in.vector<T>();
+    s.uc = to_unit_interval(in.scalar<T>());
+    s.u.x = to_unit_interval(in.scalar<T>());
+    s.u.y = to_unit_interval(in.scalar<T>());
     if (how == 7) {
         s.l = a;
         s.v = b;
@@ -126,10 +151,53 @@ void show(const brdf_situation<T>& s) {
     show("v", s.v);
 }
 
+/// Samples b in situation s and checks the sampling contract (see the top of this file).
+template <sampled_brdf B>
+void check_sampling(const B& b, const brdf_situation<scalar_of<B>>& s) {
+    using T = scalar_of<B>;
+    const T pdf = b.pdf(s.l, s.v, s.at);
+    const std::optional<brdf_sample<T>> x = b.sample(s.v, s.uc, s.u, s.at);
+    if (!s.unit) return;
+    if (!(std::isfinite(pdf) && pdf >= T(0))) {
+        show(s);
+        show("pdf", pdf);
+    }
+    expect(std::isfinite(pdf) && pdf >= T(0), "BRDF pdf is NaN, infinite or negative for unit directions");
+    if (!x) return;
+    if (!(glm::dot(s.at.n(), s.v) > T(0))) show(s);
+    expect(glm::dot(s.at.n(), s.v) > T(0), "sample returned a direction for v not above the surface");
+    const T n_dot_l = glm::dot(s.at.n(), x->l);
+    const bool l_ok = is_finite(x->l) && is_unit_length(x->l) && n_dot_l > T(0);
+    const bool pdf_ok = std::isfinite(x->pdf) && x->pdf > T(0);
+    const bool values_ok = finite_non_negative(x->f) && finite_non_negative(x->weight);
+    bool weight_ok = values_ok && pdf_ok;
+    if (weight_ok) {
+        const rgb<T> expected = x->f * (std::abs(n_dot_l) / x->pdf);
+        for (int i = 0; i < 3; ++i)
+            weight_ok = weight_ok && std::abs(x->weight[i] - expected[i]) <=
+                                         T(1e-4) * expected[i] + std::numeric_limits<T>::min();
+    }
+    if (!l_ok || !pdf_ok || !values_ok || !weight_ok) {
+        show(s);
+        show("uc", s.uc);
+        show("u.x", s.u.x);
+        show("u.y", s.u.y);
+        show("sampled l", x->l);
+        show("sampled f", x->f);
+        show("sampled pdf", x->pdf);
+        show("sampled weight", x->weight);
+    }
+    expect(l_ok, "sampled l is not a finite unit vector above the surface");
+    expect(pdf_ok, "sampled pdf is not finite and > 0");
+    expect(values_ok, "sampled f or weight is NaN, infinite or negative");
+    expect(weight_ok, "sampled weight is not f |n.l| / pdf");
+}
+
 /// Evaluates b in situation s and checks the BRDF contract (see the top of this file).
 template <brdf B>
 void check_brdf(const B& b, const brdf_situation<scalar_of<B>>& s) {
     using T = scalar_of<B>;
+    if constexpr (sampled_brdf<B>) check_sampling(b, s);
     const rgb<T> f = b.f(s.l, s.v, s.at);
     if (!s.unit) return;
     const bool below = !(glm::dot(s.at.n(), s.l) > T(0)) || !(glm::dot(s.at.n(), s.v) > T(0));

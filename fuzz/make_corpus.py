@@ -117,8 +117,9 @@ def color():
               vec(0.3125, 0.328125) + d50_xyz + byte(1) + weights)
 
 
-def situation(how, n=(0, 0, 1), t=(1, 0, 0), a=(0.5, 0.25, 1), b=(-0.25, 0.5, 1)):
-    return vec(*n) + vec(*t) + byte(how) + vec(*a) + vec(*b)
+def situation(how, n=(0, 0, 1), t=(1, 0, 0), a=(0.5, 0.25, 1), b=(-0.25, 0.5, 1), u=(0.5, 0.25, 0.75)):
+    """n, t, how l and v are made, two vectors, then sample()'s uc, u_x, u_y."""
+    return vec(*n) + vec(*t) + byte(how) + vec(*a) + vec(*b) + vec(*u)
 
 
 SITUATIONS = {
@@ -132,6 +133,10 @@ SITUATIONS = {
     'below_horizon': situation(0, b=(0.25, 0.5, -1)),
     'raw_unnormalised': situation(7, a=(8, 0, 8), b=(0, sp(NAN), 1)),
     'tilted_normal': situation(0, n=(1, 2, 3), t=(0, 1, 0)),
+    'sample_u_zero': situation(0, u=(0, 0, 0)),
+    'sample_u_below_one': situation(0, u=(sp(ONE_MINUS_HALF_EPS), sp(ONE_MINUS_HALF_EPS),
+                                          sp(ONE_MINUS_HALF_EPS))),
+    'sample_grazing_view': situation(0, b=(1, 0, 0.0078125), u=(0.75, 0.5, 0.5)),
 }
 
 
