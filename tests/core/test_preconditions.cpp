@@ -15,6 +15,11 @@ inline int failures = 0;
 #include <doctest/doctest.h>
 #include <glm/geometric.hpp>
 
+#include <shade/brdf/ashikhmin_shirley.hpp>
+#include <shade/brdf/blinn_phong.hpp>
+#include <shade/brdf/lambert.hpp>
+#include <shade/brdf/oren_nayar.hpp>
+#include <shade/brdf/phong.hpp>
 #include <shade/core/sampling.hpp>
 #include <shade/core/surface_point.hpp>
 #include <shade/light/directional.hpp>
@@ -83,4 +88,27 @@ TEST_CASE_TEMPLATE("SHADE_ASSERT: surface_point::at and lit::shade check unit-le
     auto long_l = sample;
     long_l.l = v(T(1.2), 0, T(1.6));
     CHECK(failures_during([&] { (void)model.shade(at, v(0, 0, 1), long_l); }) == 1);
+}
+
+TEST_CASE_TEMPLATE("SHADE_ASSERT: the models' f checks unit-length l, v and n", T, float, double) {
+    using v = shade::vec3<T>;
+    using c = shade::rgb<T>;
+    const auto at = shade::surface_point<T>::at(v(0), v(0, 0, 1));
+    const v l = glm::normalize(v(T(0.3), T(0.2), 1));
+    const v view = glm::normalize(v(T(-0.4), T(0.1), 1));
+    const auto check = [&](const auto& brdf) {
+        CHECK(failures_during([&] { (void)brdf.f(l, view, at); }) == 0);
+        // The same directions scaled by 2, and a shading frame built on a normal of length 2
+        // (at() asserts that one too).
+        CHECK(failures_during([&] { (void)brdf.f(T(2) * l, view, at); }) >= 1);
+        CHECK(failures_during([&] { (void)brdf.f(l, T(2) * view, at); }) >= 1);
+        auto long_n = at;
+        long_n.shading.n = v(0, 0, 2);
+        CHECK(failures_during([&] { (void)brdf.f(l, view, long_n); }) >= 1);
+    };
+    check(shade::lambert<T>(c(T(0.5))));
+    check(shade::oren_nayar<T>(c(T(0.5)), T(0.3)));
+    check(shade::phong<T>(c(T(0.25)), c(T(0.5)), T(20)));
+    check(shade::blinn_phong<T>(c(T(0.25)), c(T(0.5)), T(20)));
+    check(shade::ashikhmin_shirley<T>(c(T(0.25)), c(T(0.5)), T(10), T(100)));
 }

@@ -103,6 +103,7 @@ public:
     /// Coupled diffuse term f_d (1/sr), 0 unless n·l > 0 and n·v > 0.
     [[nodiscard]] rgb<T> f_diffuse(const vec3<T>& l, const vec3<T>& v,
                                    const surface_point<T>& at) const noexcept {
+        detail::assert_unit_directions(l, v, at);
         const T n_dot_l = glm::dot(at.n(), l);
         const T n_dot_v = glm::dot(at.n(), v);
         if (!(n_dot_l > T(0)) || !(n_dot_v > T(0))) return rgb<T>(0);
@@ -112,6 +113,7 @@ public:
     /// Anisotropic specular term f_s (1/sr), 0 unless n·l > 0 and n·v > 0.
     [[nodiscard]] rgb<T> f_specular(const vec3<T>& l, const vec3<T>& v,
                                     const surface_point<T>& at) const noexcept {
+        detail::assert_unit_directions(l, v, at);
         const T n_dot_l = glm::dot(at.n(), l);
         const T n_dot_v = glm::dot(at.n(), v);
         if (!(n_dot_l > T(0)) || !(n_dot_v > T(0))) return rgb<T>(0);

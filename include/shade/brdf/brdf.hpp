@@ -8,7 +8,9 @@
 //   * a const member `f(l, v, at)` returning rgb<scalar_type>: the BRDF value in 1/sr,
 //     WITHOUT the cosine factor, for unit directions l (toward the light) and v (toward the
 //     viewer) given in world space, at the surface point `at` (position and shading frame).
-//     f is zero when l or v is not above the surface (dot(at.n(), w) <= 0).
+//     f is zero when l or v is not above the surface (dot(at.n(), w) <= 0). Unit length is
+//     a precondition, not checked in release builds; shade's models check it with
+//     SHADE_ASSERT in debug builds (detail::assert_unit_directions).
 //
 // A BRDF that can also draw directions (shade::sampled_brdf) has
 //   * `sample(v, uc, u, at)` -> std::optional<brdf_sample<T>>: draws a direction l toward
@@ -28,6 +30,8 @@
 #include <limits>
 #include <optional>
 
+#include <shade/core/config.hpp>
+#include <shade/core/math.hpp>
 #include <shade/core/scalar.hpp>
 #include <shade/core/surface_point.hpp>
 #include <shade/core/types.hpp>
@@ -67,6 +71,19 @@ concept sampled_brdf = brdf<B> &&
     };
 
 namespace detail {
+
+/// The debug-build check of f's precondition (SHADE_ASSERT, core/config.hpp): l, v and the
+/// shading normal are unit vectors (shade::is_unit_length). A model's f calls it first;
+/// with NDEBUG it compiles to nothing.
+template <std::floating_point T>
+inline void assert_unit_directions(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) noexcept {
+    SHADE_ASSERT(is_unit_length(l));
+    SHADE_ASSERT(is_unit_length(v));
+    SHADE_ASSERT(is_unit_length(at.n()));
+    (void)l;
+    (void)v;
+    (void)at;
+}
 
 /// The brdf_sample for direction l with value f, density pdf and |n·l| = abs_n_dot_l:
 /// weight = f |n·l| / pdf. nullopt unless pdf is finite and > 0 (a direction the sampler

@@ -51,6 +51,7 @@ public:
     /// BRDF value in 1/sr without the cosine: k_d / pi if n·l > 0 and n·v > 0, else 0.
     [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v,
                            const surface_point<T>& at) const noexcept {
+        detail::assert_unit_directions(l, v, at);
         const T n_dot_l = glm::dot(at.n(), l);
         const T n_dot_v = glm::dot(at.n(), v);
         if (!(n_dot_l > T(0)) || !(n_dot_v > T(0))) return rgb<T>(0);

@@ -146,6 +146,7 @@ public:
     /// n·v > 0.
     [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v,
                            const surface_point<T>& at) const noexcept {
+        detail::assert_unit_directions(l, v, at);
         const vec3<T>& n = at.n();
         const T n_dot_l = glm::dot(n, l);
         const T n_dot_v = glm::dot(n, v);

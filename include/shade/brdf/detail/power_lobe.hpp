@@ -211,6 +211,7 @@ public:
     /// Diffuse part k_d / pi (1/sr), 0 unless n·l > 0 and n·v > 0.
     [[nodiscard]] rgb<T> f_diffuse(const vec3<T>& l, const vec3<T>& v,
                                    const surface_point<T>& at) const noexcept {
+        assert_unit_directions(l, v, at);
         if (!above(l, v, at)) return rgb<T>(0);
         return k_d_ * inv_pi<T>;
     }
@@ -218,6 +219,7 @@ public:
     /// Specular lobe k_s c cos^s [/ (n·l)] (1/sr), 0 unless n·l > 0 and n·v > 0.
     [[nodiscard]] rgb<T> f_specular(const vec3<T>& l, const vec3<T>& v,
                                     const surface_point<T>& at) const noexcept {
+        assert_unit_directions(l, v, at);
         if (!above(l, v, at)) return rgb<T>(0);
         const vec3<T>& n = at.n();
         return k_s_ * lobe(std::pow(Cosine::cosine(n, l, v), shininess_), glm::dot(n, l));
