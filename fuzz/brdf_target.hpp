@@ -21,7 +21,8 @@
 //     finite and >= 0, sample(v, uc, u, at) returns nothing for v not above the surface,
 //     and a sample that is returned has a finite unit l
 //     above the surface (n·l > 0), a finite pdf > 0, f and weight finite and >= 0, and
-//     weight = f |n·l| / pdf (relative 1e-4 per channel, brdf.hpp's contract);
+//     weight = f |n·l| / pdf (relative 1e-4 per channel, brdf.hpp's contract; +inf allowed
+//     where that exact value exceeds the largest T, from valid parameters near it);
 //   * situation 7: f (and pdf and sample) are evaluated (ASan/UBSan watch them); nothing is
 //     promised for them.
 
@@ -169,14 +170,26 @@ void check_sampling(const B& b, const brdf_situation<scalar_of<B>>& s) {
     const T n_dot_l = glm::dot(s.at.n(), x->l);
     const bool l_ok = is_finite(x->l) && is_unit_length(x->l) && n_dot_l > T(0);
     const bool pdf_ok = std::isfinite(x->pdf) && x->pdf > T(0);
-    const bool values_ok = finite_non_negative(x->f) && finite_non_negative(x->weight);
-    bool weight_ok = values_ok && pdf_ok;
+    // f and weight finite and >= 0, except that a weight whose exact value f |n.l| / pdf
+    // exceeds the largest T (valid parameters near it, e.g. k_s = FLT_MAX: the overflow the
+    // guarantees do not cover) may be +inf.
+    const bool f_ok = finite_non_negative(x->f);
+    bool weight_ok = f_ok && pdf_ok;
+    bool weight_overflows = false;
     if (weight_ok) {
-        const rgb<T> expected = x->f * (std::abs(n_dot_l) / x->pdf);
-        for (int i = 0; i < 3; ++i)
-            weight_ok = weight_ok && std::abs(x->weight[i] - expected[i]) <=
-                                         T(1e-4) * expected[i] + std::numeric_limits<T>::min();
+        for (int i = 0; i < 3; ++i) {
+            const long double exact = static_cast<long double>(x->f[i]) * std::abs(n_dot_l) / x->pdf;
+            if (exact > static_cast<long double>(std::numeric_limits<T>::max())) {
+                weight_overflows = true;
+                weight_ok = weight_ok && x->weight[i] >= T(0); // +inf or huge; not NaN
+            } else {
+                weight_ok = weight_ok && std::isfinite(x->weight[i]) &&
+                            std::abs(static_cast<long double>(x->weight[i]) - exact) <=
+                                1e-4L * exact + static_cast<long double>(std::numeric_limits<T>::min());
+            }
+        }
     }
+    const bool values_ok = f_ok && (weight_overflows || finite_non_negative(x->weight));
     if (!l_ok || !pdf_ok || !values_ok || !weight_ok) {
         show(s);
         show("uc", s.uc);
