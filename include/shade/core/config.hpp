@@ -13,7 +13,7 @@
 /// Release and RelWithDebInfo). Define SHADE_ASSERT(cond) yourself before including shade
 /// to log or count failures instead (the functions it guards are noexcept, so a throwing
 /// definition ends in std::terminate), or as `((void)0)` to turn it off in a debug build
-/// (tests/core/test_preconditions.cpp counts). It never replaces validation: parameters
+/// (tests/core/preconditions.cpp counts). It never replaces validation: parameters
 /// of validating constructors and checked factories are rejected with
 /// shade::invalid_parameter in every build.
 #ifndef SHADE_ASSERT

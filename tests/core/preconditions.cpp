@@ -2,7 +2,8 @@
 // fires on input outside the documented precondition and stays quiet inside it. SHADE_ASSERT
 // is defined here, before any shade header, to count failures instead of aborting, so the
 // checks run whatever NDEBUG says (tests/robustness/assert_default.cpp checks the default
-// definition: abort without NDEBUG, nothing with it).
+// definition: abort without NDEBUG, nothing with it). Built as its own program, without the
+// test-suite's precompiled header (tests/CMakeLists.txt).
 
 #include <limits>
 
