@@ -3,7 +3,6 @@
 // area heuristic, collapsed into nodes of four children whose float boxes the traversal
 // (detail/bvh_traverse.hpp) tests together. Internal: use shade/geometry/bvh.hpp.
 
-#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -13,6 +12,7 @@
 #include <limits>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <shade/core/error.hpp>
@@ -92,8 +92,8 @@ struct bvh_v4 {
     friend bvh_v4 operator-(bvh_v4 a, const bvh_v4& b) noexcept { for (std::size_t i = 0; i < 4; ++i) a.v[i] -= b.v[i]; return a; }
     friend bvh_v4 operator*(bvh_v4 a, const bvh_v4& b) noexcept { for (std::size_t i = 0; i < 4; ++i) a.v[i] *= b.v[i]; return a; }
 };
-[[nodiscard]] inline bvh_v4 bvh_vmin(bvh_v4 a, const bvh_v4& b) noexcept { for (std::size_t i = 0; i < 4; ++i) a.v[i] = std::min(a.v[i], b.v[i]); return a; }
-[[nodiscard]] inline bvh_v4 bvh_vmax(bvh_v4 a, const bvh_v4& b) noexcept { for (std::size_t i = 0; i < 4; ++i) a.v[i] = std::max(a.v[i], b.v[i]); return a; }
+[[nodiscard]] inline bvh_v4 bvh_vmin(bvh_v4 a, const bvh_v4& b) noexcept { for (std::size_t i = 0; i < 4; ++i) a.v[i] = b.v[i] < a.v[i] ? b.v[i] : a.v[i]; return a; }
+[[nodiscard]] inline bvh_v4 bvh_vmax(bvh_v4 a, const bvh_v4& b) noexcept { for (std::size_t i = 0; i < 4; ++i) a.v[i] = a.v[i] < b.v[i] ? b.v[i] : a.v[i]; return a; }
 #endif
 
 /// One primitive while building: its box (rounded outward to floats; x, y, z in lanes 0-2
@@ -169,7 +169,7 @@ public:
         refs_ = refs.data();
         binary_.clear();
         if (refs.empty()) return tree;
-        binary_.reserve(2 * refs.size() / std::max<std::uint32_t>(1, block_) + 2);
+        binary_.reserve(2 * refs.size() / (block_ > 1 ? block_ : 1u) + 2);
         bvh_box box, centroids;
         bounds_of(0, static_cast<std::uint32_t>(refs.size()), box, centroids);
         const std::uint32_t root = build_binary(0, static_cast<std::uint32_t>(refs.size()), 0, box, centroids);
@@ -367,10 +367,7 @@ private:
             for (std::size_t k = 1; k < 3; ++k)
                 if (centroids.hi[k] - centroids.lo[k] > centroids.hi[axis] - centroids.lo[axis]) axis = k;
             mid = begin + n / 2;
-            std::nth_element(refs_ + begin, refs_ + mid, refs_ + end,
-                             [axis](const bvh_prim_ref& a, const bvh_prim_ref& b) {
-                                 return a.centroid2()[axis] < b.centroid2()[axis];
-                             });
+            select_nth(begin, mid, end, axis);
             left_box = left_centroids = right_box = right_centroids = bvh_box{};
             bounds_of(begin, mid, left_box, left_centroids);
             bounds_of(mid, end, right_box, right_centroids);
@@ -388,7 +385,36 @@ private:
     /// a NaN x (from infinite bounds) lands in bin 0, never in a cast.
     [[nodiscard]] static std::size_t bin_index(float x) noexcept {
         // Branch-free (minss, maxss): the bins of successive primitives are unpredictable.
-        return static_cast<std::size_t>(std::min(std::max(0.0f, x), float(bins - 1)));
+        const float lo = x > 0.0f ? x : 0.0f; // NaN compares false: 0
+        return static_cast<std::size_t>(lo < float(bins - 1) ? lo : float(bins - 1));
+    }
+
+    /// Reorders refs_[begin, end) so that refs_[mid] holds the reference whose doubled
+    /// centroid on `axis` would be there after sorting, with none greater before it and
+    /// none smaller after it (Hoare 1961, "Algorithm 65: Find", CACM 4(7): partition
+    /// around a median-of-three pivot, then continue in the side holding mid). Expected
+    /// linear time; written here so the builder needs no <algorithm>.
+    void select_nth(std::uint32_t begin, std::uint32_t mid, std::uint32_t end, std::size_t axis) noexcept {
+        auto key = [&](std::uint32_t i) { return refs_[i].centroid2()[axis]; };
+        while (end - begin > 2) {
+            // Median of the first, middle and last keys as the pivot value.
+            const std::uint32_t m = begin + (end - begin) / 2;
+            const float a = key(begin), b = key(m), c = key(end - 1);
+            const float pivot = a < b ? (b < c ? b : (a < c ? c : a)) : (a < c ? a : (b < c ? c : b));
+            std::uint32_t i = begin, j = end - 1;
+            for (;;) { // Hoare partition: [begin, i) <= pivot, (j, end) >= pivot
+                while (key(i) < pivot) ++i;
+                while (pivot < key(j)) --j;
+                if (i >= j) break;
+                std::swap(refs_[i], refs_[j]);
+                ++i;
+                --j;
+            }
+            // Now [begin, j] <= pivot <= [j + 1, end), both sides non-empty.
+            if (mid <= j) end = j + 1;
+            else begin = j + 1;
+        }
+        if (end - begin == 2 && key(begin + 1) < key(begin)) std::swap(refs_[begin], refs_[begin + 1]);
     }
 
     std::uint32_t max_leaf_;
