@@ -282,3 +282,29 @@ TEST_CASE_TEMPLATE("primitive_bvh and bvh: spheres against brute force", T, floa
     std::vector<shade::aabb<T>> bad_boxes{shade::aabb<T>{}};
     CHECK_THROWS_AS(shade::bvh<T>{std::span<const shade::aabb<T>>(bad_boxes)}, shade::invalid_parameter);
 }
+
+// An unused child slot of a node has an empty box (+inf, -inf). A double ray whose
+// direction components are so large that their reciprocals round to 0 in float gets the
+// slab distance (inf - o) * 0 = NaN against that box, which the slab test ignores, so the
+// slot is entered. It must then lead nowhere: it used to lead back to the root, and the
+// walk ran past the end of its stack (found by a libFuzzer run: two spheres, the first
+// with a radius beyond the float range; the ray below).
+TEST_CASE("bvh: a ray entering an unused child slot visits nothing") {
+    const std::vector<shade::sphere<double>> spheres{
+        shade::sphere<double>({0.0, 0.0, -0x1p-8}, 0x1.1004001004003p+977),
+        shade::sphere<double>({0x1p-7, 0x1p-8, -0.0}, 0x1.8p-6)};
+    const shade::primitive_bvh<shade::sphere<double>> accel(spheres);
+    shade::ray<double> r{{0, 0, 0}, {-0x1.014107194c1d2p+977, 0x1.57015ecc657c2p+975, 0x1.57015ecc657c2p+973}};
+    r.t_max = 0x1.001004003ffffp-1019;
+    std::optional<std::pair<std::uint32_t, double>> nearest;
+    for (std::uint32_t i = 0; i < spheres.size(); ++i)
+        if (auto h = shade::intersect(r, spheres[i]); h && (!nearest || h->t < nearest->second))
+            nearest = {i, h->t};
+    const auto h = accel.closest(r);
+    REQUIRE(h.has_value() == nearest.has_value());
+    if (h) {
+        CHECK(h->primitive == nearest->first);
+        CHECK(h->hit.t == nearest->second);
+    }
+    CHECK(accel.any(r) == nearest.has_value());
+}

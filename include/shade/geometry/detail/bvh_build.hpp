@@ -57,7 +57,7 @@ template <std::floating_point T>
 /// vector load gets one plane of all four, and the children's references. A reference is
 /// an inner node's index, or a leaf (leaf_flag set) holding `count` items from `first`
 /// (see make_leaf_ref). Unused children have an empty box (lo = +inf, hi = -inf), which
-/// no ray enters. 128 bytes: two cache lines.
+/// no finite ray enters, and an empty leaf (count 0) as their reference. 128 bytes: two cache lines.
 struct alignas(64) bvh_node4 {
     std::array<std::array<float, 4>, 6> planes; ///< [2 k + side][child]: side 0 lo, 1 hi
     std::array<std::uint32_t, 4> child;         ///< child references
@@ -203,7 +203,10 @@ private:
             node.planes[std::size_t(2 * k)].fill(infinity<float>);
             node.planes[std::size_t(2 * k + 1)].fill(-infinity<float>);
         }
-        node.child.fill(0);
+        // An empty leaf, not node 0: a ray for which the slab test cannot rule the empty
+        // box out (a NaN slab distance, ignored by the test, from an origin or a box beyond
+        // the float range) then visits nothing, instead of walking back to the root.
+        node.child.fill(make_leaf_ref(0, 0));
     }
     static void set_child(bvh_node4& node, std::size_t j, const bvh_box& b, std::uint32_t ref) noexcept {
         for (std::size_t k = 0; k < 3; ++k) {
