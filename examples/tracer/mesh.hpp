@@ -25,6 +25,8 @@ struct mesh {
     std::vector<vec3> positions;
     std::vector<vec3> normals;
     std::vector<std::uint32_t> indices;
+    /// Per-vertex texture coordinates (one per position), or empty when the mesh has none.
+    std::vector<shade::vec2<real>> uvs;
 
     [[nodiscard]] std::size_t triangle_count() const { return indices.size() / 3; }
 
