@@ -416,7 +416,7 @@ def main():
              "Built for the baseline (the default flags, as here), it also carries a copy "
              "compiled for AVX and selects it at run time when the CPU has AVX, and for "
              "batches of 64 bytes (16 floats, 8 doubles) a copy written with AVX-512F "
-             "intrinsics (16 floats or 8 doubles per step) that it selects when the CPU has "
+             "builtins (16 floats or 8 doubles per step) that it selects when the CPU has "
              "AVX-512F (see \"Batch kernel\" above).",
              ""]
 

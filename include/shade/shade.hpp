@@ -1,10 +1,9 @@
 #pragma once
 // shade: header-only C++20 shading, BRDF and ray-intersection library on GLM.
 // This umbrella header includes every public header except shade/check/doctest.hpp (which
-// needs doctest), shade/geometry/triangle_batch.hpp (whose x86-64 backends bring in the
-// compiler's SIMD intrinsics headers: include it where you use the batch), and the
-// hierarchies shade/geometry/bvh.hpp and triangle_bvh.hpp (SIMD box tests, and the batch):
-// include them where you use them.
+// needs doctest), shade/geometry/triangle_batch.hpp (platform-specific SIMD code and
+// run-time CPU detection), and the hierarchies shade/geometry/bvh.hpp and triangle_bvh.hpp
+// (SIMD box tests, and the batch): include them where you use them.
 // Conventions: shade/core/frame.hpp and docs/conventions.md.
 
 #include <shade/version.hpp>

@@ -6,11 +6,6 @@
 # the umbrella shade/shade.hpp, 85000 for any other (the property kit in check/, which
 # needs containers and streams). New headers are found by globbing at test time.
 #
-# One exception, named here and printed: the headers that include the compiler's
-# <immintrin.h> (about 45000 lines on its own), which the umbrella header leaves out for
-# that reason: shade/geometry/triangle_batch.hpp and its AVX-512F backend get 110000, and
-# shade/geometry/triangle_bvh.hpp, whose leaves are triangle batches, 125000.
-#
 #   cmake -DCXX=<compiler> -DROOT=<include dir> [-DEXTRA_FLAGS=<list>] -P budget.cmake
 cmake_minimum_required(VERSION 3.20)
 
@@ -21,7 +16,6 @@ foreach(var CXX ROOT)
 endforeach()
 
 set(lean_folders core brdf geometry light shading color)
-set(exceptions shade/geometry/triangle_batch.hpp shade/geometry/detail/triangle_batch_avx512.hpp)
 
 file(GLOB_RECURSE headers RELATIVE ${ROOT} ${ROOT}/shade/*.hpp)
 list(SORT headers)
@@ -35,11 +29,7 @@ set(over "")
 set(report "")
 foreach(header IN LISTS headers)
     string(REGEX REPLACE "^shade/([^/]+)/.*" "\\1" folder "${header}")
-    if(header STREQUAL "shade/geometry/triangle_bvh.hpp")
-        set(budget 125000)
-    elseif(header IN_LIST exceptions)
-        set(budget 110000)
-    elseif(header STREQUAL "shade/shade.hpp")
+    if(header STREQUAL "shade/shade.hpp")
         set(budget 95000)
     elseif(folder IN_LIST lean_folders)
         set(budget 60000)

@@ -19,9 +19,8 @@
 // differently in the two (x86-64 without -mfma never contracts; elsewhere compile with
 // -ffp-contract=off). tests/geometry/test_triangle_batch.cpp checks it.
 //
-// Not included by <shade/shade.hpp>: include this header where you use the batch (its
-// x86-64 backends bring in the compiler's SIMD intrinsics headers, which every user of the
-// umbrella header would otherwise pay for).
+// Not included by <shade/shade.hpp>: include this header where you use the batch (it is
+// platform-specific SIMD code with run-time CPU detection, which the umbrella leaves out).
 //
 // Forms of the kernel (shade/geometry/detail/triangle_batch_*.hpp), all giving the same
 // bits: with g++ and clang++, GNU vector extensions at the build target's vector width
@@ -34,9 +33,9 @@
 // shade::intersect calls it when the CPU and OS support AVX. AVX does not include FMA, so
 // both forms give the same bits. Batches of 64 bytes (16 floats, 8 or 16 doubles) go to a
 // third form where the CPU has AVX-512F (16 floats or 8 doubles per step, comparisons
-// into mask registers, arithmetic through intrinsics that cannot be contracted), the same
-// bits again. The CPU is examined on the first call (a function-local static: no static
-// initialiser). shade::triangle_batch_kernel() says which forms run. Define
+// into mask registers, arithmetic with embedded rounding, which cannot be contracted),
+// the same bits again. The CPU is examined on the first call (a function-local static: no
+// static initialiser). shade::triangle_batch_kernel() says which forms run. Define
 // SHADE_NO_RUNTIME_DISPATCH to always use the build's own target.
 
 #include <concepts>

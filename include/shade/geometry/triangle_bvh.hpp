@@ -16,7 +16,6 @@
 // are conservative, see shade/geometry/bvh.hpp; the batch gives the scalar test's bits):
 // the same t and record, and the same triangle unless several are hit at the very same t.
 
-#include <algorithm>
 #include <concepts>
 #include <cstdint>
 #include <optional>
@@ -160,9 +159,10 @@ private:
                 const std::uint32_t first = detail::leaf_first(ref), count = detail::leaf_count(ref);
                 const auto batch_first = static_cast<std::uint32_t>(batches_.size());
                 for (std::uint32_t i = first; i < first + count; i += leaf_width) {
-                    const std::uint32_t n = std::min<std::uint32_t>(leaf_width, first + count - i);
+                    const std::uint32_t left = first + count - i;
+                    const std::uint32_t n = left < leaf_width ? left : std::uint32_t(leaf_width);
                     batches_.emplace_back(std::span<const triangle<T>>(triangles_.data() + i, n));
-                    for (std::uint32_t j = 0; j < leaf_width; ++j) slot_of_lane_.push_back(i + std::min(j, n - 1));
+                    for (std::uint32_t j = 0; j < leaf_width; ++j) slot_of_lane_.push_back(i + (j < n - 1 ? j : n - 1));
                 }
                 ref = detail::make_leaf_ref(batch_first, static_cast<std::uint32_t>(batches_.size()) - batch_first);
             }

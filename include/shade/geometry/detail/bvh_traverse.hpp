@@ -11,7 +11,6 @@
 #include <cmath>
 #include <concepts>
 #include <cstdint>
-#include <cstring>
 
 #include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
@@ -63,7 +62,8 @@ using bvh_i4 [[gnu::vector_size(16)]] = std::int32_t;
 
 [[gnu::always_inline]] inline bvh_f4 bvh_load(const std::array<float, 4>& p) noexcept {
     bvh_f4 v;
-    std::memcpy(&v, p.data(), sizeof v);
+    // __builtin_memcpy (g++ and clang++ only, as is this block): no <cstring> needed.
+    __builtin_memcpy(&v, p.data(), sizeof v);
     return v;
 }
 [[gnu::always_inline]] inline bvh_f4 bvh_splat(float x) noexcept { return bvh_f4{x, x, x, x}; }
@@ -108,7 +108,7 @@ using bvh_i4 [[gnu::vector_size(16)]] = std::int32_t;
         far = bvh_min((bvh_load(node.planes[n ^ 1u]) - bvh_splat(r.origin_far[k])) * inv, far);
     }
     far = bvh_min(far * bvh_splat(r.enlarge), bvh_splat(t_max));
-    std::memcpy(t_enter.data(), &near, sizeof near);
+    __builtin_memcpy(t_enter.data(), &near, sizeof near);
     return bvh_bits(near <= far);
 }
 #else

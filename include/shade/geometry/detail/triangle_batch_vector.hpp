@@ -10,7 +10,6 @@
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <type_traits>
 
 #include <shade/geometry/detail/triangle_batch_kernel.hpp>
@@ -67,10 +66,11 @@ struct vector_lanes {
     using vec [[gnu::vector_size(Bytes)]] = T;         ///< width values
     using mask [[gnu::vector_size(Bytes)]] = mask_int; ///< width flags (0 or -1)
     [[gnu::always_inline]] static void load(vec& out, const T* p) noexcept {
-        std::memcpy(&out, p, sizeof out);
+        // __builtin_memcpy (g++ and clang++ only, as is this block): no <cstring> needed.
+        __builtin_memcpy(&out, p, sizeof out);
     }
     [[gnu::always_inline]] static void store(T* p, const vec& v) noexcept {
-        std::memcpy(p, &v, sizeof v);
+        __builtin_memcpy(p, &v, sizeof v);
     }
     [[gnu::always_inline]] static void splat(vec& out, T x) noexcept {
         for (std::size_t i = 0; i < width; ++i) out[i] = x;
