@@ -140,7 +140,7 @@ TEST_CASE_TEMPLATE("cook-torrance: invalid parameters throw naming the parameter
     CHECK_NOTHROW((void)beckmann_v_groove<T>(shade::unchecked, d, f, rgb<T>(-1)));
 }
 
-TEST_CASE_TEMPLATE("cook-torrance: an overflowing peak names the distribution's parameter (issue 22)", T, float, double) {
+TEST_CASE_TEMPLATE("cook-torrance: an overflowing peak names the distribution's parameter", T, float, double) {
     const shade::schlick<T> f(rgb<T>(T(0.04)));
     // ggx(unchecked, 0): D(n) = 1/(pi 0) = inf: the fault is alpha's, not k_s's.
     check_throws_naming([&] { (void)ggx_smith<T>(shade::ggx<T>(shade::unchecked, T(0)), f); }, "alpha");
