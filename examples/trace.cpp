@@ -39,7 +39,8 @@ options:
                    furnace: a white Lambert sphere in a white environment (path: all 1);
                    furnace-conductor: the same with a rough conductor of F = 1;
                    enclosure: inside a glowing sphere of albedo 0.8 (path: all 5);
-                   veach: glossy plates and four sphere lights (compare --strategy)
+                   veach: glossy plates and four sphere lights (compare --strategy);
+                   cornell: a red/green room with an OBJ pyramid and a sphere light (path)
   --integrator M   direct (default): classic direct lighting; path: path tracing in
                    physical units with next-event estimation, MIS and Russian roulette
   --strategy S     path integrator only: mis (default), light or brdf sampling alone

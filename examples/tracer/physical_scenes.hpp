@@ -9,10 +9,15 @@
 //                      1 + 0.8 + 0.8^2 + ... = 1 / (1 - 0.8) = 5;
 //   veach:             four glossy plates of increasing roughness lit by four spherical
 //                      lights of equal power and very different sizes (after Veach 1997,
-//                      fig. 9.2), for comparing light sampling, BRDF sampling and MIS.
+//                      fig. 9.2), for comparing light sampling, BRDF sampling and MIS;
+//   cornell:           a Cornell-box-like room (white floor, ceiling and back wall, red
+//                      left and green right wall, Lambert) holding the square pyramid of
+//                      examples/data/pyramid.obj, lit by a small spherical area light under
+//                      the ceiling.
 
 #include <array>
 #include <cmath>
+#include <string>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -23,6 +28,7 @@
 #include <shade/light/environment.hpp>
 #include <shade/light/sphere.hpp>
 
+#include "obj.hpp"
 #include "scene.hpp"
 
 namespace tracer {
@@ -101,6 +107,55 @@ inline scene make_veach(real aspect) {
         s.add_emitting_sphere(shade::sphere_light<real>(centre, radii[i], shade::emission<real>::from_physical(L * colours[i])),
                               std::nullopt);
     }
+    return s;
+}
+
+namespace detail {
+
+/// The parallelogram corner, corner + a, corner + a + b, corner + b as two triangles whose
+/// normal is normalize(cross(a, b)).
+inline mesh quad(vec3 corner, vec3 a, vec3 b) {
+    mesh m;
+    const vec3 n = glm::normalize(glm::cross(a, b));
+    m.positions = {corner, corner + a, corner + a + b, corner + b};
+    m.normals.assign(4, n);
+    m.indices = {0, 1, 2, 0, 2, 3};
+    return m;
+}
+
+} // namespace detail
+
+/// The OBJ file the cornell scene places in its room.
+inline std::string cornell_mesh_path() { return SHADE_EXAMPLES_DATA_DIR "/pyramid.obj"; }
+
+/// cornell: see the file comment. The room is x in [-1, 1], y in [0, 2], z in [-1, 1],
+/// open toward the camera (+z); every wall's normal points into the room. Throws
+/// std::runtime_error naming the OBJ file when it cannot be loaded.
+inline scene make_cornell(real aspect) {
+    using L = shade::lambert<real>;
+    scene s;
+    s.name = "cornell";
+    s.camera = detail::look(vec3(0, 1, 3.6), vec3(0, 1, 0), 38, aspect);
+    s.background = rgb(0);
+    const rgb white(0.75), red(0.63, 0.065, 0.05), green(0.14, 0.45, 0.091);
+    s.add_physical_mesh(detail::quad(vec3(-1, 0, -1), vec3(0, 0, 2), vec3(2, 0, 0)), L(white)); // floor
+    s.add_physical_mesh(detail::quad(vec3(-1, 2, -1), vec3(2, 0, 0), vec3(0, 0, 2)), L(white)); // ceiling
+    s.add_physical_mesh(detail::quad(vec3(-1, 0, -1), vec3(2, 0, 0), vec3(0, 2, 0)), L(white)); // back
+    s.add_physical_mesh(detail::quad(vec3(-1, 0, -1), vec3(0, 2, 0), vec3(0, 0, 2)), L(red));   // left
+    s.add_physical_mesh(detail::quad(vec3(1, 0, -1), vec3(0, 0, 2), vec3(0, 2, 0)), L(green));  // right
+
+    // The pyramid (unit base on y = 0, apex at height 1) scaled by 0.9, turned 30 degrees
+    // about y and moved back a little.
+    mesh pyramid = load_obj(cornell_mesh_path());
+    const real angle = shade::pi<real> / 6, c = std::cos(angle), sn = std::sin(angle);
+    const auto turn = [&](const vec3& p) { return vec3(c * p.x + sn * p.z, p.y, -sn * p.x + c * p.z); };
+    for (vec3& p : pyramid.positions) p = turn(real(0.9) * p) + vec3(0, 0, -0.2);
+    for (vec3& n : pyramid.normals) n = turn(n);
+    s.add_physical_mesh(std::move(pyramid), L(rgb(0.75, 0.7, 0.6)));
+
+    // The area light: a sphere of radius 0.15 and radiance 50 under the ceiling, which
+    // gives the floor below it an irradiance of about pi 50 (0.15 / 1.75)^2 ~ 1.2.
+    s.add_emitting_sphere(shade::sphere_light<real>(vec3(0, 1.75, 0), 0.15, detail::radiance(50)), std::nullopt);
     return s;
 }
 

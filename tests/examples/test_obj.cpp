@@ -13,7 +13,7 @@
 
 namespace {
 
-const std::string pyramid_path = std::string(SHADE_EXAMPLES_DATA_DIR) + "/pyramid.obj";
+const std::string pyramid_path = SHADE_EXAMPLES_DATA_DIR "/pyramid.obj";
 
 // Writes `text` to a file named `name` in the working directory and returns its name.
 std::string write_file(const std::string& name, const std::string& text) {
