@@ -26,6 +26,7 @@
 // f == f_diffuse + f_specular; the shader lift then lights the two parts with a light's
 // diffuse and specular colours respectively (shade::split_brdf).
 
+#include <cmath>
 #include <concepts>
 #include <limits>
 #include <optional>
@@ -92,7 +93,25 @@ template <std::floating_point T>
 [[nodiscard]] inline std::optional<brdf_sample<T>> make_brdf_sample(const vec3<T>& l, const rgb<T>& f,
                                                                     T pdf, T abs_n_dot_l) noexcept {
     if (!(pdf > T(0)) || !(pdf <= std::numeric_limits<T>::max())) return std::nullopt;
-    return brdf_sample<T>{l, f, pdf, f * (abs_n_dot_l / pdf)};
+    // f (|n·l| / pdf) when that ratio is a normal number. Otherwise the ratio has
+    // underflowed (lost precision) or overflowed (0 x inf would be NaN), as happens with a
+    // subnormal pdf or |n·l|: each factor is then split into mantissa and exponent
+    // (std::frexp, exact), the mantissas combined in [1/4, 4], and the exponents applied
+    // once at the end (std::ldexp), so only the final result can underflow or overflow.
+    const T ratio = abs_n_dot_l / pdf;
+    if (ratio >= std::numeric_limits<T>::min() && ratio <= std::numeric_limits<T>::max())
+        return brdf_sample<T>{l, f, pdf, f * ratio};
+    int e_cos = 0;
+    int e_pdf = 0;
+    const T m_cos = std::frexp(abs_n_dot_l, &e_cos);
+    const T m_pdf = std::frexp(pdf, &e_pdf);
+    rgb<T> weight(0);
+    for (int i = 0; i < 3; ++i) {
+        int e_f = 0;
+        const T m_f = std::frexp(f[i], &e_f);
+        weight[i] = std::ldexp(m_f * m_cos / m_pdf, e_f + e_cos - e_pdf);
+    }
+    return brdf_sample<T>{l, f, pdf, weight};
 }
 
 } // namespace detail

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <concepts>
+#include <limits>
 #include <optional>
 
 #include <glm/common.hpp>
@@ -272,9 +273,14 @@ private:
     /// The mixture density from n·l, the lobe geometry and power = cosine^s. The power
     /// cosine is drawn only where cosine > 0 (0^0 = 1 would otherwise give shininess 0 a
     /// density where the lobe is never drawn).
+    /// As v·h -> 0 the half-vector Jacobian 1/(4 v·h) overflows: the density there exceeds
+    /// every finite T, so it saturates at the largest finite value instead of becoming +inf
+    /// (or NaN where power is 0).
     [[nodiscard]] T lobe_pdf(T n_dot_l, const lobe_geometry<T>& g, T power) const noexcept {
-        const T lobe_density =
-            g.cosine > T(0) ? (shininess_ + T(1)) / (T(2) * pi<T>) * power * g.jacobian : T(0);
+        T lobe_density = g.cosine > T(0) && power > T(0)
+                             ? (shininess_ + T(1)) / (T(2) * pi<T>) * power * g.jacobian
+                             : T(0);
+        if (!(lobe_density <= std::numeric_limits<T>::max())) lobe_density = std::numeric_limits<T>::max();
         return mixture_pdf(p_lobe_, cosine_lobe_pdf(n_dot_l), lobe_density);
     }
 
