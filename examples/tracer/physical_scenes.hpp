@@ -7,8 +7,8 @@
 //   enclosure:         the camera inside a closed sphere whose inside is a Lambert of
 //                      albedo 0.8 that also emits radiance 1: every pixel is
 //                      1 + 0.8 + 0.8^2 + ... = 1 / (1 - 0.8) = 5;
-//   veach:             four glossy plates of increasing roughness lit by four spherical
-//                      lights of equal power and very different sizes (after Veach 1997,
+//   veach:             four glossy plates, rough to near-mirror, lit by four spherical
+//                      lights of equal power and very different sizes (Veach 1997,
 //                      fig. 9.2), for comparing light sampling, BRDF sampling and MIS;
 //   cornell:           a Cornell-box-like room (white floor, ceiling and back wall, red
 //                      left and green right wall, Lambert) holding the square pyramid of
@@ -67,45 +67,60 @@ inline scene make_enclosure(real aspect) {
     return s;
 }
 
-/// The roughness (GGX alpha) of the veach scene's plates, back to front.
-inline constexpr std::array<real, 4> veach_alphas{0.008, 0.03, 0.09, 0.25};
+/// The roughness (GGX alpha) of the veach scene's plates, back (top of the image) to front
+/// (bottom): from rough to near-mirror, the values of Veach's figure.
+inline constexpr std::array<real, 4> veach_alphas{0.1, 0.05, 0.02, 0.005};
 
-/// veach: see the file comment. Objects 0-3 are the plates (back to front), 4-7 the lights.
+/// The radii of the veach scene's sphere lights, left to right (ratio 27 between the
+/// largest and the smallest, as in Veach's figure).
+inline constexpr std::array<real, 4> veach_light_radii{1.0 / 30, 0.1, 0.3, 0.9};
+
+/// veach: Veach's multiple-importance-sampling test scene (Veach 1997, "Robust Monte Carlo
+/// Methods for Light Transport Simulation", PhD thesis, Stanford, fig. 9.2; Veach, Guibas
+/// 1995, "Optimally Combining Sampling Techniques for Monte Carlo Rendering", SIGGRAPH,
+/// fig. 2), in its usual dimensions: four sphere lights on the x axis at x = -3.75,
+/// -1.25, 1.25, 3.75 with the radii veach_light_radii and radiance 1 / R^2 (equal power
+/// 4 pi^2 W each); below and in front of them four plates, 8 wide (x in [-4, 4]) and 1
+/// deep, stepping down toward the camera, each tilted so that it mirrors the centre of
+/// the row of lights into the camera, so every plate reflects all four lights; GGX
+/// conductors (f0 = 0.7) with the roughness veach_alphas. The camera at (0, 6, 27.5) looks
+/// at (0, -1.5, 2.5) with a horizontal field of view of 25 degrees. Nothing else: the
+/// background is black. Objects 0-3 are the plates (back to front), 4-7 the lights.
 inline scene make_veach(real aspect) {
     scene s;
     s.name = "veach";
-    const vec3 eye(0, 1.5, 12);
-    s.camera = detail::look(eye, vec3(0, -1.2, 1.5), 32, aspect);
+    const vec3 eye(0, 6, 27.5);
+    const real tan_half_x = std::tan(real(12.5) * shade::pi<real> / 180);
+    const real fov_y = 2 * std::atan(tan_half_x / aspect);
+    s.camera = shade::pinhole_camera<real>(eye, vec3(0, -1.5, 2.5), vec3(0, 1, 0), fov_y, aspect);
     s.background = rgb(0);
-    // Each plate is tilted so that it mirrors the row of lights toward the camera: its
-    // normal halves the angle between the directions to the eye and to the lights.
-    const vec3 lights_centre(0, 2.5, -2.5);
-    const std::array<real, 4> depth{-0.5, 1.0, 2.5, 4.0};
+    // The plates' centres, back to front; each plate's normal halves the angle between the
+    // directions to the eye and to the centre of the lights (the origin), so that its
+    // mirror direction for the eye passes through the row of lights.
+    const std::array<vec3, 4> centres{vec3(0, -2.395, -0.135), vec3(0, -3.063, 0.923), vec3(0, -3.582, 2.223),
+                                      vec3(0, -3.908, 3.574)};
     for (std::size_t i = 0; i < 4; ++i) {
-        const vec3 c(0, -2 - 0.25 * real(i), depth[i]);
-        const vec3 n = glm::normalize(glm::normalize(eye - c) + glm::normalize(lights_centre - c));
+        const vec3 c = centres[i];
+        const vec3 n = glm::normalize(glm::normalize(eye - c) + glm::normalize(vec3(0) - c));
         const vec3 across(1, 0, 0);
         const vec3 along = glm::normalize(glm::cross(n, across)); // in the plate, across x
         mesh m;
-        const real half_x = 4.2;
-        const real half_y = 0.55;
+        const real half_x = 4;
+        const real half_depth = 0.5;
         for (const real sx : {-1.0, 1.0})
             for (const real sy : {-1.0, 1.0}) {
-                m.positions.push_back(c + (sx * half_x) * across + (sy * half_y) * along);
+                m.positions.push_back(c + (sx * half_x) * across + (sy * half_depth) * along);
                 m.normals.push_back(n);
             }
         // Corners 0 (-,-), 1 (-,+), 2 (+,-), 3 (+,+): counter-clockwise seen along -n.
         m.indices = {0, 2, 3, 0, 3, 1};
         s.add_physical_mesh(std::move(m), shade::make_ggx_conductor(veach_alphas[i], rgb(0.7)));
     }
-    // Four lights of equal power (radiance x radius^2 constant), small to large.
-    const std::array<real, 4> radii{0.04, 0.12, 0.35, 0.9};
-    const std::array<rgb, 4> colours{rgb(1, 0.4, 0.3), rgb(1, 0.9, 0.3), rgb(0.3, 1, 0.4), rgb(0.3, 0.5, 1)};
+    // Equal power: a sphere of radius R and radiance L emits 4 pi^2 R^2 L, so L = 1 / R^2.
     for (std::size_t i = 0; i < 4; ++i) {
-        const real L = real(0.05) / (radii[i] * radii[i]);
-        const vec3 centre(-3.75 + 2.5 * real(i), lights_centre.y, lights_centre.z);
-        s.add_emitting_sphere(shade::sphere_light<real>(centre, radii[i], shade::emission<real>::from_physical(L * colours[i])),
-                              std::nullopt);
+        const real R = veach_light_radii[i];
+        const vec3 centre(-3.75 + 2.5 * real(i), 0, 0);
+        s.add_emitting_sphere(shade::sphere_light<real>(centre, R, detail::radiance(1 / (R * R))), std::nullopt);
     }
     return s;
 }

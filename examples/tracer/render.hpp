@@ -39,6 +39,10 @@ struct render_options {
     lighting_options lighting{};
     integrator method = integrator::direct;
     path_options path{};    ///< settings of the path integrator
+    /// Whether samples are spread over the pixel (true) or all go through its centre
+    /// (false: the estimate is then of the radiance along one ray, without the variance of
+    /// integrating over the pixel's area, e.g. to compare light-transport estimators).
+    bool jitter = true;
     bool progress = false;  ///< draw a progress bar on stderr once a render passes 1 s
 };
 
@@ -59,11 +63,12 @@ inline rgb trace(const scene& s, const shade::ray<real>& r, shade::rng& random, 
 }
 
 /// One sample of pixel (x, y): a camera ray through a point of the pixel (its centre when
-/// spp is 1, else jittered with two numbers from `random`) and the radiance the chosen
-/// integrator estimates along it.
+/// spp is 1 or options.jitter is false, else jittered with two numbers from `random`) and
+/// the radiance the chosen integrator estimates along it.
 inline rgb sample_pixel(const scene& s, const render_options& options, int x, int y, shade::rng& random) {
-    const real jx = options.spp == 1 ? real(0.5) : random.uniform<real>();
-    const real jy = options.spp == 1 ? real(0.5) : random.uniform<real>();
+    const bool centre = options.spp == 1 || !options.jitter;
+    const real jx = centre ? real(0.5) : random.uniform<real>();
+    const real jy = centre ? real(0.5) : random.uniform<real>();
     const auto r = s.camera->ray_for_raster(real(x) + jx, real(y) + jy, options.width, options.height);
     if (options.method == integrator::path) return trace_path(s, r, random, options.path);
     return trace(s, r, random, options.lighting);
