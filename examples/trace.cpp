@@ -1,8 +1,10 @@
 // trace: shade's reference ray tracer. Renders one of the built-in scenes to a PNG, or to
-// a PFM (linear radiance, no tone map) when the output name ends in .pfm.
+// a PFM or an OpenEXR file (linear radiance, no tone map) when the output name ends in
+// .pfm or .exr.
 //
 //   trace --scene gallery --width 640 --height 360 --spp 4 --out gallery.png
 //   trace --scene furnace --integrator path --out out/furnace.pfm
+//   trace --scene cornell --integrator path --out out/cornell.exr
 //
 // Direct lighting in the classic mode (area lights sampled n x n), or path tracing in
 // physical units (next-event estimation and BRDF sampling combined by MIS, Russian
@@ -22,6 +24,7 @@
 
 #include "support/cli.hpp"
 #include "support/image.hpp"
+#include "tracer/exr.hpp"
 #include "tracer/pfm.hpp"
 #include "tracer/render.hpp"
 #include "tracer/scenes.hpp"
@@ -54,7 +57,9 @@ options:
   --area-samples N area lights are sampled N x N times per hit, 1 to 256 (default 4)
   --exposure X     exposure multiplier before tone mapping, in (0, 1e6] (default 1)
   --seed N         seed of the per-pixel random numbers (default 1)
-  --out FILE       output PNG, or PFM when FILE ends in .pfm (default <scene>.png);
+  --out FILE       output PNG, or linear radiance as PFM when FILE ends in .pfm
+                   or as OpenEXR (32-bit float RGB) when it ends in .exr
+                   (default <scene>.png);
                    written to a temporary file next
                    to it and renamed when complete, so a failed or interrupted run
                    never leaves a partial FILE
@@ -161,6 +166,8 @@ int main(int argc, char** argv) {
         const auto radiance = tracer::render(scene, options);
         if (args.out.extension() == ".pfm")
             tracer::save_pfm(out.temporary(), radiance);
+        else if (args.out.extension() == ".exr")
+            tracer::save_exr(out.temporary(), radiance);
         else
             shade::examples::save_png(out.temporary(), tracer::to_srgb8(radiance, args.exposure));
         out.commit();
