@@ -3,10 +3,12 @@
 // (any shade::shader, type-erased), lit by any of shade's lights, with shadow rays.
 
 #include <cmath>
+#include <concepts>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -36,17 +38,36 @@ using vec2 = shade::vec2<real>;
 using surface_point = shade::surface_point<real>;
 using light_sample = shade::light_sample<real>;
 
-/// A material: any shade::shader<double>, stored behind a std::function so that one scene
-/// can mix shader types.
-using material = std::function<rgb(const surface_point&, const vec3&, const light_sample&)>;
+struct scene;
+struct lighting_options;
+
+/// A surface point to light: what a material needs to sum the scene's lights there.
+struct lighting_query {
+    const scene& lit_scene;
+    const surface_point& at;
+    const vec3& geometric_n;    ///< unit geometric normal (shadow rays start off it)
+    const vec3& v;              ///< unit direction toward the viewer
+    shade::rng& random;         ///< jitters the area lights' strata
+    const lighting_options& options;
+    bool shadows;               ///< trace shadow rays
+};
+
+/// The radiance shader s reflects at q.at toward q.v from all the scene's lights (defined
+/// below the scene).
+template <class S>
+rgb light_with(const S& s, const lighting_query& q);
+
+/// A material: any shade::shader<double> (or BRDF), stored behind a std::function so that
+/// one scene can mix shader types. It is called once per shaded point and sums the lights
+/// itself (light_with), so the loop over the light samples runs on the concrete shader
+/// type, without an indirect call per sample.
+using material = std::function<rgb(const lighting_query&)>;
 
 /// Wraps a shade shader (or a BRDF, lifted with shade::lit) as a material.
 template <class S>
 material make_material(S s) {
     if constexpr (shade::shader<S>) {
-        return [s](const surface_point& at, const vec3& v, const light_sample& ls) {
-            return s.shade(at, v, ls);
-        };
+        return [s](const lighting_query& q) { return light_with(s, q); };
     } else {
         return make_material(shade::lit<S>{s, rgb(0)});
     }
@@ -164,9 +185,9 @@ struct scene {
 
     /// True when something blocks r within its interval (shadow rays).
     [[nodiscard]] bool occluded(const shade::ray<real>& r) const {
+        // Only whether something is hit: no scene_hit is built.
         for (const std::size_t i : unbounded_)
-            if (intersect_object(i, r)) return true;
-        // Only whether something is hit: no hit record is built.
+            if (shade::intersect(r, *objects[i].plane)) return true;
         return bounded_.any(r, [&](std::uint32_t k, const shade::ray<real>& rr) {
             const object& o = objects[bounded_objects_[k]];
             if (o.shape == object::kind::mesh) return o.mesh_bvh->any(rr);
@@ -267,24 +288,22 @@ private:
         return std::nullopt;
     }
 
-    /// A material as a shade::shader, so that shade::sum_over_lights can drive it.
-    struct material_shader {
-        using scalar_type = real;
-        const material* surface;
-        [[nodiscard]] rgb shade(const surface_point& at, const vec3& v, const light_sample& s) const {
-            return (*surface)(at, v, s);
-        }
-    };
+public:
+    /// Sum over lights for shader s at q.at (shade::sum_over_lights), with shadow rays
+    /// when q.shadows; area lights are sampled on a jittered n x n grid.
+    template <class S>
+    [[nodiscard]] rgb sum_lights(const S& s, const lighting_query& q) const {
+        const auto jitter = [&](int, int) { return vec2(q.random.uniform<real>(), q.random.uniform<real>()); };
+        const auto unoccluded = [&](const light_sample& ls) { return !q.shadows || visible(q.at.p, q.geometric_n, ls); };
+        return shade::sum_over_lights(s, q.at, q.v, lights, unoccluded, q.options.area_samples_per_side, jitter);
+    }
 
-    /// Sum over lights at `at` for one object (shade::sum_over_lights), with shadow rays
-    /// when `shadows`; area lights are sampled on a jittered n x n grid.
+private:
+    /// Lights `at` with object o's material.
     [[nodiscard]] rgb light_point(const object& o, const surface_point& at, const vec3& geometric_n,
                                   const vec3& v, shade::rng& random, const lighting_options& options,
                                   bool shadows) const {
-        const material_shader s{&o.surface};
-        const auto jitter = [&](int, int) { return vec2(random.uniform<real>(), random.uniform<real>()); };
-        const auto unoccluded = [&](const light_sample& ls) { return !shadows || visible(at.p, geometric_n, ls); };
-        return shade::sum_over_lights(s, at, v, lights, unoccluded, options.area_samples_per_side, jitter);
+        return o.surface(lighting_query{*this, at, geometric_n, v, random, options, shadows});
     }
 
     /// Shadow ray from p toward the light sample. Self-intersection: the origin is pushed
@@ -300,5 +319,62 @@ private:
         return !occluded(r);
     }
 };
+
+namespace detail {
+
+/// A two-way pattern (shade::checker, shade::checker_2d): the child used at a point is
+/// first() where parity(at) is 0, else second().
+template <class S>
+concept two_way_pattern = requires(const S& s, const surface_point& at) {
+    { s.parity(at) } -> std::same_as<int>;
+    s.first();
+    s.second();
+};
+
+template <class S>
+inline constexpr bool is_lit = false;
+template <class B>
+inline constexpr bool is_lit<shade::lit<B>> = true;
+
+/// BRDF b as a BRDF with f only (not a shade::split_brdf), so that shade::lit weights all
+/// of it with the light's diffuse colour.
+template <class B>
+struct unsplit_brdf {
+    using scalar_type = real;
+    const B* b;
+    [[nodiscard]] rgb f(const vec3& l, const vec3& v, const surface_point& at) const { return b->f(l, v, at); }
+};
+
+} // namespace detail
+
+/// A pattern's child is the same for every light sample at one point, so it is chosen
+/// once per point. The checker shader shades with shade_of(child), so lighting the child
+/// computes the same, sample for sample. lit<checker> computes what lit<child> with the
+/// same ambient reflectance does, if the checker and the child are both split BRDFs (f_d
+/// and f_s weighted by the light's diffuse and specular colours) or both not; a split
+/// child of an unsplit checker (a Lambert and a Blinn-Phong cell) is lit through its f.
+template <class S>
+rgb light_with(const S& s, const lighting_query& q) {
+    if constexpr (detail::two_way_pattern<S>) {
+        return s.parity(q.at) == 0 ? light_with(s.first(), q) : light_with(s.second(), q);
+    } else if constexpr (detail::is_lit<S>) {
+        using pattern = std::remove_cvref_t<decltype(s.brdf())>;
+        if constexpr (detail::two_way_pattern<pattern>) {
+            const auto light_child = [&](const auto& child) {
+                using B = std::remove_cvref_t<decltype(child)>;
+                if constexpr (shade::split_brdf<pattern> == shade::split_brdf<B>)
+                    return light_with(shade::lit(child, s.ambient()), q);
+                else
+                    return light_with(shade::lit(detail::unsplit_brdf<B>{&child}, s.ambient()), q);
+            };
+            const pattern& b = s.brdf();
+            return b.parity(q.at) == 0 ? light_child(b.first()) : light_child(b.second());
+        } else {
+            return q.lit_scene.sum_lights(s, q);
+        }
+    } else {
+        return q.lit_scene.sum_lights(s, q);
+    }
+}
 
 } // namespace tracer

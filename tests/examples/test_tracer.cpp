@@ -14,10 +14,12 @@
 #include <doctest/doctest.h>
 #include <glm/geometric.hpp>
 
+#include <shade/brdf/blinn_phong.hpp>
 #include <shade/brdf/lambert.hpp>
 #include <shade/core/random.hpp>
 #include <shade/geometry/triangle.hpp>
 #include <shade/geometry/triangle_bvh.hpp>
+#include <shade/light/area.hpp>
 #include <shade/light/directional.hpp>
 #include <shade/light/point.hpp>
 #include <shade/shading/checker.hpp>
@@ -412,6 +414,51 @@ TEST_CASE("checker floor: every point within one cell gets the same colour, also
     CAPTURE(below);
     CAPTURE(above);
     CHECK((below > 0 && above > 0)); // the noise the bias removes
+}
+
+TEST_CASE("a checker material chooses its cell once per point and lights it as the whole checker would") {
+    // tracer::light_with lights lit<checker> through the child of the point's cell. Lit
+    // whole, a checker of a Lambert (not a split BRDF) and a Blinn-Phong (split) is not
+    // split either, so its specular part is weighted by the light's diffuse colour; the
+    // chosen child must be lit the same way. The lights' specular colours differ from their
+    // diffuse ones, so lighting the Blinn-Phong cell as a split BRDF would show.
+    using L = shade::lambert<real>;
+    using B = shade::blinn_phong<real>;
+    tracer::scene s;
+    s.name = "checker materials";
+    s.add_plane(shade::plane<real>({0, 0, 0}, {0, 1, 0}), tracer::make_material(L(rgb(0.5))));
+    s.lights.push_back(shade::directional_light<real>({0.3, 1, 0.2}, tracer::detail::light_colour(1, rgb(1, 0.6, 0.3), rgb(0.2, 0.4, 1), rgb(0.05))));
+    s.lights.push_back(shade::area_light<real>({-1, 3, -1}, {2, 0, 0}, {0, 0, 2}, tracer::detail::light_colour(1, rgb(0.9, 1, 0.7), rgb(1, 0.1, 0.1))));
+    const shade::lit mixed(shade::checker<L, B>(L(rgb(0.9)), B(rgb(0.3, 0.1, 0.1), rgb(0.6), 30), real(0.25)), rgb(0.1));
+    const shade::lit lamberts(shade::checker<L, L>(L(rgb(0.75)), L(rgb(0.25)), real(0.25)), rgb(0.1));
+    const auto pattern_shader = shade::checker<shade::lit<L>, shade::lit<B>>(
+        shade::lit<L>(L(rgb(0.9))), shade::lit<B>(B(rgb(0.3, 0.1, 0.1), rgb(0.6), 30)), real(0.25));
+    int first_cells = 0;
+    int second_cells = 0;
+    for (int i = 0; i < 64; ++i) {
+        const vec3 p(-1 + real(i % 8) * 0.27, 0, -1 + real(i / 8) * 0.27);
+        const auto at = shade::surface_point<real>::at(p, {0, 1, 0});
+        const vec3 v = glm::normalize(vec3(0.2, 1, 0.7));
+        const vec3 n(0, 1, 0);
+        const tracer::lighting_options options{};
+        const auto both = [&](const auto& shader) {
+            shade::rng r1(3, std::uint64_t(i));
+            shade::rng r2(3, std::uint64_t(i));
+            const tracer::lighting_query q1{s, at, n, v, r1, options, true};
+            const tracer::lighting_query q2{s, at, n, v, r2, options, true};
+            const rgb chosen = tracer::light_with(shader, q1);
+            const rgb whole = s.sum_lights(shader, q2);
+            CHECK(chosen == whole); // bit for bit
+            CHECK(r1.next_u32() == r2.next_u32());
+            return chosen;
+        };
+        (void)both(mixed);
+        (void)both(lamberts);
+        (void)both(pattern_shader);
+        (mixed.brdf().parity(at) == 0 ? first_cells : second_cells)++;
+    }
+    CHECK(first_cells > 0);
+    CHECK(second_cells > 0);
 }
 
 // ---------------------------------------------------------------------------------------

@@ -89,4 +89,12 @@ TEST_CASE_TEMPLATE("split_direction is exact for tiny and huge vectors and safe 
     CHECK(shade::is_finite(zero.direction));
     const T nan = std::numeric_limits<T>::quiet_NaN();
     CHECK(shade::detail::split_direction(shade::vec3<T>(nan, 0, 0)).length == T(0));
+    // A NaN next to a larger component (which a max by comparisons could skip) and an
+    // infinite component also give length 0 and a finite direction.
+    for (const auto& d : {shade::vec3<T>(nan, 1, 0), shade::vec3<T>(2, 1, nan),
+                          shade::vec3<T>(0, std::numeric_limits<T>::infinity(), 1)}) {
+        const auto s = shade::detail::split_direction(d);
+        CHECK(s.length == T(0));
+        CHECK(shade::is_finite(s.direction));
+    }
 }

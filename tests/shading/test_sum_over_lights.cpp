@@ -142,3 +142,57 @@ TEST_CASE_TEMPLATE("sum_over_lights samples area lights on an n x n grid", T, fl
                                                       shade::always_visible{}, 0),
                          doctest::Contains("'samples_per_side'"), shade::invalid_parameter);
 }
+
+namespace {
+
+/// A light that holds an any_light but is not one, without a visit member: sum_over_lights
+/// dispatches each of its samples separately (the per-sample path), so comparing with a
+/// plain any_light checks the dispatch-once path of light_holder lights.
+template <class T>
+struct per_sample_light {
+    using scalar_type = T;
+    shade::any_light<T> held;
+    [[nodiscard]] shade::light_sample<T> sample(const shade::vec3<T>& p, const shade::vec2<T>& u) const {
+        return held.sample(p, u);
+    }
+    [[nodiscard]] bool is_delta() const { return held.is_delta(); }
+};
+
+} // namespace
+
+TEST_CASE_TEMPLATE("sum_over_lights gives any_light's held lights the same samples as a per-sample dispatch", T, float, double) {
+    using v = shade::vec3<T>;
+    using c = shade::rgb<T>;
+    static_assert(shade::detail::light_holder<shade::any_light<T>>);
+    static_assert(!shade::detail::light_holder<per_sample_light<T>>);
+    auto lights = three_lights<T>();
+    lights.emplace_back(shade::area_light<T>(v(-1, -1, 1), v(0, 2, 0), v(2, 0, 0)));
+    std::vector<per_sample_light<T>> wrapped;
+    for (const auto& l : lights) wrapped.push_back({l});
+    const auto at = shade::surface_point<T>::at(v(T(0.1), T(-0.2), 0), v(0, 0, 1));
+    const v view = glm::normalize(v(1, 0, 2));
+    // A jitter that draws from a sequence and a visibility that shadows every third
+    // sample: both paths must ask them in the same order, with the same samples.
+    const auto run = [&](const auto& ls) {
+        int draws = 0;
+        int asked = 0;
+        std::vector<shade::vec3<T>> directions;
+        const auto jitter = [&](int, int) {
+            ++draws;
+            return shade::vec2<T>(T(draws % 7) / T(7), T(draws % 5) / T(5));
+        };
+        const auto visible = [&](const shade::light_sample<T>& s) {
+            directions.push_back(s.l);
+            return ++asked % 3 != 0;
+        };
+        const c out = shade::sum_over_lights(lambert<T>{c(T(0.8))}, at, view, ls, visible, 3, jitter);
+        return std::tuple(out, draws, directions);
+    };
+    const auto [direct, draws_direct, directions_direct] = run(lights);
+    const auto [dispatched, draws_dispatched, directions_dispatched] = run(wrapped);
+    CHECK(draws_direct == 9);
+    CHECK(draws_direct == draws_dispatched);
+    CHECK(directions_direct == directions_dispatched);
+    CHECK(direct == dispatched); // bit for bit
+    CHECK(direct.x > 0);
+}

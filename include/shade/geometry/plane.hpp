@@ -64,8 +64,11 @@ private:
 /// when it lies in it; no epsilon, so nearly parallel rays hit far away as they should),
 /// when t is outside [t_min, t_max] or not finite, or, with culling::back_faces, when the
 /// ray arrives from the back (n·d > 0).
+///
+/// Declared inline (a hint a template does not otherwise carry) so that g++ inlines it
+/// into loops of shadow rays, where most tests stop early at t outside [t_min, t_max].
 template <std::floating_point T>
-[[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r, const plane<T>& pl,
+[[nodiscard]] inline std::optional<hit<T>> intersect(const ray<T>& r, const plane<T>& pl,
                                               culling cull = culling::none) noexcept {
     // The one test of the ray itself: valid() would also check that origin and direction
     // are finite and the direction non-zero, but those need no test of their own here. A

@@ -4,6 +4,7 @@
 
 #include <concepts>
 #include <optional>
+#include <utility>
 #include <variant>
 
 #include <shade/core/types.hpp>
@@ -70,6 +71,13 @@ public:
     /// The underlying variant, for std::visit with the concrete light type (e.g. to
     /// sample an area light with its own stratification).
     [[nodiscard]] const variant_type& get() const noexcept { return light_; }
+    /// f(light) with the held light as its concrete type (std::visit), returning what f
+    /// returns: a loop over many samples of one light inside f dispatches once, not per
+    /// sample (shade::sum_over_lights does this).
+    template <class F>
+    decltype(auto) visit(F&& f) const {
+        return std::visit(std::forward<F>(f), light_);
+    }
 
 private:
     variant_type light_;

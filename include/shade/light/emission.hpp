@@ -79,7 +79,7 @@ template <std::floating_point T>
 /// non-finite colour, the diffuse and specular colours are left at zero (no light rather
 /// than Inf/NaN downstream); l and distance are set whenever l is finite.
 template <std::floating_point T>
-[[nodiscard]] light_sample<T> make_sample(const emission<T>& e, const vec3<T>& l, T distance,
+[[nodiscard]] inline light_sample<T> make_sample(const emission<T>& e, const vec3<T>& l, T distance,
                                           T attenuation) noexcept {
     light_sample<T> s = ambient_only_sample(e);
     if (!is_finite(l)) return s;
@@ -94,9 +94,10 @@ template <std::floating_point T>
     return s;
 }
 
-/// The unit direction and length of d, or length 0 when d is zero. d is first divided by
-/// its largest component so that squaring neither underflows (tiny d, where glm::length
-/// would return 0 or a denormal-rounded value) nor overflows (huge d).
+/// The unit direction and length of d, or length 0 when d is zero or has a NaN or
+/// infinite component. d is first divided by its largest component so that squaring
+/// neither underflows (tiny d, where glm::length would return 0 or a denormal-rounded
+/// value) nor overflows (huge d).
 template <std::floating_point T>
 struct direction_and_length {
     vec3<T> direction{0, 0, 1}; ///< unit d / |d| (placeholder +z when length == 0)
@@ -104,10 +105,14 @@ struct direction_and_length {
 };
 
 template <std::floating_point T>
-[[nodiscard]] direction_and_length<T> split_direction(const vec3<T>& d) noexcept {
-    const T m = std::fmax(std::fabs(d.x), std::fmax(std::fabs(d.y), std::fabs(d.z)));
+[[nodiscard]] inline direction_and_length<T> split_direction(const vec3<T>& d) noexcept {
+    // The largest |component| by comparisons (no libm call, as std::fmax would be); a NaN
+    // component, which the comparisons may skip, is caught by the sum.
+    const T ax = std::fabs(d.x), ay = std::fabs(d.y), az = std::fabs(d.z);
+    const T m_xy = ax < ay ? ay : ax;
+    const T m = m_xy < az ? az : m_xy;
     direction_and_length<T> out;
-    if (!(m > T(0)) || !std::isfinite(m)) return out;
+    if (!(m > T(0)) || !std::isfinite(m) || std::isnan(ax + ay + az)) return out;
     const vec3<T> w = d / m;
     const T w_length = std::sqrt(w.x * w.x + w.y * w.y + w.z * w.z); // in [1, sqrt(3)]
     out.direction = w / w_length;

@@ -61,21 +61,39 @@ template <class S, class Visibility>
     return shade_of(s, at, v, sample);
 }
 
+/// Callable with anything; only probes for a member visit(f) (light_holder).
+struct any_argument {
+    template <class X>
+    void operator()(const X&) const noexcept {}
+};
+
+/// A light that holds one of several light types and calls f(concrete light) from
+/// l.visit(f), as shade::any_light does.
+template <class L>
+concept light_holder = requires(const L& l, any_argument f) { l.visit(f); };
+
 /// The contribution of one light: one sample for a delta light, the average of the
-/// n x n stratified samples for any other.
+/// n x n stratified samples for any other. A light_holder is dispatched once, and its
+/// held light sampled directly (the same samples, without a dispatch per sample).
 template <class S, light L, class Visibility, class Jitter>
 [[nodiscard]] rgb<scalar_of<S>> light_contribution(const S& s, const surface_point<scalar_of<S>>& at,
                                                    const vec3<scalar_of<S>>& v, const L& l,
                                                    Visibility& visible, int n, Jitter& jitter) {
     using T = scalar_of<S>;
     static_assert(std::same_as<scalar_of<L>, T>, "the lights and the shader must share a scalar type");
-    if (l.is_delta()) return shade_visible(s, at, v, l.sample(at.p, vec2<T>(T(0.5))), visible);
-    rgb<T> sum(0);
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-            sum += shade_visible(s, at, v, l.sample(at.p, stratified_u<T>(i, j, n, jitter(i, j))),
-                                 visible);
-    return sum / (T(n) * T(n));
+    if constexpr (light_holder<L>) {
+        return l.visit([&](const auto& held) -> rgb<T> {
+            return light_contribution(s, at, v, held, visible, n, jitter);
+        });
+    } else {
+        if (l.is_delta()) return shade_visible(s, at, v, l.sample(at.p, vec2<T>(T(0.5))), visible);
+        rgb<T> sum(0);
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i)
+                sum += shade_visible(s, at, v, l.sample(at.p, stratified_u<T>(i, j, n, jitter(i, j))),
+                                     visible);
+        return sum / (T(n) * T(n));
+    }
 }
 
 /// Lights is a range of lights (std::vector<any_light<T>>, std::span, ...): what

@@ -60,12 +60,6 @@ struct bvh_float_ray {
 using bvh_f4 [[gnu::vector_size(16)]] = float;
 using bvh_i4 [[gnu::vector_size(16)]] = std::int32_t;
 
-[[gnu::always_inline]] inline bvh_f4 bvh_load(const std::array<float, 4>& p) noexcept {
-    bvh_f4 v;
-    // __builtin_memcpy (g++ and clang++ only, as is this block): no <cstring> needed.
-    __builtin_memcpy(&v, p.data(), sizeof v);
-    return v;
-}
 [[gnu::always_inline]] inline bvh_f4 bvh_splat(float x) noexcept { return bvh_f4{x, x, x, x}; }
 /// Per lane: t where t > a, else a (a NaN t is ignored: detail::max_ignoring_nan).
 [[gnu::always_inline]] inline bvh_f4 bvh_max(const bvh_f4& t, const bvh_f4& a) noexcept {
@@ -95,20 +89,88 @@ using bvh_i4 [[gnu::vector_size(16)]] = std::int32_t;
 #endif
 }
 
-/// The conservative slab test of r against the four boxes of node within [t_min,
-/// t_max]: bit j set where child j's box is entered; t_enter[j] is where.
-[[gnu::always_inline]] inline unsigned bvh_test_boxes(const bvh_node4& node, const bvh_float_ray& r,
-                                                      float t_max, std::array<float, 4>& t_enter) noexcept {
-    bvh_f4 near = bvh_splat(r.t_min);
-    bvh_f4 far = bvh_splat(infinity<float>);
-    for (std::size_t k = 0; k < 3; ++k) {
-        const std::size_t n = r.near_plane[k];
-        const bvh_f4 inv = bvh_splat(r.inv[k]);
-        near = bvh_max((bvh_load(node.planes[n]) - bvh_splat(r.origin_near[k])) * inv, near);
-        far = bvh_min((bvh_load(node.planes[n ^ 1u]) - bvh_splat(r.origin_far[k])) * inv, far);
+using bvh_u4 [[gnu::vector_size(16)]] = std::uint32_t;
+
+/// next_float_up on each lane, in the same integer arithmetic.
+[[gnu::always_inline]] inline bvh_f4 bvh_next_up(const bvh_f4& f) noexcept {
+    const auto b = reinterpret_cast<bvh_u4>(f + 0.0f); // -0 becomes +0
+    const bvh_u4 negative = b >> 31;
+    const auto finite = reinterpret_cast<bvh_u4>(b != 0x7f80'0000u); // all ones unless +infinity
+    return reinterpret_cast<bvh_f4>(b + ((1u - 2u * negative) & finite));
+}
+
+/// The values of bvh_float_ray(r) in the form the four-box test reads them: each per-axis
+/// value in all four lanes, and the byte offsets of the near and far planes in a
+/// bvh_node4. Computed three axes at a time without branches (the direction's signs vary
+/// from ray to ray, so a branch on them would be mispredicted); built once per ray, so
+/// the walk over the nodes only loads the boxes.
+struct bvh_ray4 {
+    std::array<bvh_f4, 3> inv;
+    std::array<bvh_f4, 3> origin_near;
+    std::array<bvh_f4, 3> origin_far;
+    std::array<std::size_t, 3> near_offset; ///< byte offset of planes[near_plane[k]]
+    std::array<std::size_t, 3> far_offset;  ///< byte offset of planes[near_plane[k] ^ 1]
+    bvh_f4 t_min;
+    bvh_f4 enlarge;
+
+    template <std::floating_point T>
+    [[gnu::always_inline]] explicit bvh_ray4(const ray<T>& r) noexcept
+        : t_min(bvh_splat(float_down(r.t_min))),
+          enlarge(bvh_splat(1.0f + 2.0f * rounding_gamma<float>(sizeof(T) == sizeof(float) ? 3 : 4))) {
+        const vec3<T>& d = r.direction;
+        const vec3<T>& o = r.origin;
+        const bvh_f4 inv3{static_cast<float>(T(1) / d.x), static_cast<float>(T(1) / d.y),
+                          static_cast<float>(T(1) / d.z), 0.0f};
+        // All ones where the direction's sign bit is set (rounding to float keeps the
+        // sign, also of a zero or of a component that underflows).
+        const bvh_f4 d3{static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z), 0.0f};
+        const bvh_i4 negative = reinterpret_cast<bvh_i4>(d3) >> 31;
+        const bvh_f4 o3{static_cast<float>(o.x), static_cast<float>(o.y), static_cast<float>(o.z), 0.0f};
+        bvh_f4 up = o3;
+        bvh_f4 down = o3;
+        if constexpr (sizeof(T) != sizeof(float)) {
+            up = bvh_next_up(o3);
+            down = -bvh_next_up(-o3);
+        }
+        const auto select = [&](const bvh_f4& if_negative, const bvh_f4& otherwise) {
+            return reinterpret_cast<bvh_f4>((reinterpret_cast<bvh_i4>(if_negative) & negative) |
+                                            (reinterpret_cast<bvh_i4>(otherwise) & ~negative));
+        };
+        const bvh_f4 near3 = select(down, up);
+        const bvh_f4 far3 = select(up, down);
+        for (std::size_t k = 0; k < 3; ++k) {
+            inv[k] = bvh_splat(inv3[k]);
+            origin_near[k] = bvh_splat(near3[k]);
+            origin_far[k] = bvh_splat(far3[k]);
+            const std::size_t near_plane = 2 * k + static_cast<std::size_t>(negative[k] & 1);
+            near_offset[k] = near_plane * sizeof(std::array<float, 4>);
+            far_offset[k] = (near_plane ^ 1u) * sizeof(std::array<float, 4>);
+        }
     }
-    far = bvh_min(far * bvh_splat(r.enlarge), bvh_splat(t_max));
-    __builtin_memcpy(t_enter.data(), &near, sizeof near);
+};
+
+/// The four floats at byte offset `offset` of node's planes.
+[[gnu::always_inline]] inline bvh_f4 bvh_plane(const bvh_node4& node, std::size_t offset) noexcept {
+    bvh_f4 v;
+    // __builtin_memcpy (g++ and clang++ only, as is this block): no <cstring> needed.
+    __builtin_memcpy(&v, reinterpret_cast<const unsigned char*>(node.planes.data()) + offset, sizeof v);
+    return v;
+}
+
+/// The conservative slab test of r against the four boxes of node within [t_min,
+/// t_max]: bit j set where child j's box is entered; t_enter[j] is where. The three axes
+/// are written out, so that the ray's vectors stay in registers across nodes.
+[[gnu::always_inline]] inline unsigned bvh_test_boxes(const bvh_node4& node, const bvh_ray4& r,
+                                                      const bvh_f4& t_max, bvh_f4& t_enter) noexcept {
+    bvh_f4 near = bvh_max((bvh_plane(node, r.near_offset[0]) - r.origin_near[0]) * r.inv[0], r.t_min);
+    bvh_f4 far = bvh_min((bvh_plane(node, r.far_offset[0]) - r.origin_far[0]) * r.inv[0],
+                         bvh_splat(infinity<float>));
+    near = bvh_max((bvh_plane(node, r.near_offset[1]) - r.origin_near[1]) * r.inv[1], near);
+    far = bvh_min((bvh_plane(node, r.far_offset[1]) - r.origin_far[1]) * r.inv[1], far);
+    near = bvh_max((bvh_plane(node, r.near_offset[2]) - r.origin_near[2]) * r.inv[2], near);
+    far = bvh_min((bvh_plane(node, r.far_offset[2]) - r.origin_far[2]) * r.inv[2], far);
+    far = bvh_min(far * r.enlarge, t_max);
+    t_enter = near;
     return bvh_bits(near <= far);
 }
 #else
@@ -150,16 +212,25 @@ inline constexpr std::size_t bvh_stack_size = 256;
 /// empty and r is valid.
 template <bool Ordered, std::floating_point T, class Leaf>
 void bvh_traverse(const bvh_node4* nodes, const ray<T>& r, const T& t_max, Leaf&& leaf) {
+#if defined(__GNUC__)
+    const bvh_ray4 fr(r);
+    bvh_f4 t_enter;
+#else
     const bvh_float_ray fr(r);
+    std::array<float, 4> t_enter;
+#endif
     float t_max_f = float_up(t_max);
     std::array<bvh_stack_entry, bvh_stack_size> stack;
     std::size_t top = 0;
     std::uint32_t ref = 0;
-    std::array<float, 4> t_enter;
     for (;;) {
         while (!is_leaf_ref(ref)) {
             const bvh_node4& node = nodes[ref];
+#if defined(__GNUC__)
+            unsigned bits = bvh_test_boxes(node, fr, bvh_splat(t_max_f), t_enter);
+#else
             unsigned bits = bvh_test_boxes(node, fr, t_max_f, t_enter);
+#endif
             if (bits == 0) goto pop;
             {
                 const auto i0 = static_cast<std::size_t>(std::countr_zero(bits));
