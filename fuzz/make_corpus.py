@@ -207,6 +207,46 @@ def sums():
           byte(1) + byte(0))
 
 
+def lights():
+    """Seeds of fuzz_light_area, _disk, _sphere and _environment: byte 0 = scalar type,
+    the light's parameters, the emission, a sides byte, then p, u.x, u.y, w."""
+    def situation(p, u=(0.25, 0.75), w=(0, 0, 1)):
+        return vec(*p) + vec(*u) + vec(*w)
+    for scalar, head in (('float', 0), ('double', 1)):
+        rect = vec(-1, -1, 2) + vec(2, 0, 0) + vec(0, 2, 0) + emission(2)
+        write('light_area', f'above_one_sided_{scalar}', byte(head) + rect + byte(0) + situation((0.25, 0, 0), w=(0, 0.125, 1)))
+        write('light_area', f'behind_one_sided_{scalar}', byte(head) + rect + byte(0) + situation((0, 0, 4)))
+        write('light_area', f'behind_two_sided_{scalar}', byte(head) + rect + byte(1) + situation((0, 0, 4), w=(0, 0, -1)))
+        write('light_area', f'on_the_light_{scalar}', byte(head) + rect + byte(0) + situation((0, 0, 2)))
+        write('light_area', f'parallel_edges_{scalar}', byte(head) + vec(0, 0, 2) + vec(1, 0, 0) + vec(2, 0, 0) +
+              emission() + byte(0) + situation((0, 0, 0)))
+        write('light_area', f'invalid_sides_{scalar}', byte(head) + rect + byte(2) + situation((0, 0, 0)))
+        disk = vec(0, 0, 2) + vec(0, 0, -1) + fx(0.5) + emission(3)
+        write('light_disk', f'facing_{scalar}', byte(head) + disk + byte(0) + situation((0.25, 0.5, 0), w=(0.125, 0, 1)))
+        write('light_disk', f'behind_{scalar}', byte(head) + disk + byte(0) + situation((0, 0, 3)))
+        write('light_disk', f'two_sided_{scalar}', byte(head) + disk + byte(1) + situation((0, 0, 3), w=(0, 0, -1)))
+        write('light_disk', f'zero_radius_{scalar}', byte(head) + vec(0, 0, 2) + vec(0, 0, -1) + fx(0) + emission() +
+              byte(0) + situation((0, 0, 0)))
+        write('light_disk', f'zero_normal_{scalar}', byte(head) + vec(0, 0, 2) + vec(0, 0, 0) + fx(1) + emission() +
+              byte(0) + situation((0, 0, 0)))
+        sphere = vec(0, 0, 3) + fx(0.5) + emission(2)
+        write('light_sphere', f'outside_{scalar}', byte(head) + sphere + byte(0) + situation((0, 0, 0), w=(0, 0.0625, 1)))
+        write('light_sphere', f'far_small_{scalar}', byte(head) + vec(0, 0, 100) + fx(0.0625) + emission() + byte(0) +
+              situation((0, 0, 0)))
+        write('light_sphere', f'inside_two_sided_{scalar}', byte(head) + vec(0, 0, 0) + fx(4) + emission() + byte(1) +
+              situation((0.5, 0.25, 1), w=(1, 0, 0)))
+        write('light_sphere', f'inside_one_sided_{scalar}', byte(head) + vec(0, 0, 0) + fx(4) + emission() + byte(0) +
+              situation((0.5, 0.25, 1)))
+        write('light_sphere', f'on_the_surface_{scalar}', byte(head) + sphere + byte(0) + situation((0, 0, 2.5)))
+        write('light_sphere', f'negative_radius_{scalar}', byte(head) + vec(0, 0, 3) + fx(-1) + emission() + byte(0) +
+              situation((0, 0, 0)))
+        write('light_environment', f'white_{scalar}', byte(head) + emission() + situation((1, 2, 3), w=(0, 1, 0)))
+        write('light_environment', f'black_{scalar}', byte(head) + emission(0) + situation((0, 0, 0)))
+        write('light_environment', f'negative_{scalar}', byte(head) + emission(-1) + situation((0, 0, 0)))
+        write('light_environment', f'huge_{scalar}', byte(head) + sp(MAX) + vec(0, 0, 0) + vec(1, 1, 1) + vec(1, 1, 1) +
+              situation((0, 0, 0)))
+
+
 if __name__ == '__main__':
     triangles()
     plane()
@@ -214,3 +254,4 @@ if __name__ == '__main__':
     color()
     brdfs()
     sums()
+    lights()

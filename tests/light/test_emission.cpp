@@ -40,6 +40,27 @@ TEST_CASE_TEMPLATE("validated(emission) names the bad member", T, float, double)
                              e.ambient = c(big);
                          })),
                          doctest::Contains("'intensity'"), shade::invalid_parameter);
+    // Each is finite alone, but the physical quantity pi x intensity x diffuse overflows.
+    CHECK_THROWS_WITH_AS((void)shade::validated(with([&](auto& e) {
+                             e.intensity = big;
+                             e.diffuse = c(0, 0, 2);
+                         })),
+                         doctest::Contains("'intensity'"), shade::invalid_parameter);
+}
+
+TEST_CASE_TEMPLATE("physical() is 0 in a channel whose colour is 0, whatever the intensity", T, float, double) {
+    // pi x max() overflows to +inf, and inf x 0 would be NaN: the product intensity x
+    // colour comes first.
+    shade::emission<T> e;
+    e.intensity = std::numeric_limits<T>::max();
+    e.diffuse = shade::rgb<T>(0, T(0.25), 0);
+    e.specular = shade::rgb<T>(0);
+    const shade::rgb<T> q = shade::validated(e).physical();
+    CHECK(q.x == T(0));
+    CHECK(q.z == T(0));
+    // pi x max / 4 ~ 0.785 max: finite.
+    CHECK(std::isfinite(q.y));
+    CHECK(q.y > std::numeric_limits<T>::max() / T(2));
 }
 
 TEST_CASE_TEMPLATE("make_sample scales diffuse and specular, ambient by intensity only", T, float, double) {

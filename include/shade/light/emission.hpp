@@ -40,13 +40,16 @@ struct emission {
         return emission{T(1), rgb<T>(0), q / pi<T>, q / pi<T>};
     }
 
-    /// pi x intensity x diffuse: the light's physical quantity (see above).
-    [[nodiscard]] constexpr rgb<T> physical() const noexcept { return (pi<T> * intensity) * diffuse; }
+    /// pi x intensity x diffuse: the light's physical quantity (see above). The product
+    /// intensity x diffuse is formed first, so a zero colour channel gives 0 whatever the
+    /// intensity (pi x intensity alone may overflow to +inf, and inf x 0 is NaN).
+    [[nodiscard]] constexpr rgb<T> physical() const noexcept { return pi<T> * (intensity * diffuse); }
 };
 
 /// Returns e unchanged after checking it; throws shade::invalid_parameter naming
 /// "intensity", "ambient", "diffuse" or "specular" if that member is negative or not
-/// finite, or "intensity" if intensity x ambient overflows.
+/// finite, or "intensity" if intensity x ambient or the physical quantity
+/// pi x intensity x diffuse overflows.
 template <std::floating_point T>
 [[nodiscard]] emission<T> validated(const emission<T>& e) {
     (void)require_non_negative("intensity", e.intensity);
@@ -57,6 +60,11 @@ template <std::floating_point T>
     // finite; diffuse and specular products are checked per sample (make_sample).
     if (!is_finite(e.intensity * e.ambient))
         throw invalid_parameter("intensity", "times the ambient colour must be finite",
+                                detail::to_text(e.intensity));
+    // The physical mode hands out pi x intensity x diffuse as it is (a radiance, an
+    // intensity or an irradiance), so it must be finite too.
+    if (!is_finite(e.physical()))
+        throw invalid_parameter("intensity", "times pi times the diffuse colour (the physical quantity) must be finite",
                                 detail::to_text(e.intensity));
     return e;
 }
