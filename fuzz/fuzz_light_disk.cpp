@@ -27,12 +27,12 @@ using namespace shade;
 
 template <std::floating_point T>
 void run(fuzz::input& in) {
-    fuzz::light_reader<T> r{in};
+    auto r = fuzz::light_reader<T>(in);
     const vec3<T> center = r.vector();
     const vec3<T> normal = r.vector();
     const T radius = r.scalar();
-    const emission<T> e = r.decode_emission();
-    const sidedness sides = r.decode_sides();
+    const emission<T> e = fuzz::decode_emission(r);
+    const sidedness sides = fuzz::decode_sides(in);
     const auto s = fuzz::decode_light_situation(r);
     const auto light = fuzz::build<disk_light<T>>(center, normal, radius, e, sides);
     if (!light) return;

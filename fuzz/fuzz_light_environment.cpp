@@ -19,8 +19,8 @@ using namespace shade;
 
 template <std::floating_point T>
 void run(fuzz::input& in) {
-    fuzz::light_reader<T> r{in};
-    const emission<T> e = r.decode_emission();
+    auto r = fuzz::light_reader<T>(in);
+    const emission<T> e = fuzz::decode_emission(r);
     const auto s = fuzz::decode_light_situation(r);
     const auto light = fuzz::build<environment_light<T>>(e);
     if (!light) return;

@@ -27,11 +27,11 @@ using namespace shade;
 
 template <std::floating_point T>
 void run(fuzz::input& in) {
-    fuzz::light_reader<T> r{in};
+    auto r = fuzz::light_reader<T>(in);
     const vec3<T> center = r.vector();
     const T radius = r.scalar();
-    const emission<T> e = r.decode_emission();
-    const sidedness sides = r.decode_sides();
+    const emission<T> e = fuzz::decode_emission(r);
+    const sidedness sides = fuzz::decode_sides(in);
     const auto s = fuzz::decode_light_situation(r);
     const auto light = fuzz::build<sphere_light<T>>(center, radius, e, sides);
     if (!light) return;

@@ -46,6 +46,7 @@
 #include "brdf_target.hpp"
 #include "expect.hpp"
 #include "input.hpp"
+#include "light_target.hpp"
 
 namespace {
 
@@ -53,36 +54,9 @@ using namespace shade;
 using fuzz::build;
 using fuzz::expect;
 
-/// The input decoder plus a running verdict on whether every number read is moderate.
+/// The reader of this target: moderate within 1e3, bounded within 1e6 (see above).
 template <std::floating_point T>
-struct reader {
-    fuzz::input& in;
-    bool moderate = true;
-    bool bounded = true;
-
-    T scalar() {
-        const T x = in.scalar<T>();
-        moderate = moderate && std::isfinite(x) && std::abs(x) <= T(1e3);
-        bounded = bounded && std::isfinite(x) && std::abs(x) <= T(1e6);
-        return x;
-    }
-    vec3<T> vector() {
-        const T x = scalar();
-        const T y = scalar();
-        const T z = scalar();
-        return {x, y, z};
-    }
-};
-
-template <std::floating_point T>
-[[nodiscard]] emission<T> decode_emission(reader<T>& r) {
-    emission<T> e;
-    e.intensity = r.scalar();
-    e.ambient = r.vector();
-    e.diffuse = r.vector();
-    e.specular = r.vector();
-    return e;
-}
+using reader = fuzz::tracking_reader<T>;
 
 /// Decodes one light, or nothing if its constructor rejects the parameters. Tracks, in
 /// near, whether p (known only later) must be checked against a position or a plane:
@@ -98,7 +72,7 @@ template <std::floating_point T>
 [[nodiscard]] decoded_light<T> decode_light(reader<T>& r) {
     decoded_light<T> out;
     const unsigned kind = r.in.choice(4);
-    const emission<T> e = decode_emission(r);
+    const emission<T> e = fuzz::decode_emission(r);
     const auto law = static_cast<falloff>(r.in.choice(4)); // 3 is invalid on purpose
     if (kind == 0) {
         if (auto l = build<directional_light<T>>(r.vector(), e)) out.light.emplace(*l);
@@ -182,7 +156,7 @@ void check_sum(const char* name, const S& s, const surface_point<T>& at, const v
 
 template <std::floating_point T>
 void run(fuzz::input& in) {
-    reader<T> r{in};
+    reader<T> r{in, T(1e3), T(1e6)};
     const unsigned which = in.choice(6);
     const rgb<T> colour_a = r.vector();
     const rgb<T> colour_b = r.vector();

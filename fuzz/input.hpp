@@ -97,4 +97,32 @@ private:
     std::size_t pos_ = 0;
 };
 
+/// A cursor's scalars plus running verdicts on their magnitudes, for targets whose
+/// guarantees hold only for moderate or bounded numbers: `moderate` stays true while every
+/// scalar read through it is finite and within moderate_limit in magnitude, `bounded`
+/// while every one is within bounded_limit.
+template <std::floating_point T>
+struct tracking_reader {
+    input& in;
+    T moderate_limit;
+    T bounded_limit;
+    bool moderate = true;
+    bool bounded = true;
+
+    /// The next scalar (input::scalar), recorded in the verdicts.
+    T scalar() {
+        const T x = in.scalar<T>();
+        moderate = moderate && std::isfinite(x) && std::abs(x) <= moderate_limit;
+        bounded = bounded && std::isfinite(x) && std::abs(x) <= bounded_limit;
+        return x;
+    }
+    /// Three scalars, recorded in the verdicts.
+    vec3<T> vector() {
+        const T x = scalar();
+        const T y = scalar();
+        const T z = scalar();
+        return {x, y, z};
+    }
+};
+
 } // namespace shade::fuzz

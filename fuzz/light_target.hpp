@@ -42,36 +42,26 @@
 
 namespace shade::fuzz {
 
-/// The input decoder plus a running verdict on the magnitudes read: moderate (every number
-/// finite and within 1e2), where the agreement check applies.
+/// An emission: intensity, ambient, diffuse, specular (any values; validated() judges).
 template <std::floating_point T>
-struct light_reader {
-    input& in;
-    bool moderate = true;
+[[nodiscard]] emission<T> decode_emission(tracking_reader<T>& r) {
+    emission<T> e;
+    e.intensity = r.scalar();
+    e.ambient = r.vector();
+    e.diffuse = r.vector();
+    e.specular = r.vector();
+    return e;
+}
 
-    T scalar() {
-        const T x = in.scalar<T>();
-        moderate = moderate && std::isfinite(x) && std::abs(x) <= T(1e2);
-        return x;
-    }
-    vec3<T> vector() {
-        const T x = scalar();
-        const T y = scalar();
-        const T z = scalar();
-        return {x, y, z};
-    }
-    /// An emission: intensity, ambient, diffuse, specular (any values; validated() judges).
-    emission<T> decode_emission() {
-        emission<T> e;
-        e.intensity = scalar();
-        e.ambient = vector();
-        e.diffuse = vector();
-        e.specular = vector();
-        return e;
-    }
-    /// Sidedness from a byte: 0 one-sided, 1 two-sided, 2 an invalid value on purpose.
-    sidedness decode_sides() { return static_cast<sidedness>(in.choice(3)); }
-};
+/// Sidedness from a byte: 0 one-sided, 1 two-sided, 2 an invalid value on purpose.
+[[nodiscard]] inline sidedness decode_sides(input& in) noexcept { return static_cast<sidedness>(in.choice(3)); }
+
+/// The reader of the light targets: moderate means every number within 1e2, where the
+/// agreement check applies (the bounded verdict is unused).
+template <std::floating_point T>
+[[nodiscard]] tracking_reader<T> light_reader(input& in) noexcept {
+    return tracking_reader<T>{in, T(1e2), std::numeric_limits<T>::max()};
+}
 
 /// The situation the checks run in.
 template <std::floating_point T>
@@ -82,7 +72,7 @@ struct light_situation {
 };
 
 template <std::floating_point T>
-[[nodiscard]] light_situation<T> decode_light_situation(light_reader<T>& r) {
+[[nodiscard]] light_situation<T> decode_light_situation(tracking_reader<T>& r) {
     light_situation<T> s;
     s.p = r.vector();
     s.u.x = to_unit_interval(r.in.template scalar<T>());
