@@ -175,6 +175,36 @@ def brdfs():
                     write('brdf_' + model, f'{prefix}{sname}_{scalar}', byte(head) + p + s)
 
 
+def bvhs():
+    """fuzz_bvh: head (bit 0 double, bits 1-2 structure, bit 3 cull), count, primitives,
+    then four rays: aimed flag, origin, (target byte + weights | direction), t_min, t_max."""
+    # A closed tetrahedron (outward winding) and a far triangle behind it.
+    tet = [((0, 0, 0), (1, 0, 0), (0, 1, 0)), ((0, 0, 0), (0, 0, 1), (1, 0, 0)),
+           ((0, 0, 0), (0, 1, 0), (0, 0, 1)), ((1, 0, 0), (0, 0, 1), (0, 1, 0))]
+    tris = tet + [((-4, -4, -3), (4, -4, -3), (0, 4, -3))]
+    tri_bytes = b''.join(vec(*a) + vec(*b) + vec(*c) for a, b, c in tris)
+    rays = (byte(1) + vec(0.25, 0.25, 2) + byte(0) + vec(1, 1, 1) + INTERVAL +          # centroid of face 0
+            byte(1) + vec(0.125, 0.125, -2) + byte(3) + vec(1, 1, 0) + INTERVAL +       # edge of face 3
+            byte(1) + vec(2, 2, 2) + byte(1) + vec(1, 0, 0) + INTERVAL +                # a vertex
+            byte(0) + vec(0.25, 0.25, 0.25) + vec(0, 0, -1) + INTERVAL)                 # from inside, down
+    spheres = b''.join(vec(*c) + fx(r) for c, r in (((0, 0, 0), 1), ((3, 0, 0), 0.5), ((0, 0, -6), 2),
+                                                      ((0.5, 0, 0), 0.25)))
+    sphere_rays = (byte(1) + vec(0, 0, 5) + byte(0) + vec(0, 0, 1) + INTERVAL +
+                   byte(1) + vec(3, 3, 0) + byte(1) + vec(0, 1, 0) + INTERVAL +
+                   byte(0) + vec(-5, 0, 0) + vec(1, 0, 0) + INTERVAL +
+                   byte(0) + vec(0, 0, 0) + vec(0, 0, -1) + INTERVAL)
+    for scalar, bit in (('float', 0), ('double', 1)):
+        for name, structure in (('moller_trumbore', 0), ('watertight', 1)):
+            for cull in (0, 8):
+                head = bit | (structure << 1) | cull
+                write('bvh', f'tetrahedron_{name}{"_culled" if cull else ""}_{scalar}',
+                      byte(head, len(tris)) + tri_bytes + rays)
+        write('bvh', f'spheres_{scalar}', byte(bit | 4, 4) + spheres + sphere_rays)
+        write('bvh', f'empty_{scalar}', byte(bit, 0) + rays)
+        write('bvh', f'non_finite_vertex_{scalar}', byte(bit, 1) + vec(0, 0, 0) + vec(1, sp(NAN), 0) +
+              vec(0, 1, 0) + rays)
+
+
 def emission(intensity=1):
     return fx(intensity) + vec(0.125, 0.125, 0.125) + vec(1, 1, 1) + vec(1, 0.5, 0.25)
 
@@ -253,5 +283,6 @@ if __name__ == '__main__':
     sphere()
     color()
     brdfs()
+    bvhs()
     sums()
     lights()

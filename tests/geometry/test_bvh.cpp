@@ -308,3 +308,41 @@ TEST_CASE("bvh: a ray entering an unused child slot visits nothing") {
     }
     CHECK(accel.any(r) == nearest.has_value());
 }
+
+// A direction component whose float reciprocal overflows (|d_k| < 2^-128 after the ray's
+// scale): the slab distance (plane - o) / d_k may still be an ordinary number, but
+// (plane - o) x inf is not. Found by fuzz_bvh (float, watertight leaves): a ray with
+// direction (-2^-23, -0x1.0509p-133, 0) aimed at the vertex (0, 0, 0) of a triangle in
+// the plane y = 0 reaches it at t = 1, where the exact ray touches the triangle's
+// zero-thickness box; the box test computed t = +inf for the y slab and skipped the box.
+// The rays below (float and double, tiny and huge directions) are each aimed at that
+// vertex from (a, b, 0): d = -(a, b, 0), so y = b (1 - t) is 0 exactly at t = 1, and x is
+// 0 there too. A loop of the watertight test over the triangles hits at t = 1.
+TEST_CASE_TEMPLATE("triangle_bvh: directions whose components have no float reciprocal", T, float, double) {
+    const std::vector<shade::triangle<T>> tris{
+        {{1, 0, 0}, {0, 0, 0}, {1, 0, 1}},   // in y = 0, the one hit
+        {{0, 0, -7}, {-6, -6, -13}, {1, 0, 0}},
+        {{1, 1, 0}, {0, 0, 0}, {0, 0, 0}}};  // degenerate (a segment through the vertex)
+    const shade::triangle_bvh<T, shade::watertight> accel(tris);
+    std::vector<std::pair<T, T>> origins{{T(0x1p-23), T(0x1.0509p-133)}, {T(1), T(0x1p-149)},
+                                         {T(0x1p-100), T(0x1p-140)}, {T(0x1p+100), T(0x1p-40)}};
+    if constexpr (sizeof(T) == sizeof(double))
+        // (Within the watertight test's own range: products of the sheared coordinates,
+        // here about a b, between 1e-292 and 1e308.)
+        origins.insert(origins.end(), {{T(0x1p-140), T(0x1p-160)}, {T(0x1p-400), T(0x1p-450)},
+                                       {T(0x1p+60), T(0x1p+40)}, {T(1), T(0x1p-600)}});
+    for (const auto& ab : origins) {
+        const T a = ab.first;
+        const T b = ab.second;
+        CAPTURE(a);
+        CAPTURE(b);
+        const shade::ray<T> r{{a, b, 0}, {-a, -b, 0}, T(0), T(1)};
+        const auto loop = brute_force<shade::watertight, T>(r, tris);
+        REQUIRE(loop.has_value());
+        CHECK(loop->second.t == T(1));
+        const auto h = accel.closest(r);
+        REQUIRE(h.has_value());
+        CHECK(h->hit.t == loop->second.t);
+        CHECK(accel.any(r));
+    }
+}

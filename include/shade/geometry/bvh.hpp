@@ -20,10 +20,24 @@
 // Built with a binned surface area heuristic (Wald 2007) into nodes of four children;
 // traversed nearest child first, testing the four children's boxes together with the
 // conservative slab test of Ize 2013 (never missing a box the exact ray touches, see
-// shade::intersect(ray, aabb)), on float boxes rounded outward, also for double. So the
-// hierarchy loses no hit that the primitive test finds: closest() returns exactly the
-// hit a loop over all primitives returns (up to which of several primitives at the very
-// same t), and a watertight primitive test stays watertight behind it.
+// shade::intersect(ray, aabb)), on float boxes rounded outward, also for double, with the
+// ray's direction scaled by a power of two so that no reciprocal overflows (an axis whose
+// direction component is too small for one is tested as the interval the ray sweeps
+// along it).
+//
+// The guarantee: the walk tests every primitive whose bounds the real ray segment from
+// t_min to the nearest hit found (or t_max) meets. So closest() returns exactly the hit a
+// loop of the same primitive test over all primitives returns (the same t and record; the
+// same primitive unless several are hit at that very t) whenever that hit's real point
+// o + t d lies in its primitive's bounds, and any() is then true. That holds for every ray
+// when the test reports only points of its primitive. A test that rounds can report a hit
+// a little off its primitive, and when that point lies outside the primitive's bounds the
+// hierarchy may miss it: Möller-Trumbore on a ray through an edge whose origin is within
+// rounding of the triangle's plane (t = 0) is such a case; closest() then returns the next
+// hit the loop would find without it, or nothing. Whatever closest() returns is a hit the
+// test reports, never nearer than the loop's. A watertight test (shade::watertight) stays
+// watertight behind the hierarchy: a ray through a shared edge or vertex hits a triangle
+// there, whose bounds contain that point.
 // See shade/geometry/detail/bvh_build.hpp and bvh_traverse.hpp for the algorithms.
 
 #include <concepts>

@@ -13,8 +13,10 @@
 //
 // closest() returns exactly what a loop of find_intersection<Algorithm> over all the
 // triangles keeps as nearest, with shade::make_hit's record (the hierarchy's box tests
-// are conservative, see shade/geometry/bvh.hpp; the batch gives the scalar test's bits):
-// the same t and record, and the same triangle unless several are hit at the very same t.
+// are conservative; the batch gives the scalar test's bits): the same t and record, and
+// the same triangle unless several are hit at the very same t, whenever the real point
+// o + t d of that hit lies in its triangle's bounding box, as shade/geometry/bvh.hpp
+// states (a Möller-Trumbore hit reported by rounding just off an edge may lie outside).
 
 #include <concepts>
 #include <cstdint>

@@ -20,7 +20,95 @@
 
 namespace shade::detail {
 
-/// What the box tests need of a ray of scalar T, in float: per axis the reciprocal of the
+/// How a ray is scaled for the box tests. Most rays are not: when every direction
+/// component is 0 or has a magnitude in [2^-125, 2^125], its float reciprocal is a finite
+/// normal float (or +-inf for 0, which the slab test handles). Otherwise the direction is
+/// multiplied by 2^exponent, which brings its largest |component| into [0.5, 1) (exact: a
+/// power of two), so that the float reciprocal of every component that is then a normal
+/// float neither overflows nor loses precision as a subnormal, whatever the direction's
+/// length (a float direction of 1e-40, a double one of 1e-300 or 1e300); ray parameters
+/// then scale by 2^-exponent, computed in double (exact for float rays) and rounded
+/// outward to float.
+template <std::floating_point T>
+struct bvh_ray_scale {
+    bool scaled = false;
+    int exponent = 0;
+    T direction_factor = T(1); ///< 2^exponent, or 0 where that is not a normal T
+    double t_factor = 1.0;     ///< 2^-exponent, or 0 where that is not a normal double
+
+    /// No scaling where the direction does not need it, else the scale described above.
+    explicit bvh_ray_scale(const vec3<T>& direction) noexcept {
+        const auto usable = [](T d) {
+            const T a = std::abs(d);
+            return a == T(0) || (a >= T(0x1p-125) && a <= T(0x1p+125));
+        };
+        if (usable(direction.x) && usable(direction.y) && usable(direction.z)) [[likely]]
+            return;
+        scaled = true;
+        exponent = power_of_two_rescale_exponent(direction);
+        direction_factor = normal_or_zero(times_power_of_two(T(1), exponent));
+        t_factor = normal_or_zero(times_power_of_two(1.0, -exponent));
+    }
+
+    /// The direction's component d times 2^exponent.
+    [[nodiscard]] T direction(T d) const noexcept {
+        if (!scaled) return d;
+        return direction_factor != T(0) ? d * direction_factor : times_power_of_two(d, exponent);
+    }
+    /// A float no smaller than the ray parameter t in scaled units.
+    [[nodiscard]] float t_up(T t) const noexcept {
+        if (!scaled) return float_up(t);
+        return next_float_up(static_cast<float>(scaled_t(t)));
+    }
+    /// A float no larger than the ray parameter t in scaled units.
+    [[nodiscard]] float t_down(T t) const noexcept {
+        if (!scaled) return float_down(t);
+        return next_float_down(static_cast<float>(scaled_t(t)));
+    }
+
+private:
+    template <std::floating_point U>
+    [[nodiscard]] static U normal_or_zero(U x) noexcept {
+        return std::isnormal(x) ? x : U(0);
+    }
+    // t 2^-exponent in double: a product by a normal power of two is exact unless it
+    // underflows (then the rounding outward to float covers it); times_power_of_two where
+    // 2^-exponent itself is not a normal double.
+    [[nodiscard]] double scaled_t(T t) const noexcept {
+        const double u = static_cast<double>(t);
+        return t_factor != 0.0 ? u * t_factor : times_power_of_two(u, -exponent);
+    }
+};
+
+/// The smallest normal float, 2^-126: a scaled direction component at least this large has
+/// a finite float reciprocal of full precision.
+inline constexpr float bvh_min_normal = 0x1p-126f;
+
+/// The box-test values of an axis along which the scaled direction d_k is below
+/// bvh_min_normal (zero included): the ray moves along it by at most delta = |d_k| t_max
+/// (unscaled), so its coordinate stays in [o_k - delta, o_k + delta] for every t in range.
+/// The axis is tested as that interval against the slab, for all t at once: reciprocal
+/// +inf, near plane lo, far plane hi, origin_near the interval's top rounded up and
+/// origin_far its bottom rounded down. Then (lo - origin_near) inf is +inf (the box is
+/// rejected) when lo lies above the interval, and (hi - origin_far) inf is -inf when hi
+/// lies below it; otherwise the products are -inf, +inf or NaN (a plane touching the
+/// interval: 0 x inf), none of which rejects the box (the test ignores NaN).
+struct bvh_parallel_axis {
+    float origin_near;
+    float origin_far;
+
+    template <std::floating_point T>
+    bvh_parallel_axis(T o, T d, T t_max) noexcept {
+        // In double: exact for float rays; for double rays within a few double ulps,
+        // far below the float step the rounding outward adds.
+        const double delta = d == T(0) ? 0.0 : std::abs(static_cast<double>(d)) * static_cast<double>(t_max);
+        origin_near = next_float_up(static_cast<float>(static_cast<double>(o) + delta));
+        origin_far = next_float_down(static_cast<float>(static_cast<double>(o) - delta));
+    }
+};
+
+/// What the box tests need of a ray of scalar T, in float, with its direction scaled by
+/// bvh_ray_scale (so are all ray parameters): per axis the reciprocal of the scaled
 /// direction, which plane is near (lo when the direction's sign bit is clear, else hi),
 /// and the origin rounded so that each slab distance errs outward. For a float ray the
 /// origin is exact; for a double ray, it is rounded up where it is subtracted from the
@@ -28,23 +116,35 @@ namespace shade::detail {
 /// the computed near distance can only be smaller and the far one larger. The far
 /// distances are then enlarged by 1 + 2 gamma(n) (Ize 2013, see shade::intersect(ray,
 /// aabb)): n = 3 roundings for float rays (subtraction, reciprocal, product), n = 4 for
-/// double rays, whose reciprocal is rounded twice (to double, then to float).
+/// double rays, whose reciprocal is rounded twice (to double, then to float). An axis
+/// whose scaled direction component is below bvh_min_normal is tested as in
+/// bvh_parallel_axis. This is the scalar form of bvh_ray4 (used where GNU vectors are
+/// missing).
 struct bvh_float_ray {
-    std::array<float, 3> inv;           ///< 1 / direction, per axis (±inf for a zero component)
+    std::array<float, 3> inv;           ///< 1 / scaled direction, per axis
     std::array<float, 3> origin_near;   ///< origin, rounded against the near plane
     std::array<float, 3> origin_far;    ///< origin, rounded against the far plane
     std::array<std::size_t, 3> near_plane; ///< index of the near plane in bvh_node4::planes
     float enlarge = 1.0f;               ///< factor of the far distances
-    float t_min = 0.0f;                 ///< the ray's t_min rounded down
+    float t_min = 0.0f;                 ///< the ray's t_min, scaled and rounded down
 
     template <std::floating_point T>
     explicit bvh_float_ray(const ray<T>& r) noexcept {
         constexpr bool exact = sizeof(T) == sizeof(float);
+        const bvh_ray_scale<T> scale(r.direction);
         enlarge = 1.0f + 2.0f * rounding_gamma<float>(exact ? 3 : 4);
-        t_min = float_down(r.t_min);
+        t_min = scale.t_down(r.t_min);
         for (std::size_t k = 0; k < 3; ++k) {
-            const T d = r.direction[int(k)];
+            const T d = scale.direction(r.direction[int(k)]);
             const T o = r.origin[int(k)];
+            if (scale.scaled && !(std::abs(d) >= T(bvh_min_normal))) {
+                const bvh_parallel_axis axis(o, r.direction[int(k)], r.t_max);
+                inv[k] = infinity<float>;
+                near_plane[k] = 2 * k;
+                origin_near[k] = axis.origin_near;
+                origin_far[k] = axis.origin_far;
+                continue;
+            }
             const bool negative = std::signbit(d);
             inv[k] = static_cast<float>(T(1) / d);
             near_plane[k] = 2 * k + (negative ? 1 : 0);
@@ -99,7 +199,7 @@ using bvh_u4 [[gnu::vector_size(16)]] = std::uint32_t;
     return reinterpret_cast<bvh_f4>(b + ((1u - 2u * negative) & finite));
 }
 
-/// The values of bvh_float_ray(r) in the form the four-box test reads them: each per-axis
+/// The values of bvh_float_ray(r) (scaled by `scale`) in the form the four-box test reads them: each per-axis
 /// value in all four lanes, and the byte offsets of the near and far planes in a
 /// bvh_node4. Computed three axes at a time without branches (the direction's signs vary
 /// from ray to ray, so a branch on them would be mispredicted); built once per ray, so
@@ -114,17 +214,18 @@ struct bvh_ray4 {
     bvh_f4 enlarge;
 
     template <std::floating_point T>
-    [[gnu::always_inline]] explicit bvh_ray4(const ray<T>& r) noexcept
-        : t_min(bvh_splat(float_down(r.t_min))),
+    [[gnu::always_inline]] explicit bvh_ray4(const ray<T>& r, const bvh_ray_scale<T>& scale) noexcept
+        : t_min(bvh_splat(scale.t_down(r.t_min))),
           enlarge(bvh_splat(1.0f + 2.0f * rounding_gamma<float>(sizeof(T) == sizeof(float) ? 3 : 4))) {
-        const vec3<T>& d = r.direction;
+        const vec3<T> d(scale.direction(r.direction.x), scale.direction(r.direction.y),
+                        scale.direction(r.direction.z));
         const vec3<T>& o = r.origin;
-        const bvh_f4 inv3{static_cast<float>(T(1) / d.x), static_cast<float>(T(1) / d.y),
-                          static_cast<float>(T(1) / d.z), 0.0f};
+        bvh_f4 inv3{static_cast<float>(T(1) / d.x), static_cast<float>(T(1) / d.y),
+                    static_cast<float>(T(1) / d.z), 0.0f};
         // All ones where the direction's sign bit is set (rounding to float keeps the
         // sign, also of a zero or of a component that underflows).
         const bvh_f4 d3{static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z), 0.0f};
-        const bvh_i4 negative = reinterpret_cast<bvh_i4>(d3) >> 31;
+        bvh_i4 negative = reinterpret_cast<bvh_i4>(d3) >> 31;
         const bvh_f4 o3{static_cast<float>(o.x), static_cast<float>(o.y), static_cast<float>(o.z), 0.0f};
         bvh_f4 up = o3;
         bvh_f4 down = o3;
@@ -136,8 +237,19 @@ struct bvh_ray4 {
             return reinterpret_cast<bvh_f4>((reinterpret_cast<bvh_i4>(if_negative) & negative) |
                                             (reinterpret_cast<bvh_i4>(otherwise) & ~negative));
         };
-        const bvh_f4 near3 = select(down, up);
-        const bvh_f4 far3 = select(up, down);
+        bvh_f4 near3 = select(down, up);
+        bvh_f4 far3 = select(up, down);
+        // Axes along which the scaled direction is below the smallest normal float: only
+        // a scaled ray has them (an unscaled one may have a zero component, which the
+        // reciprocal +-inf handles as bvh_parallel_axis would).
+        for (int k = 0; scale.scaled && k < 3; ++k) {
+            if (std::abs(d[k]) >= T(bvh_min_normal)) continue;
+            const bvh_parallel_axis axis(o[k], r.direction[k], r.t_max);
+            inv3[k] = infinity<float>;
+            negative[k] = 0;
+            near3[k] = axis.origin_near;
+            far3[k] = axis.origin_far;
+        }
         for (std::size_t k = 0; k < 3; ++k) {
             inv[k] = bvh_splat(inv3[k]);
             origin_near[k] = bvh_splat(near3[k]);
@@ -212,14 +324,15 @@ inline constexpr std::size_t bvh_stack_size = 256;
 /// empty and r is valid.
 template <bool Ordered, std::floating_point T, class Leaf>
 void bvh_traverse(const bvh_node4* nodes, const ray<T>& r, const T& t_max, Leaf&& leaf) {
+    const bvh_ray_scale<T> scale(r.direction);
 #if defined(__GNUC__)
-    const bvh_ray4 fr(r);
+    const bvh_ray4 fr(r, scale);
     bvh_f4 t_enter;
 #else
     const bvh_float_ray fr(r);
     std::array<float, 4> t_enter;
 #endif
-    float t_max_f = float_up(t_max);
+    float t_max_f = scale.t_up(t_max);
     std::array<bvh_stack_entry, bvh_stack_size> stack;
     std::size_t top = 0;
     std::uint32_t ref = 0;
@@ -274,7 +387,7 @@ void bvh_traverse(const bvh_node4* nodes, const ray<T>& r, const T& t_max, Leaf&
             ref = stack[top].ref;
         }
         if (leaf(leaf_first(ref), leaf_count(ref))) return;
-        t_max_f = float_up(t_max);
+        t_max_f = scale.t_up(t_max);
         do {
             if (top == 0) return;
             --top;
