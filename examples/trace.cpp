@@ -41,6 +41,8 @@ options:
                    lights: hard shadows from point/directional lights, soft from an area light;
                    furnace: a white Lambert sphere in a white environment (path: all 1);
                    furnace-conductor: the same with a rough conductor of F = 1;
+                   energy: rough gold spheres in a white environment, single
+                   scattering (top) and compensated for multiple scattering (bottom);
                    enclosure: inside a glowing sphere of albedo 0.8 (path: all 5);
                    veach: glossy plates and four sphere lights (compare --strategy);
                    cornell: a red/green room with an OBJ pyramid and a sphere light (path)

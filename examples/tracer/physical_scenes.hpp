@@ -4,6 +4,10 @@
 //                      (radiance 1): every pixel is 1, whatever the number of bounces;
 //   furnace-conductor: the same with a rough GGX conductor of F = 1 (single-scattering
 //                      microfacets lose energy at high roughness: pixels below 1);
+//   energy:            rough gold spheres (GGX alpha 0.05, 0.25, 0.5, 0.75, 1, left to
+//                      right) in the same white environment: single scattering on top,
+//                      compensated for multiple scattering (shade::kulla_conty) below;
+//                      the top row darkens with roughness, the bottom one does not;
 //   enclosure:         the camera inside a closed sphere whose inside is a Lambert of
 //                      albedo 0.8 that also emits radiance 1: every pixel is
 //                      1 + 0.8 + 0.8^2 + ... = 1 / (1 - 0.8) = 5;
@@ -54,6 +58,27 @@ inline scene make_furnace(real aspect, bool conductor) {
         s.add_physical_sphere(shade::sphere<real>(vec3(0), 1), shade::make_ggx_conductor(real(0.6), rgb(1)));
     else
         s.add_physical_sphere(shade::sphere<real>(vec3(0), 1), shade::lambert<real>(rgb(1)));
+    return s;
+}
+
+/// The GGX roughness of the energy scene's spheres, left to right.
+inline constexpr std::array<real, 5> energy_alphas{0.05, 0.25, 0.5, 0.75, 1.0};
+
+/// energy: see the file comment. Objects 2k (top, single scattering) and 2k + 1 (bottom,
+/// compensated) have roughness energy_alphas[k].
+inline scene make_energy(real aspect) {
+    scene s;
+    s.name = "energy";
+    s.camera = detail::look(vec3(0, 0, 12), vec3(0), 16, aspect);
+    s.lights.emplace_back(shade::environment_light<real>(detail::radiance(1)));
+    s.background = rgb(1);
+    const rgb gold(1.0, 0.71, 0.29);
+    for (std::size_t k = 0; k < energy_alphas.size(); ++k) {
+        const real x = (real(k) - real(2)) * real(1.2);
+        s.add_physical_sphere(shade::sphere<real>(vec3(x, 0.6, 0), 0.5), shade::make_ggx_conductor(energy_alphas[k], gold));
+        s.add_physical_sphere(shade::sphere<real>(vec3(x, -0.6, 0), 0.5),
+                              shade::make_compensated_ggx_conductor(energy_alphas[k], gold));
+    }
     return s;
 }
 

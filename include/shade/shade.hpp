@@ -31,10 +31,12 @@
 #include <shade/brdf/blinn_phong.hpp>
 #include <shade/brdf/brdf.hpp>
 #include <shade/brdf/cook_torrance.hpp>
+#include <shade/brdf/coupled_plastic.hpp>
 #include <shade/brdf/fresnel.hpp>
 #include <shade/brdf/lambert.hpp>
 #include <shade/brdf/metals.hpp>
 #include <shade/brdf/microfacet.hpp>
+#include <shade/brdf/multiple_scattering.hpp>
 #include <shade/brdf/oren_nayar.hpp>
 #include <shade/brdf/phong.hpp>
 

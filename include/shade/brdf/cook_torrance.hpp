@@ -7,6 +7,11 @@
 //   cook_torrance<beckmann<T>, schlick<T>, v_groove<T>>                  default: Walter et al.
 //   cook_torrance<ggx<T>, dielectric_fresnel<T>, smith_ggx<T>, cook_torrance_form::course>
 //
+// and a Scattering policy (shade/brdf/multiple_scattering.hpp): single_scattering, the
+// default, or kulla_conty, which adds the energy of multiple scattering back:
+//
+//   cook_torrance<ggx<T>, schlick<T>, smith_height_correlated<T>, cook_torrance_form::walter, kulla_conty>
+//
 // Example:
 //   const shade::cook_torrance<shade::ggx<float>, shade::schlick<float>, shade::smith_ggx<float>>
 //       metal(shade::ggx<float>(0.3f), shade::schlick<float>({0.95f, 0.64f, 0.54f}));
@@ -21,6 +26,8 @@
 #include <shade/brdf/detail/directions.hpp>
 #include <shade/brdf/fresnel.hpp>
 #include <shade/brdf/microfacet.hpp>
+#include <shade/brdf/microfacet/albedo_table.hpp>
+#include <shade/brdf/multiple_scattering.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/sampling.hpp>
@@ -92,6 +99,21 @@ concept cook_torrance_normalization = std::floating_point<T> && requires {
     { X::template scale<T>() } -> std::same_as<T>;
 };
 
+/// The distribution, masking and form are those the Kulla-Conty tables were computed for:
+/// ggx or beckmann, smith_height_correlated, cook_torrance_form::walter.
+template <class Distribution, class Masking, class Form>
+concept kulla_conty_compensable =
+    requires { detail::albedo_tables_of<Distribution>::e; } &&
+    std::same_as<Masking, smith_height_correlated<scalar_of<Distribution>>> &&
+    std::same_as<Form, cook_torrance_form::walter>;
+
+/// S is a Scattering policy of shade::cook_torrance for this distribution, masking and
+/// form: single_scattering always, kulla_conty when kulla_conty_compensable.
+template <class S, class Distribution, class Masking, class Form>
+concept scattering_policy_for =
+    std::same_as<S, single_scattering> ||
+    (std::same_as<S, kulla_conty> && kulla_conty_compensable<Distribution, Masking, Form>);
+
 /// Cook-Torrance reflection: a Lambertian base plus a microfacet specular lobe.
 ///
 ///     f = k_d / pi + k_s * scale * F(v·h) D(h) G(l, v, h) / ((n·l)(n·v))
@@ -130,18 +152,35 @@ concept cook_torrance_normalization = std::floating_point<T> && requires {
 /// starved where the estimate is poor (F(n·v) can be 0 where F(v·h) is not). pdf and the
 /// pdf a sample carries are the mixture P_s pdf_s + (1 - P_s) pdf_d.
 ///
+/// With Scattering = kulla_conty (shade/brdf/multiple_scattering.hpp) the specular lobe
+/// is f_ss + f_ms, where f_ss is the lobe above and f_ms Kulla and Conty's
+/// multiple-scattering lobe, both times k_s:
+///
+///     f = k_d / pi + k_s (f_ss + F_ms (1 - E(n·l)) (1 - E(n·v)) / (pi (1 - E_avg)))
+///
+/// With F = 1 (and k_d = 0, k_s = 1) its albedo is 1 at every view to the accuracy of the
+/// albedo tables. k_d stays an independent Lambertian term (the coupled diffuse base is
+/// shade::coupled_plastic). Its sampler draws the specular lobe as a mixture: the cosine
+/// with probability q(v) = w_ms / (w_ss + w_ms), w_ms = max channel of F_ms times
+/// 1 - E(n·v) (f_ms's albedo), w_ss = max channel of F_avg times E(n·v) (an estimate of
+/// f_ss's), otherwise the visible normals; pdf_s becomes (1 - q) G1(v) D(h) / (4 n·v) +
+/// q (n·l) / pi. With F = 1, q = 1 - E(n·v).
+///
 /// Distribution: beckmann<T> or ggx<T> (or any shade::microfacet_distribution).
 /// Fresnel: schlick<T>, dielectric_fresnel<T> or conductor_fresnel<T> (or any
 ///          shade::fresnel_term).
 /// Masking: v_groove<T>, smith_beckmann<T> (with beckmann), smith_ggx<T> (with ggx),
 ///          smith_separable<T>, smith_height_correlated<T> (with either);
 ///          default-constructed (the masking terms are stateless).
+/// Scattering: single_scattering (default) or kulla_conty (with ggx or beckmann,
+///          smith_height_correlated and the walter form).
 template <class Distribution, class Fresnel, class Masking,
-          class Form = cook_torrance_form::walter>
+          class Form = cook_torrance_form::walter, class Scattering = single_scattering>
     requires microfacet_distribution<Distribution> &&
              fresnel_term<Fresnel, scalar_of<Distribution>> &&
              masking_for<Masking, Distribution> && std::default_initializable<Masking> &&
-             cook_torrance_normalization<Form, scalar_of<Distribution>>
+             cook_torrance_normalization<Form, scalar_of<Distribution>> &&
+             scattering_policy_for<Scattering, Distribution, Masking, Form>
 class cook_torrance {
 public:
     using scalar_type = scalar_of<Distribution>;
@@ -149,9 +188,11 @@ public:
     using fresnel_type = Fresnel;
     using masking_type = Masking;
     using form_type = Form;
+    using scattering_type = Scattering;
 
 private:
     using T = scalar_type;
+    static constexpr bool compensated = std::same_as<Scattering, kulla_conty>;
 
 public:
     /// Validating constructor (the distribution and Fresnel term validated their own
@@ -164,9 +205,12 @@ public:
                   const rgb<T>& k_s = rgb<T>(1), const rgb<T>& k_d = rgb<T>(0))
         : distribution_(distribution), fresnel_(fresnel),
           k_s_(require_non_negative("k_s", k_s)), k_d_(require_non_negative("k_d", k_d)) {
-        // D <= peak, F <= 1, G <= 1, 1/((n·l)(n·v)) <= 1/cos_floor^2.
+        if constexpr (compensated) ms_ = {detail::make_kulla_conty_state(distribution_, fresnel_)};
+        // D <= peak, F <= 1, G <= 1, 1/((n·l)(n·v)) <= 1/cos_floor^2; with kulla_conty,
+        // f_ms <= its scale (each 1 - E factor is <= 1).
         const T floor2 = detail::cos_floor<T> * detail::cos_floor<T>;
-        const T lobe_peak = Form::template scale<T>() * (distribution_.peak() / floor2);
+        T lobe_peak = Form::template scale<T>() * (distribution_.peak() / floor2);
+        if constexpr (compensated) lobe_peak += detail::max_channel(ms_.scale);
         detail::require_finite_peak(detail::peak_parameter_of(distribution_), lobe_peak);
         const T peak = detail::max_channel(k_s_) * lobe_peak;
         detail::require_finite_peak("k_s", peak);
@@ -177,7 +221,9 @@ public:
     /// overflows).
     cook_torrance(unchecked_t, const Distribution& distribution, const Fresnel& fresnel,
                   const rgb<T>& k_s = rgb<T>(1), const rgb<T>& k_d = rgb<T>(0)) noexcept
-        : distribution_(distribution), fresnel_(fresnel), k_s_(k_s), k_d_(k_d) {}
+        : distribution_(distribution), fresnel_(fresnel), k_s_(k_s), k_d_(k_d) {
+        if constexpr (compensated) ms_ = {detail::make_kulla_conty_state(distribution_, fresnel_)};
+    }
 
     [[nodiscard]] constexpr const Distribution& distribution() const noexcept { return distribution_; } ///< D term
     [[nodiscard]] constexpr const Fresnel& fresnel() const noexcept { return fresnel_; } ///< F term
@@ -191,14 +237,46 @@ public:
         return k_d_ * inv_pi<T>;
     }
 
-    /// Specular part k_s scale F D G / ((n·l)(n·v)) (1/sr), 0 unless n·l > 0 and n·v > 0.
+    /// Specular part k_s scale F D G / ((n·l)(n·v)) (1/sr), plus k_s f_ms with
+    /// kulla_conty; 0 unless n·l > 0 and n·v > 0.
     [[nodiscard]] rgb<T> f_specular(const vec3<T>& l, const vec3<T>& v,
                                     const surface_point<T>& at) const noexcept {
         const vec3<T> l_local = at.shading.to_local(l);
         const vec3<T> v_local = at.shading.to_local(v);
         if (!(l_local.z > T(0)) || !(v_local.z > T(0))) return rgb<T>(0);
         const auto [h, v_dot_h] = detail::half_vector_and_cos(l_local, v_local);
-        return specular(l_local, v_local, h, v_dot_h, D_of(h));
+        if constexpr (compensated)
+            return specular(l_local, v_local, h, v_dot_h, D_of(h)) + multiple_scattering(l_local.z, v_local.z);
+        else
+            return specular(l_local, v_local, h, v_dot_h, D_of(h));
+    }
+
+    /// With kulla_conty: the albedo E(mu) of the single-scattering lobe with F = 1 at
+    /// the view cosine mu, read from the table at the model's roughness (in [0, 1]).
+    [[nodiscard]] T single_scattering_albedo(T mu) const noexcept
+        requires compensated
+    {
+        return detail::albedo_lookup(detail::albedo_tables_of<Distribution>::e, detail::albedo_grid_nodes, mu,
+                                     ms_.alpha);
+    }
+
+    /// With kulla_conty: E_avg, the cosine-weighted average of single_scattering_albedo.
+    [[nodiscard]] T average_single_scattering_albedo() const noexcept
+        requires compensated
+    {
+        return ms_.e_avg;
+    }
+
+    /// With kulla_conty: the probability q that sample(), having chosen the specular lobe,
+    /// draws from the cosine (f_ms) rather than the visible normals, for a view of cosine
+    /// n_dot_v (see the class comment).
+    [[nodiscard]] T multiple_scattering_probability(T n_dot_v) const noexcept
+        requires compensated
+    {
+        const T e = single_scattering_albedo(n_dot_v);
+        const T w_ms = ms_.f_ms_max * (T(1) - e);
+        const T w_ss = ms_.f_avg_max * e;
+        return w_ms > T(0) ? w_ms / (w_ms + w_ss) : T(0);
     }
 
     /// BRDF value in 1/sr without the cosine: f_diffuse + f_specular.
@@ -227,9 +305,17 @@ public:
         const vec3<T> v_local = at.shading.to_local(v);
         if (!(v_local.z > T(0))) return std::nullopt;
         vec3<T> l_local;
-        if (uc < specular_probability(v_local.z)) {
-            const vec3<T> m = distribution_.sample_visible_normal(v_local, u);
-            l_local = T(2) * glm::dot(v_local, m) * m - v_local;
+        const T p_s = specular_probability(v_local.z);
+        if (uc < p_s) {
+            bool cosine = false;
+            // Of the specular draws (uc < p_s), the share q goes to the cosine.
+            if constexpr (compensated) cosine = uc < p_s * multiple_scattering_probability(v_local.z);
+            if (cosine) {
+                l_local = square_to_cosine_hemisphere(u);
+            } else {
+                const vec3<T> m = distribution_.sample_visible_normal(v_local, u);
+                l_local = T(2) * glm::dot(v_local, m) * m - v_local;
+            }
         } else {
             l_local = square_to_cosine_hemisphere(u);
         }
@@ -272,11 +358,18 @@ private:
         if (!(l_local.z > T(0)) || !(v_local.z > T(0))) return out;
         const auto [h, v_dot_h] = detail::half_vector_and_cos(l_local, v_local);
         const T d = D_of(h);
-        if constexpr (with_f) out.f = k_d_ * inv_pi<T> + specular(l_local, v_local, h, v_dot_h, d);
+        if constexpr (with_f) {
+            out.f = k_d_ * inv_pi<T> + specular(l_local, v_local, h, v_dot_h, d);
+            if constexpr (compensated) out.f += multiple_scattering(l_local.z, v_local.z);
+        }
         if constexpr (with_pdf) {
             const T p_s = specular_probability(v_local.z);
             // pdf_s = G1(v) D(h) / (4 n·v); v_local.z > 0 here.
-            const T pdf_s = p_s > T(0) ? distribution_.G1(v_local) * d / (T(4) * v_local.z) : T(0);
+            T pdf_s = p_s > T(0) ? distribution_.G1(v_local) * d / (T(4) * v_local.z) : T(0);
+            if constexpr (compensated) {
+                const T q = multiple_scattering_probability(v_local.z);
+                pdf_s = (T(1) - q) * pdf_s + q * l_local.z * inv_pi<T>;
+            }
             out.pdf = p_s * pdf_s + (T(1) - p_s) * l_local.z * inv_pi<T>;
         }
         return out;
@@ -304,11 +397,23 @@ private:
         return k_s_ * fresnel_.F(v_dot_h) * lobe;
     }
 
+    // k_s f_ms = k_s F_ms (1 - E(n·l)) (1 - E(n·v)) / (pi (1 - E_avg)) for cosines > 0
+    // (kulla_conty only). Each factor is computed the same way for l and v, so the
+    // product is the same number with l and v exchanged.
+    [[nodiscard]] rgb<T> multiple_scattering(T n_dot_l, T n_dot_v) const noexcept
+        requires compensated
+    {
+        const T loss_l = T(1) - single_scattering_albedo(n_dot_l);
+        const T loss_v = T(1) - single_scattering_albedo(n_dot_v);
+        return k_s_ * ms_.scale * (loss_l * loss_v);
+    }
+
     Distribution distribution_;
     Fresnel fresnel_;
     [[no_unique_address]] Masking masking_{};
     rgb<T> k_s_;
     rgb<T> k_d_;
+    [[no_unique_address]] detail::scattering_state<Scattering, T> ms_{};
 };
 
 } // namespace shade

@@ -1,0 +1,231 @@
+// albedo_tables: computes the microfacet albedo tables of shade/brdf/microfacet/albedo_table.hpp
+// with the models' own importance sampling and writes them as a header of constants.
+//
+//   albedo_tables --out include/shade/brdf/microfacet/detail/albedo_data.hpp
+//
+// Each node's E(mu, alpha) is shade::check::sampled_albedo of the single-scattering lobe
+// (cook_torrance with k_s = 1, k_d = 0, height-correlated Smith, the walter form): the mean
+// of the sampler's weight f (n·l) / pdf over strata^2 jittered visible-normal samples,
+// with its standard error. E_avg is the exact average of the interpolated row
+// (detail::albedo_row_average). Besides the nodes, the program evaluates E the same way
+// at the centres of a sub-grid of cells and compares the interpolated table there: the
+// largest difference, and the largest standard error, are written into the header as the
+// table's stated accuracy.
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <vector>
+
+#include <shade/brdf/microfacet/albedo_table.hpp>
+#include <shade/check/energy.hpp>
+#include <shade/shade.hpp>
+
+#include "support/cli.hpp"
+
+namespace ex = shade::examples;
+
+namespace {
+
+using T = double;
+
+constexpr std::string_view usage = R"(usage: albedo_tables [--out FILE.hpp] [--nodes N] [--strata S] [--threads K]
+
+Computes E(mu, alpha) and E_avg(alpha) of the single-scattering GGX and Beckmann lobes
+with F = 1 and of the GGX lobe with the dielectric Fresnel of eta = 1.5, on an N x N grid
+uniform in (c, sqrt(alpha)) (see albedo_table.hpp), each node from S^2 samples of the model's own
+sampler, and writes the header of constants.
+
+  --out FILE.hpp  output (default albedo_data.hpp)
+  --nodes N       nodes per axis, 4 to 512 (default 128)
+  --strata S      S^2 samples per node, 16 to 2048 (default 256)
+  --threads K     worker threads, 1 to 64 (default 2)
+)";
+
+struct settings {
+    std::filesystem::path out = "albedo_data.hpp";
+    std::size_t nodes = shade::detail::albedo_grid_nodes;
+    std::size_t strata = 256;
+    unsigned threads = 2;
+};
+
+// E(mu, alpha) estimated for one model family: make(alpha) builds the lobe.
+using albedo_function = std::function<shade::check::albedo_sample<T>(double mu, double alpha, std::uint64_t seed)>;
+
+template <class Make>
+albedo_function family(Make make, std::size_t strata) {
+    return [make, strata](double mu, double alpha, std::uint64_t seed) {
+        shade::surface_point<T> at;
+        at.shading = shade::frame<T>::from_normal_tangent({0, 0, 1}, {1, 0, 0});
+        const auto model = make(alpha);
+        // mu from the warp's inverse can round just above 1.
+        const double c = std::min(mu, 1.0);
+        const shade::vec3<T> v(std::sqrt((1 - c) * (1 + c)), 0, c);
+        return shade::check::sampled_albedo(model, v, at, strata, seed);
+    };
+}
+
+struct table {
+    std::string name;      // C++ name prefix
+    std::string what;      // one line for the comment
+    std::vector<float> e;  // n x n, row j = alpha_j
+    std::vector<float> average;
+    double max_error = 0;  // largest standard error of a node
+    double max_interpolation = 0; // largest |interpolated - estimated| at the check points
+    double max_average = 0; // largest |interpolated E_avg - average of the interpolated E| between rows
+};
+
+// Runs job(k) for k in [0, count) on `threads` threads.
+void parallel_for(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& job) {
+    std::atomic<std::size_t> next{0};
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < threads; ++t)
+        pool.emplace_back([&] {
+            for (std::size_t k = next++; k < count; k = next++) job(k);
+        });
+    for (auto& th : pool) th.join();
+}
+
+table compute(const std::string& name, const std::string& what, const albedo_function& albedo, const settings& s) {
+    namespace d = shade::detail;
+    const std::size_t n = s.nodes;
+    table out{name, what, std::vector<float>(n * n), std::vector<float>(n), 0, 0, 0};
+    std::vector<double> errors(n * n);
+    parallel_for(n * n, s.threads, [&](std::size_t k) {
+        const std::size_t j = k / n, i = k % n;
+        const double alpha = d::albedo_grid_alpha(j, n);
+        const double mu = std::max(d::albedo_grid_mu(double(i) / double(n - 1), alpha), d::albedo_grid_mu_min);
+        const auto a = albedo(mu, alpha, 1 + k);
+        out.e[k] = float(std::min(a.albedo.x, 1.0));
+        errors[k] = a.standard_error.x;
+    });
+    out.max_error = *std::max_element(errors.begin(), errors.end());
+    for (std::size_t j = 0; j < n; ++j) out.average[j] = float(d::albedo_row_average(out.e.data() + j * n, n, d::albedo_grid_alpha(j, n)));
+    // Interpolation check: the centre of every 4th cell along each axis (c and sqrt(alpha)
+    // halfway between nodes), estimated afresh and compared.
+    std::vector<std::pair<std::size_t, std::size_t>> cells;
+    for (std::size_t j = 0; j + 1 < n; j += 4)
+        for (std::size_t i = 0; i + 1 < n; i += 4) cells.emplace_back(i, j);
+    std::vector<double> differences(cells.size());
+    parallel_for(cells.size(), s.threads, [&](std::size_t k) {
+        const auto [i, j] = cells[k];
+        const double y = (double(j) + 0.5) / double(n - 1);
+        const double alpha = std::max(y * y, d::albedo_grid_alpha_min);
+        const double mu = std::max(d::albedo_grid_mu((double(i) + 0.5) / double(n - 1), alpha), d::albedo_grid_mu_min);
+        const auto a = albedo(mu, alpha, 1000003 + k);
+        differences[k] = std::abs(d::albedo_lookup(out.e.data(), n, mu, alpha) - a.albedo.x);
+    });
+    const auto worst = std::max_element(differences.begin(), differences.end());
+    out.max_interpolation = *worst;
+    const auto [wi, wj] = cells[std::size_t(worst - differences.begin())];
+    // Consistency of E_avg between rows: at the middle of each row interval the table's
+    // interpolant is the mean of the two rows, as a function of s at that alpha; its exact
+    // average against the interpolated E_avg.
+    std::vector<float> blend(n);
+    for (std::size_t j = 0; j + 1 < n; ++j) {
+        const double y = (double(j) + 0.5) / double(n - 1);
+        const double alpha = std::max(y * y, d::albedo_grid_alpha_min);
+        for (std::size_t i = 0; i < n; ++i) blend[i] = 0.5f * (out.e[j * n + i] + out.e[(j + 1) * n + i]);
+        const double exact = d::albedo_row_average(blend.data(), n, alpha);
+        out.max_average = std::max(out.max_average, std::abs(exact - d::albedo_average_lookup(out.average.data(), n, alpha)));
+    }
+    std::fprintf(stderr, "albedo_tables: %s: largest node standard error %.2e, largest interpolation difference %.2e, E_avg consistency %.2e "
+                 "(worst interpolation in the cell of c_%zu, alpha_%zu)\n",
+                 name.c_str(), out.max_error, out.max_interpolation, out.max_average, wi, wj);
+    return out;
+}
+
+// Floats with 7 significant digits as C++ float literals ("1" becomes "1.f").
+void write_numbers(std::FILE* f, const float* x, std::size_t count) {
+    for (std::size_t i = 0; i < count; ++i) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.7g", double(x[i]));
+        const bool has_point = std::string_view(text).find_first_of(".e") != std::string_view::npos;
+        std::fprintf(f, "%s%s%sf", i ? ", " : "", text, has_point ? "" : ".");
+    }
+}
+
+void write(std::FILE* f, const std::vector<table>& tables, const settings& s) {
+    const std::size_t n = s.nodes;
+    std::fprintf(f, "#pragma once\n");
+    std::fprintf(f, "// Generated by examples/albedo_tables.cpp (--nodes %zu --strata %zu); do not edit by hand.\n", n,
+                 s.strata);
+    std::fprintf(f, "// The albedo tables of shade/brdf/microfacet/albedo_table.hpp (grid, interpolation, meaning):\n");
+    std::fprintf(f, "// %zu x %zu nodes uniform in (c, sqrt(alpha)), row j = alpha_j, one row per line;\n", n, n);
+    std::fprintf(f, "// each node the mean weight of %zu jittered samples of the lobe's own sampler.\n",
+                 s.strata * s.strata);
+    std::fprintf(f, "// Accuracy (measured by the generator, per table below): the largest standard error of a\n");
+    std::fprintf(f, "// node, and the largest difference between the interpolated table and a fresh estimate at\n");
+    std::fprintf(f, "// the centres of every 4th cell along each axis (interpolation plus both estimates' noise), and\n");
+    std::fprintf(f, "// the largest difference between the interpolated E_avg and the exact average of the\n");
+    std::fprintf(f, "// interpolated E halfway between rows.\n\n");
+    std::fprintf(f, "namespace shade::detail {\n");
+    for (const auto& t : tables) {
+        std::fprintf(f, "\n/// E(mu, alpha) of %s.\n", t.what.c_str());
+        std::fprintf(f, "/// Node standard error <= %.1e; interpolated vs estimated at cell centres <= %.1e;\n", t.max_error,
+                     t.max_interpolation);
+        std::fprintf(f, "/// E_avg consistency <= %.1e.\n", t.max_average);
+        std::fprintf(f, "inline constexpr float %s[%zu * %zu] = {\n", t.name.c_str(), n, n);
+        for (std::size_t j = 0; j < n; ++j) {
+            write_numbers(f, t.e.data() + j * n, n);
+            std::fprintf(f, ",\n");
+        }
+        std::fprintf(f, "};\n\n/// E_avg(alpha) of %s.\n", t.what.c_str());
+        std::fprintf(f, "inline constexpr float %s_average[%zu] = {\n", t.name.c_str(), n);
+        write_numbers(f, t.average.data(), n);
+        std::fprintf(f, "};\n");
+    }
+    std::fprintf(f, "\n} // namespace shade::detail\n");
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    return ex::run_cli("albedo_tables", [&] {
+        settings s;
+        ex::command_line args(argc, argv);
+        while (args.next()) {
+            if (args.flag("--help") || args.flag("-h")) {
+                std::fputs(usage.data(), stdout);
+                return 0;
+            }
+            if (args.option("--out")) s.out = args.path();
+            else if (args.option("--nodes")) s.nodes = args.integer<std::size_t>(4, 512);
+            else if (args.option("--strata")) s.strata = args.integer<std::size_t>(16, 2048);
+            else if (args.option("--threads")) s.threads = args.integer<unsigned>(1, 64);
+            else args.unknown();
+        }
+        ex::output_file header(s.out);
+        using namespace shade;
+        const rgb<T> one(1);
+        std::vector<table> tables;
+        tables.push_back(compute("ggx_albedo", "the GGX lobe with F = 1 (cook_torrance<ggx, schlick(1), smith_height_correlated>)",
+                                 family([one](double a) {
+                                     return cook_torrance<ggx<T>, schlick<T>, smith_height_correlated<T>>(ggx<T>(a), schlick<T>(one));
+                                 }, s.strata), s));
+        tables.push_back(compute("beckmann_albedo",
+                                 "the Beckmann lobe with F = 1 (cook_torrance<beckmann, schlick(1), smith_height_correlated>)",
+                                 family([one](double a) {
+                                     return cook_torrance<beckmann<T>, schlick<T>, smith_height_correlated<T>>(beckmann<T>(a),
+                                                                                                              schlick<T>(one));
+                                 }, s.strata), s));
+        tables.push_back(compute("ggx_dielectric_albedo",
+                                 "the GGX lobe with the dielectric Fresnel of eta = 1.5 (cook_torrance<ggx, dielectric_fresnel(1.5), smith_height_correlated>)",
+                                 family([](double a) {
+                                     return cook_torrance<ggx<T>, dielectric_fresnel<T>, smith_height_correlated<T>>(
+                                         ggx<T>(a), dielectric_fresnel<T>(1.5));
+                                 }, s.strata), s));
+        std::FILE* f = std::fopen(header.temporary().c_str(), "w");
+        if (!f) throw std::runtime_error("cannot write " + header.temporary().string());
+        write(f, tables, s);
+        if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + header.temporary().string());
+        header.commit();
+        std::fprintf(stderr, "albedo_tables: wrote %s\n", s.out.string().c_str());
+        return 0;
+    });
+}
