@@ -243,35 +243,106 @@ constexpr double compensation_alphas[] = {0.05, 0.25, 0.5, 0.75, 1.0};
 constexpr double compensation_cosines[] = {1.0, 0.75, 0.5, 0.25, 0.1, 0.05};
 
 template <class B>
-double furnace_albedo(const B& model, double mu, std::size_t strata) {
+check::albedo_sample<T> furnace_sample(const B& model, double mu, std::size_t strata) {
     shade::surface_point<T> at;
     at.shading = shade::frame<T>::from_normal_tangent({0, 0, 1}, {1, 0, 0});
     const vec3<T> v(std::sqrt((1 - mu) * (1 + mu)), 0, mu);
-    return check::sampled_albedo(model, v, at, strata, 7).albedo.x;
+    return check::sampled_albedo(model, v, at, strata, 7);
+}
+
+template <class B>
+double furnace_albedo(const B& model, double mu, std::size_t strata) {
+    return furnace_sample(model, mu, strata).albedo.x;
+}
+
+// 2 integral_0^1 g(mu) mu dmu, midpoint rule on 20000 cells.
+template <class G>
+double cosine_average(const G& g) {
+    double sum = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const double mu = (i + 0.5) / 20000;
+        sum += 2 * g(mu) * mu / 20000;
+    }
+    return sum;
+}
+
+// The albedo of a compensated lobe's f_ms part (k_s = 1) at view cosine mu, exact by
+// quadrature of the model's table reads: F_ms (1 - E(mu)) (1 - 2 integral E mu) / (1 - E_avg).
+template <class Compensated>
+double multiple_scattering_albedo(const Compensated& model, double f_ms, double mu) {
+    const double e_avg = model.average_single_scattering_albedo();
+    const double average = cosine_average([&](double x) { return double(model.single_scattering_albedo(T(x))); });
+    return f_ms * (1 - double(model.single_scattering_albedo(T(mu)))) * (1 - average) / (1 - e_avg);
 }
 
 struct compensation_row {
     std::string name;
     double alpha = 0;
-    std::vector<double> albedo; // at compensation_cosines
+    std::vector<std::string> cells; // at compensation_cosines
 };
+
+std::string cell(double a, double se) {
+    char text[48];
+    if (se > 0) std::snprintf(text, sizeof text, "%.4f ± %.0e", a, se);
+    else std::snprintf(text, sizeof text, "%.4f", a);
+    return text;
+}
 
 std::vector<compensation_row> evaluate_compensation(const settings& s) {
     using namespace shade;
     const rgb<T> one(1);
+    const std::size_t strata = 4 * s.strata;
     std::vector<compensation_row> rows;
     for (const double a : compensation_alphas) {
-        const auto add = [&](const std::string& name, const auto& model) {
+        const auto add_own = [&](const std::string& name, const auto& model, std::size_t n) {
             compensation_row r{name, a, {}};
-            for (const double mu : compensation_cosines) r.albedo.push_back(furnace_albedo(model, mu, s.strata));
+            for (const double mu : compensation_cosines) {
+                const auto e = furnace_sample(model, mu, n);
+                r.cells.push_back(cell(e.albedo.x, e.standard_error.x));
+            }
             rows.push_back(r);
         };
-        add("GGX, F = 1, single scattering", ggx_conductor<T>(ggx<T>(a), schlick<T>(one)));
-        add("GGX, F = 1, Kulla-Conty", compensated_ggx_conductor<T>(ggx<T>(a), schlick<T>(one)));
-        add("Beckmann, F = 1, single scattering", beckmann_conductor<T>(beckmann<T>(a), schlick<T>(one)));
-        add("Beckmann, F = 1, Kulla-Conty", compensated_beckmann_conductor<T>(beckmann<T>(a), schlick<T>(one)));
-        add("rough plastic k_d = 1, uncoupled", make_rough_plastic<T>(a, one));
-        add("coupled plastic k_d = 1", coupled_plastic<T>(ggx<T>(a), one));
+        // The split estimate: the single-scattering lobe by its own visible-normal sampler
+        // (low variance), plus the parts exact by quadrature.
+        const auto add_split = [&](const std::string& name, const auto& single, const auto& rest) {
+            compensation_row r{name, a, {}};
+            for (const double mu : compensation_cosines) {
+                const auto e = furnace_sample(single, mu, strata);
+                r.cells.push_back(cell(e.albedo.x + rest(mu), e.standard_error.x));
+            }
+            rows.push_back(r);
+        };
+        const ggx_conductor<T> ggx_single{ggx<T>(a), schlick<T>(one)};
+        const compensated_ggx_conductor<T> ggx_ms{ggx<T>(a), schlick<T>(one)};
+        const beckmann_conductor<T> beckmann_single{beckmann<T>(a), schlick<T>(one)};
+        const compensated_beckmann_conductor<T> beckmann_ms{beckmann<T>(a), schlick<T>(one)};
+        add_own("GGX, F = 1, single scattering", ggx_single, strata);
+        add_split("GGX, F = 1, Kulla-Conty (split)", ggx_single,
+                  [&](double mu) { return multiple_scattering_albedo(ggx_ms, 1.0, mu); });
+        add_own("GGX, F = 1, Kulla-Conty (own sampler)", ggx_ms, strata);
+        add_own("Beckmann, F = 1, single scattering", beckmann_single, s.strata);
+        add_split("Beckmann, F = 1, Kulla-Conty (split)", beckmann_single,
+                  [&](double mu) { return multiple_scattering_albedo(beckmann_ms, 1.0, mu); });
+        add_own("Beckmann, F = 1, Kulla-Conty (own sampler)", beckmann_ms, 2 * s.strata);
+        add_own("rough plastic k_d = 1, uncoupled", make_rough_plastic<T>(a, one), s.strata);
+        const coupled_plastic<T> plastic{ggx<T>(a), one};
+        const auto& coating = plastic.coating();
+        const double f_ms =
+            detail::multiple_scattering_fresnel(detail::fresnel_average<T>(dielectric_fresnel<T>(T(1.5))),
+                                                coating.average_single_scattering_albedo())
+                .x;
+        const double e_s_avg =
+            detail::albedo_average_lookup(detail::ggx_dielectric_albedo_average, detail::albedo_grid_nodes, a) +
+            f_ms * (1 - coating.average_single_scattering_albedo());
+        const double a_s = cosine_average([&](double x) { return double(plastic.coating_albedo(T(x))); });
+        add_split("coupled plastic k_d = 1 (split)",
+                  cook_torrance<ggx<T>, dielectric_fresnel<T>, smith_height_correlated<T>>(ggx<T>(a),
+                                                                                           dielectric_fresnel<T>(T(1.5))),
+                  [&](double mu) {
+                      return multiple_scattering_albedo(coating, f_ms, mu) +
+                             (1 - double(plastic.coating_albedo(T(mu)))) * (1 - a_s) / (1 - e_s_avg);
+                  });
+        add_own("coupled plastic k_d = 1 (own sampler)", plastic, strata);
     }
     return rows;
 }
@@ -285,15 +356,20 @@ void print_compensation(const std::vector<compensation_row>& rows, const setting
     std::printf("\n");
     for (const auto& r : rows) {
         std::printf("| %s | %.2g |", r.name.c_str(), r.alpha);
-        for (const double a : r.albedo) std::printf(" %.4f |", a);
+        for (const auto& c : r.cells) std::printf(" %s |", c.c_str());
         std::printf("\n");
     }
-    std::printf("\nDirectional albedo (the white furnace) at view cosine mu = n.v, %zu^2 samples of each model's "
-                "own sampler per entry. The compensated conductors (shade::kulla_conty) and the coupled plastic "
-                "(shade::coupled_plastic) stay within [0.99, 1.001] and [0.97, 1.001]; single scattering loses "
-                "energy as alpha grows, and the uncoupled plastic (its Lambertian base simply added) reflects more "
-                "than it receives.\n",
-                s.strata);
+    std::printf("\nDirectional albedo (the white furnace) at view cosine mu = n.v, with its standard error. "
+                "Own sampler: the mean weight of the model's sampler, %zu^2 samples (Beckmann, whose sampler is "
+                "slower: %zu^2 for single scattering, %zu^2 compensated; uncoupled plastic %zu^2). Split: the "
+                "single-scattering lobe estimated with its own visible-normal sampler (%zu^2 samples; its weight "
+                "G2/G1 varies little, hence the small error), plus the compensation lobe and the coupled base, "
+                "whose albedos are exact by quadrature of the tables the model reads; the own-sampler estimate "
+                "agrees with it within its larger error (the mixture of lobes and the draws lost below the "
+                "horizon make its weight vary). tests/brdf/test_multiple_scattering.cpp and "
+                "test_coupled_plastic.cpp assert the split values in [0.99, 1.001] (conductors) and "
+                "[0.97, 1.001] (plastic) and the agreement.\n",
+                4 * s.strata, s.strata, 2 * s.strata, s.strata, 4 * s.strata);
 }
 
 // Albedo against roughness at two views, compensated and not.

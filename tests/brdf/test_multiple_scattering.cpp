@@ -194,7 +194,7 @@ TEST_CASE_TEMPLATE("kulla_conty: every property check passes on compensated GGX 
     const rgb<T> one(1), gold(T(1.0), T(0.71), T(0.29));
     const auto run = [](const auto& model, const std::string& name) { expect_every_property(model, name, 36); };
     run(ggx_ms<T>(shade::ggx<T>(T(0.7)), shade::schlick<T>(one)), "compensated GGX alpha 0.7, F = 1");
-    run(ggx_ms<T>(shade::ggx<T>(T(0.05), T(0.5)), shade::schlick<T>(gold)), "compensated GGX 0.05 x 0.5, gold");
+    run(ggx_ms<T>(shade::ggx<T>(T(0.2), T(0.4)), shade::schlick<T>(gold)), "compensated GGX 0.2 x 0.4, gold");
     run(beckmann_ms<T>(shade::beckmann<T>(T(0.4)), shade::schlick<T>(one), rgb<T>(T(0.5)), rgb<T>(T(0.5))),
         "compensated Beckmann m 0.4, k_s = k_d = 0.5");
 }
@@ -216,4 +216,18 @@ TEST_CASE_TEMPLATE("kulla_conty: f is exactly reciprocal and the compensation gr
     // with D = 1/pi and G2 = 2 mu / (1 + mu): integral_0^1 mu / (1 + mu) dmu = 1 - ln 2.
     const ggx_ms<T> rough(shade::ggx<T>(T(1)), shade::schlick<T>(one));
     CHECK(double(rough.single_scattering_albedo(T(1))) == doctest::Approx(1 - std::log(2.0)).epsilon(2e-3));
+}
+
+TEST_CASE_TEMPLATE("kulla_conty: with 10:1 anisotropy the geometric-mean roughness over-compensates some views", T, float,
+                   double) {
+    // The documented limit of the approximation (shade/brdf/multiple_scattering.hpp): GGX
+    // 0.05 x 0.5 read at sqrt(0.025) ~ 0.16 reflects clearly more than 1 at some views,
+    // and the energy check over 16 angles x 4 azimuths says so; at 2:1 (the property test
+    // above, 0.2 x 0.4) it passes.
+    namespace check = shade::check;
+    const ggx_ms<T> model(shade::ggx<T>(T(0.05), T(0.5)), shade::schlick<T>(rgb<T>(1)));
+    check::albedo_options albedo{.strata = 128, .view_angles = 16, .azimuths = 4,
+                                 .estimator = check::albedo_estimator::own_sampler};
+    albedo.model = "compensated GGX 0.05 x 0.5, F = 1";
+    check::doctest_expect_failure(check::energy_conservation(model, flat<T>(), albedo));
 }

@@ -14,9 +14,11 @@
 #include <doctest/doctest.h>
 #include <glm/geometric.hpp>
 
+#include <shade/brdf/aliases.hpp>
 #include <shade/brdf/ashikhmin_shirley.hpp>
 #include <shade/brdf/blinn_phong.hpp>
 #include <shade/brdf/cook_torrance.hpp>
+#include <shade/brdf/coupled_plastic.hpp>
 #include <shade/brdf/lambert.hpp>
 #include <shade/brdf/oren_nayar.hpp>
 #include <shade/brdf/phong.hpp>
@@ -200,6 +202,11 @@ TEST_CASE_TEMPLATE("every sampled model passes the sampling checks", T, float, d
     run(cook_torrance<beckmann<T>, dielectric_fresnel<T>, v_groove<T>>(beckmann<T>(T(0.3)),
                                                                                dielectric_fresnel<T>(T(1.5))),
                  "cook-torrance beckmann/v-groove, glass");
+    run(compensated_ggx_conductor<T>(ggx<T>(T(1)), schlick<T>(one)), "compensated ggx (kulla-conty), alpha = 1, F = 1");
+    run(compensated_ggx_conductor<T>(ggx<T>(T(0.05), T(0.5)), schlick<T>(rgb<T>(T(1), T(0.71), T(0.29)))),
+        "compensated ggx (kulla-conty), alpha 0.05 x 0.5, gold");
+    run(compensated_beckmann_conductor<T>(beckmann<T>(T(0.5)), schlick<T>(one)), "compensated beckmann, m = 0.5, F = 1");
+    run(coupled_plastic<T>(ggx<T>(T(0.5)), one), "coupled plastic, alpha = 0.5, k_d = 1");
     run(checker<lambert<T>, normalized_phong<T>>(lambert<T>(one), normalized_phong<T>(zero, one, T(10)), T(1)),
                  "checker of lambert and phong");
     run(gradient<lambert<T>, blinn_phong<T>>(lambert<T>(one), blinn_phong<T>(zero, one, T(10)),

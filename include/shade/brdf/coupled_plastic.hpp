@@ -78,8 +78,8 @@ public:
         alpha_ = alpha;
         const T e_s_avg = detail::albedo_average_lookup(detail::ggx_dielectric_albedo_average, detail::albedo_grid_nodes, alpha) +
                           f_ms_ * (T(1) - e_avg);
-        // E_s,avg <= ~0.2 for eta = 1.5 (the coating reflects little), so the denominator is
-        // far from 0.
+        // E_s,avg is about 0.1 or less for eta = 1.5 (the coating reflects little), so the
+        // denominator is far from 0.
         base_scale_ = inv_pi<T> / (T(1) - e_s_avg);
         detail::require_finite_peak("k_d", detail::max_channel(k_d_) * base_scale_);
     }

@@ -59,9 +59,11 @@ struct single_scattering {};
 /// Applies to ggx and beckmann with smith_height_correlated masking and the walter form
 /// (the masking and form the tables were computed with). Anisotropic distributions read
 /// the tables at the geometric mean roughness sqrt(alpha_x alpha_y) (for beckmann
-/// sqrt(m_x m_y)), the usual approximation (the lost energy of an anisotropic lobe is close
-/// to that of the isotropic one of the same mean slope area); roughness above 1 reads the
-/// alpha = 1 row, so there the compensation is partial and the albedo stays below 1.
+/// sqrt(m_x m_y)), the usual approximation: it holds for mild anisotropy, while a strongly
+/// anisotropic lobe loses more energy seen across its rough axis than along its smooth one,
+/// so with F = 1 its albedo then departs from 1 both ways (docs/properties.md measures it).
+/// Roughness above 1 reads the alpha = 1 row, so there the compensation is partial and the
+/// albedo stays below 1.
 struct kulla_conty {};
 
 namespace detail {
@@ -92,9 +94,10 @@ struct albedo_tables_of<beckmann<T>> {
 ///     F_avg = 2 integral_0^1 F(mu) mu dmu
 ///
 /// (Kulla, Conty 2017, the F_avg of the Fresnel slide), by 5-point Gauss-Legendre
-/// quadrature on 8 equal intervals (Abramowitz, Stegun 1964, 25.4.29): exact for Schlick's
-/// polynomial (f0 + (1 - f0) / 21), and smooth Fresnel curves to ~1e-9. Returns values in
-/// [0, 1].
+/// quadrature on 8 equal intervals (Abramowitz, Stegun 1964, "Handbook of Mathematical
+/// Functions", 25.4.29): exact for Schlick's polynomial of degree 6 (f0 + (1 - f0) / 21), and
+/// accurate for the smooth exact Fresnel curves of dielectrics (eta > 1) and conductors.
+/// Returns values in [0, 1].
 template <std::floating_point T, class Fresnel>
 [[nodiscard]] rgb<T> fresnel_average(const Fresnel& fresnel) noexcept {
     constexpr double node[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
@@ -121,9 +124,9 @@ template <std::floating_point T>
     return f_avg * f_avg * e_avg / (rgb<T>(1) - f_avg * (T(1) - e_avg));
 }
 
-/// Below this 1 - E_avg, f_ms is taken as 0: the lobe is then narrower than the tables
-/// resolve (alpha ~ 1e-4) and returns at most ~1e-5 of the light, while its normalization
-/// 1 / (1 - E_avg) would amplify the float rounding of the table.
+/// Below this 1 - E_avg, f_ms is taken as 0: the lobe is then a near-mirror that loses
+/// almost nothing, and the normalization 1 / (1 - E_avg) would only amplify the float
+/// rounding of the table.
 inline constexpr double kulla_conty_min_loss = 1e-6;
 
 /// What a Kulla-Conty compensated model keeps: the table roughness, E_avg, and the
