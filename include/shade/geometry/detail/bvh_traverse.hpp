@@ -36,18 +36,18 @@ struct bvh_ray_scale {
     T direction_factor = T(1); ///< 2^exponent, or 0 where that is not a normal T
     double t_factor = 1.0;     ///< 2^-exponent, or 0 where that is not a normal double
 
+    /// No scaling.
+    bvh_ray_scale() = default;
     /// No scaling where the direction does not need it, else the scale described above.
     explicit bvh_ray_scale(const vec3<T>& direction) noexcept {
-        const auto usable = [](T d) {
-            const T a = std::abs(d);
-            return a == T(0) || (a >= T(0x1p-125) && a <= T(0x1p+125));
-        };
-        if (usable(direction.x) && usable(direction.y) && usable(direction.z)) [[likely]]
-            return;
-        scaled = true;
-        exponent = power_of_two_rescale_exponent(direction);
-        direction_factor = normal_or_zero(times_power_of_two(T(1), exponent));
-        t_factor = normal_or_zero(times_power_of_two(1.0, -exponent));
+        if (needed(direction)) [[unlikely]]
+            scale(direction);
+    }
+
+    /// True when some direction component is nonzero with a magnitude outside
+    /// [2^-125, 2^125].
+    [[nodiscard]] static bool needed(const vec3<T>& direction) noexcept {
+        return !(usable(direction.x) && usable(direction.y) && usable(direction.z));
     }
 
     /// The direction's component d times 2^exponent.
@@ -67,6 +67,16 @@ struct bvh_ray_scale {
     }
 
 private:
+    [[nodiscard]] static bool usable(T d) noexcept {
+        const T a = std::abs(d);
+        return a == T(0) || (a >= T(0x1p-125) && a <= T(0x1p+125));
+    }
+    void scale(const vec3<T>& direction) noexcept {
+        scaled = true;
+        exponent = power_of_two_rescale_exponent(direction);
+        direction_factor = normal_or_zero(times_power_of_two(T(1), exponent));
+        t_factor = normal_or_zero(times_power_of_two(1.0, -exponent));
+    }
     template <std::floating_point U>
     [[nodiscard]] static U normal_or_zero(U x) noexcept {
         return std::isnormal(x) ? x : U(0);
@@ -324,7 +334,11 @@ inline constexpr std::size_t bvh_stack_size = 256;
 /// empty and r is valid.
 template <bool Ordered, std::floating_point T, class Leaf>
 void bvh_traverse(const bvh_node4* nodes, const ray<T>& r, const T& t_max, Leaf&& leaf) {
-    const bvh_ray_scale<T> scale(r.direction);
+    // Built only for the rare rays that need scaling, so that the common case stays a few
+    // inlined comparisons.
+    bvh_ray_scale<T> scale;
+    if (bvh_ray_scale<T>::needed(r.direction)) [[unlikely]]
+        scale = bvh_ray_scale<T>(r.direction);
 #if defined(__GNUC__)
     const bvh_ray4 fr(r, scale);
     bvh_f4 t_enter;
