@@ -294,7 +294,8 @@ public:
     template <class S>
     [[nodiscard]] rgb sum_lights(const S& s, const lighting_query& q) const {
         const auto jitter = [&](int, int) { return vec2(q.random.uniform<real>(), q.random.uniform<real>()); };
-        const auto unoccluded = [&](const light_sample& ls) { return !q.shadows || visible(q.at.p, q.geometric_n, ls); };
+        const vec3 origin = shadow_origin(q.at.p, q.geometric_n); // the same for every sample
+        const auto unoccluded = [&](const light_sample& ls) { return !q.shadows || visible(origin, q.geometric_n, ls); };
         return shade::sum_over_lights(s, q.at, q.v, lights, unoccluded, q.options.area_samples_per_side, jitter);
     }
 
@@ -306,15 +307,20 @@ private:
         return o.surface(lighting_query{*this, at, geometric_n, v, random, options, shadows});
     }
 
-    /// Shadow ray from p toward the light sample. Self-intersection: the origin is pushed
+    /// Where shadow rays from p leave the surface. Self-intersection: the origin is pushed
     /// off the surface along the geometric normal by a distance relative to |p| (the
     /// rounding error of a computed hit point is a few ulps of its largest coordinate;
     /// 2^-32 relative is ~2^20 such ulps in double, far above that error yet far below any
-    /// feature of the scenes). A light below the geometric surface is always shadowed.
-    [[nodiscard]] bool visible(const vec3& p, const vec3& geometric_n, const light_sample& s) const {
-        if (!(glm::dot(s.l, geometric_n) > 0)) return false;
+    /// feature of the scenes).
+    [[nodiscard]] static vec3 shadow_origin(const vec3& p, const vec3& geometric_n) {
         const real scale = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), real(1)});
-        const vec3 origin = p + geometric_n * (scale * 0x1p-32);
+        return p + geometric_n * (scale * 0x1p-32);
+    }
+
+    /// Shadow ray from `origin` (shadow_origin of the shaded point) toward the light
+    /// sample. A light below the geometric surface is always shadowed.
+    [[nodiscard]] bool visible(const vec3& origin, const vec3& geometric_n, const light_sample& s) const {
+        if (!(glm::dot(s.l, geometric_n) > 0)) return false;
         shade::ray<real> r{origin, s.l, 0, std::isinf(s.distance) ? s.distance : s.distance * (1 - 1e-9)};
         return !occluded(r);
     }
