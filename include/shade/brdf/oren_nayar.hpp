@@ -73,6 +73,9 @@ struct qualitative {
 /// A is larger than the default's for every sigma > 0 (sigma^2 / (sigma^2 + a) decreases in
 /// a), so this form reflects more: up to 1 - 0.5 sigma^2 / (sigma^2 + 0.57) instead of
 /// 1 - 0.5 sigma^2 / (sigma^2 + 0.33) times rho at normal incidence.
+/// It is not energy conserving: with rho = 1 its albedo exceeds 1 at grazing views (the
+/// property sweep, tests/sweep, shows it failing the energy check at sigma = 0.3), where
+/// the default form stays below 1.
 struct course {
     template <std::floating_point T>
     [[nodiscard]] static constexpr T a_constant() noexcept {
