@@ -9,6 +9,11 @@
 //                                            legacy_f: f of the model as it was before the
 //                                            sampling redesign (bench/legacy/, the same
 //                                            parameters); baseline f.
+//                                            Floors of what a sampler cannot avoid:
+//                                            lambert/cosine_direction (the cosine-hemisphere
+//                                            map of u and the frame, no BRDF at all) and
+//                                            cook_torrance_{ggx,beckmann}_smith/visible_normal
+//                                            (the distribution's visible-normal draw alone).
 //
 // The binary runs its benchmarks in random interleaved order (Google Benchmark's
 // --benchmark_enable_random_interleaving, switched on in main below unless given), so
@@ -131,6 +136,31 @@ void add_sampling(const std::string& group, const B& model) {
     });
 }
 
+// The direction a cosine sampler draws (square_to_cosine_hemisphere, then the frame), and
+// the visible normal a microfacet sampler draws, with no BRDF evaluated: the part of sample()
+// that no implementation of it can skip.
+template <class T>
+void add_sampling_floors(const std::string& type) {
+    const inputs<T>& d = data<T>();
+    shade_bench::add("brdf_sampling/" + type + "/lambert/cosine_direction", double(pair_count), [&d] {
+        for (std::size_t i = 0; i < pair_count; ++i) {
+            v3<T> l = d.at.shading.to_world(shade::square_to_cosine_hemisphere(d.u[i]));
+            benchmark::DoNotOptimize(l);
+        }
+    });
+    const auto add_visible_normal = [&d](const std::string& name, const auto& distribution) {
+        shade_bench::add(name, double(pair_count), [&d, distribution] {
+            for (std::size_t i = 0; i < pair_count; ++i) {
+                v3<T> m = distribution.sample_visible_normal(d.at.shading.to_local(d.v[i]), d.u[i]);
+                benchmark::DoNotOptimize(m);
+            }
+        });
+    };
+    add_visible_normal("brdf_sampling/" + type + "/cook_torrance_ggx_smith/visible_normal", shade::ggx<T>(T(0.3)));
+    add_visible_normal("brdf_sampling/" + type + "/cook_torrance_beckmann_smith/visible_normal",
+                       shade::beckmann<T>(T(0.3)));
+}
+
 template <class T>
 void register_all(const std::string& type) {
     namespace old = shade_legacy;
@@ -165,6 +195,7 @@ void register_all(const std::string& type) {
                                                                            shade::rgb<T>(1), k_d),
               old::cook_torrance<old::ggx<T>, old::schlick<T>, old::smith_ggx<T>>(
                   old::ggx<T>(T(0.3)), old::schlick<T>(f0), shade::rgb<T>(1), k_d));
+    add_sampling_floors<T>(type);
 }
 
 const bool registered = [] {
