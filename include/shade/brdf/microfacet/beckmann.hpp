@@ -129,7 +129,9 @@ template <std::floating_point T>
 /// method inside a shrinking bracket). Here Newton runs on x itself, started from
 /// Winitzki's approximation of erfinv(2u - 1) (Winitzki 2008, "A handy approximation for
 /// the error function and its inverse", a = 0.147), with a bisection step whenever Newton
-/// would leave the bracket, until the step is below a few ulps of x.
+/// would leave the bracket, until the step is below a few ulps of x or the residual
+/// |K(x) - u K(x_max)| is within 2 epsilon of K(x_max), the rounding of K itself, beyond
+/// which no step can make the drawn quantile more accurate.
 /// The bracket [-9, 9] loses a mass below exp(-81) ~ 7e-36 (smaller than any u > 0 that
 /// float can pass in the valid range) and keeps exp(-x^2) finite and non-zero.
 template <std::floating_point T>
@@ -137,7 +139,9 @@ template <std::floating_point T>
     constexpr T limit = T(9);
     T lo = -limit;
     T hi = k > T(1) / limit ? T(1) / k : limit;
-    const T target = u * beckmann_visible_slope_cdf(hi, k);
+    const T total = beckmann_visible_slope_cdf(hi, k);
+    const T target = u * total;
+    const T resolution = T(2) * std::numeric_limits<T>::epsilon() * total;
     // Winitzki's erfinv(y), y = 2u - 1, 1 - y^2 = 4 u (1 - u).
     const T one_minus_y2 = T(4) * u * (T(1) - u);
     T x = T(0);
@@ -156,6 +160,7 @@ template <std::floating_point T>
             lo = x;
         else
             return x;
+        if (std::abs(value) <= resolution) return x;
         const T slope = (T(1) - k * x) * std::exp(-x * x);
         T next = x - value / slope;
         if (!(next > lo && next < hi)) next = T(0.5) * (lo + hi);
