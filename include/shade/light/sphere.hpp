@@ -68,8 +68,8 @@ public:
     [[nodiscard]] sidedness sides() const noexcept { return sides_; }
 
     /// The physical sample at p (see the class comment). Nothing for a sample worth zero
-    /// (from inside, the inner side of a one-sided sphere does not emit) or an overflowing
-    /// density.
+    /// (from inside, the inner side of a one-sided sphere does not emit), an overflowing
+    /// density, or a p outside so close to the surface that the distance underflows to 0.
     [[nodiscard]] std::optional<incident_sample<T>> sample_incident(const vec3<T>& p,
                                                                     const vec2<T>& u) const noexcept {
         const cone c = cone_from(p);
@@ -83,14 +83,21 @@ public:
         const vec3<T> l = glm::normalize(local.x * f.t + local.y * f.b + local.z * f.n);
         // Distance to the near side along l: d cos - sqrt(R^2 - d^2 sin^2), with
         // d^2 sin^2 = |cross(l, c - p)|^2 (no cancellation); the max(0, .) absorbs
-        // rounding at the cone's edge, where the ray grazes the sphere.
+        // rounding at the cone's edge, where the ray grazes the sphere. Since
+        // (d cos)^2 - (R^2 - d^2 sin^2) = d^2 - R^2, it is evaluated as
+        // (d - R) ((d + R) / (d cos + sqrt(R^2 - d^2 sin^2))): without the cancellation of
+        // the difference when p is close to the surface, without d^2 (which could
+        // overflow), and > 0 for every p outside (d > R) unless the product underflows,
+        // in which case there is no sample.
         const vec3<T> to_center = center() - p;
         const vec3<T> perpendicular = glm::cross(l, to_center);
         const T along = glm::dot(l, to_center);
         const T chord2 = radius() * radius() - glm::dot(perpendicular, perpendicular);
         incident_sample<T> s;
         s.l = l;
-        s.distance = along - std::sqrt(chord2 > T(0) ? chord2 : T(0));
+        s.distance = (c.distance - radius()) *
+                     ((c.distance + radius()) / (along + std::sqrt(chord2 > T(0) ? chord2 : T(0))));
+        if (!(s.distance > T(0)) || !std::isfinite(s.distance)) return std::nullopt;
         s.radiance = this->radiance();
         s.pdf = T(1) / (T(2) * pi<T> * c.one_minus_cos_max);
         if (!std::isfinite(s.pdf)) return std::nullopt;
@@ -126,6 +133,7 @@ private:
     struct cone {
         bool outside = false;      ///< p strictly outside the sphere
         vec3<T> axis{0, 0, 1};     ///< unit direction from p to the centre
+        T distance = T(0);         ///< |c - p|
         T one_minus_cos_max = T(0); ///< 1 - cos(theta_max)
     };
 
@@ -137,6 +145,7 @@ private:
         const T cos_max = std::sqrt(T(1) - sin2_max);
         c.outside = true;
         c.axis = axis;
+        c.distance = d;
         c.one_minus_cos_max = sin2_max / (T(1) + cos_max);
         return c;
     }
