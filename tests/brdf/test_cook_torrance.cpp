@@ -18,8 +18,8 @@ static_assert(shade::split_brdf<beckmann_v_groove<float>>);
 static_assert(shade::split_brdf<ggx_smith<double>>);
 static_assert(shade::split_brdf<shade::cook_torrance<shade::beckmann<float>, shade::dielectric_fresnel<float>,
                                                      shade::smith_beckmann<float>, form::paper_1982>>);
-// m_x, m_y, f0, k_s, k_d: the stateless G takes no space.
-static_assert(sizeof(beckmann_v_groove<float>) == sizeof(float) * 11);
+// m_x, m_y and the three reciprocals D uses, f0, k_s, k_d: the stateless G takes no space.
+static_assert(sizeof(beckmann_v_groove<float>) == sizeof(float) * 14);
 
 namespace {
 

@@ -282,7 +282,7 @@ public:
     /// BRDF value in 1/sr without the cosine: f_diffuse + f_specular.
     [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v,
                            const surface_point<T>& at) const noexcept {
-        return evaluate<true, false>(l, v, at).f;
+        return evaluate<true, false>(at.shading.to_local(l), at.shading.to_local(v), lobe_choice{}).f;
     }
 
     /// The solid-angle density (1/sr) with which sample() draws l for the view v: the
@@ -291,7 +291,9 @@ public:
     [[nodiscard]] T pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept
         requires sampled_microfacet_distribution<Distribution>
     {
-        return evaluate<false, true>(l, v, at).pdf;
+        const vec3<T> v_local = at.shading.to_local(v);
+        if (!(v_local.z > T(0))) return T(0);
+        return evaluate<false, true>(at.shading.to_local(l), v_local, lobe_choice_for(v_local.z)).pdf;
     }
 
     /// Draws a direction l toward the light for the view v: the lobe chosen with uc in
@@ -305,11 +307,11 @@ public:
         const vec3<T> v_local = at.shading.to_local(v);
         if (!(v_local.z > T(0))) return std::nullopt;
         vec3<T> l_local;
-        const T p_s = specular_probability(v_local.z);
-        if (uc < p_s) {
+        const lobe_choice choice = lobe_choice_for(v_local.z);
+        if (uc < choice.p_s) {
             bool cosine = false;
             // Of the specular draws (uc < p_s), the share q goes to the cosine.
-            if constexpr (compensated) cosine = uc < p_s * multiple_scattering_probability(v_local.z);
+            if constexpr (compensated) cosine = uc < choice.p_s * choice.q;
             if (cosine) {
                 l_local = square_to_cosine_hemisphere(u);
             } else {
@@ -320,10 +322,13 @@ public:
             l_local = square_to_cosine_hemisphere(u);
         }
         const vec3<T> l = at.shading.to_world(l_local);
-        const T n_dot_l = glm::dot(at.n(), l);
-        if (!(n_dot_l > T(0))) return std::nullopt;
-        const auto value = evaluate<true, true>(l, v, at);
-        return detail::make_brdf_sample(l, value.f, value.pdf, n_dot_l);
+        // f and pdf from l as f() and pdf() would take it (its local form recomputed from
+        // the world direction returned), so the sample carries exactly their values; v's
+        // local form and the lobe choice are the ones they compute too.
+        const vec3<T> l_back = at.shading.to_local(l);
+        if (!(l_back.z > T(0))) return std::nullopt;
+        const auto value = evaluate<true, true>(l_back, v_local, choice);
+        return detail::make_brdf_sample(l, value.f, value.pdf, l_back.z);
     }
 
     /// The probability P_s that sample() picks the specular lobe for a view with
@@ -347,13 +352,26 @@ private:
         T pdf{0};
     };
 
-    // f and/or pdf from the same local-frame quantities, so that sample() returns exactly
+    // The lobe probabilities of a view: P_s, and with kulla_conty the share q of the
+    // specular draws that go to the cosine (0 otherwise).
+    struct lobe_choice {
+        T p_s{0};
+        T q{0};
+    };
+
+    // For a view of cosine n_dot_v > 0.
+    [[nodiscard]] lobe_choice lobe_choice_for(T n_dot_v) const noexcept {
+        lobe_choice out{specular_probability(n_dot_v), T(0)};
+        if constexpr (compensated) out.q = multiple_scattering_probability(n_dot_v);
+        return out;
+    }
+
+    // f and/or pdf of local l and v (choice: the lobe probabilities of v, read only for
+    // the pdf), one routine for f(), pdf() and sample(), so that sample() returns exactly
     // what f() and pdf() return at its direction.
     template <bool with_f, bool with_pdf>
-    [[nodiscard]] value_and_pdf evaluate(const vec3<T>& l, const vec3<T>& v,
-                                         const surface_point<T>& at) const noexcept {
-        const vec3<T> l_local = at.shading.to_local(l);
-        const vec3<T> v_local = at.shading.to_local(v);
+    [[nodiscard]] value_and_pdf evaluate(const vec3<T>& l_local, const vec3<T>& v_local,
+                                         const lobe_choice& choice) const noexcept {
         value_and_pdf out;
         if (!(l_local.z > T(0)) || !(v_local.z > T(0))) return out;
         const auto [h, v_dot_h] = detail::half_vector_and_cos(l_local, v_local);
@@ -363,11 +381,11 @@ private:
             if constexpr (compensated) out.f += multiple_scattering(l_local.z, v_local.z);
         }
         if constexpr (with_pdf) {
-            const T p_s = specular_probability(v_local.z);
+            const T p_s = choice.p_s;
             // pdf_s = G1(v) D(h) / (4 n·v); v_local.z > 0 here.
             T pdf_s = p_s > T(0) ? distribution_.G1(v_local) * d / (T(4) * v_local.z) : T(0);
             if constexpr (compensated) {
-                const T q = multiple_scattering_probability(v_local.z);
+                const T q = choice.q;
                 pdf_s = (T(1) - q) * pdf_s + q * l_local.z * inv_pi<T>;
             }
             out.pdf = p_s * pdf_s + (T(1) - p_s) * l_local.z * inv_pi<T>;

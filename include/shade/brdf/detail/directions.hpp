@@ -29,10 +29,18 @@ template <std::floating_point T>
     return c > cos_floor<T> ? c : cos_floor<T>;
 }
 
+/// s / m for a scalar m > 0, as s times 1/m (one division instead of three) when 1/m is
+/// finite, that is when m is a normal number; a subnormal m divides each component.
+template <std::floating_point T>
+[[nodiscard]] inline vec3<T> scaled_by_inverse(const vec3<T>& s, T m) noexcept {
+    if (m >= std::numeric_limits<T>::min()) return s * (T(1) / m);
+    return s / m;
+}
+
 /// The half vector h = normalize(l + v) for unit l and v.
 /// Precondition: n·l > 0 and n·v > 0 for some unit n (both above the surface), which
 /// makes l + v non-zero: |l + v| >= n·(l + v) > 0.
-/// l + v is divided by its largest component before normalising, so that |l + v| as small
+/// l + v is scaled by the inverse of its largest component before normalising, so that |l + v| as small
 /// as 1e-30 (both directions grazing and nearly opposite) does not underflow to 0 when
 /// squared inside glm::normalize (which would give NaN).
 template <std::floating_point T>
@@ -40,8 +48,8 @@ template <std::floating_point T>
     const vec3<T> s = l + v;
     const T m = glm::max(std::abs(s.x), glm::max(std::abs(s.y), std::abs(s.z)));
     if (!(m > T(0))) return vec3<T>(0, 0, 0); // l = -v: excluded by the precondition
-    const vec3<T> w = s / m;
-    return w / glm::length(w);
+    const vec3<T> w = scaled_by_inverse(s, m);
+    return w * (T(1) / glm::length(w));
 }
 
 /// The half vector with its cosine to l and v: h = normalize(l + v) and
@@ -64,9 +72,9 @@ template <std::floating_point T>
     const vec3<T> s = l + v;
     const T m = glm::max(std::abs(s.x), glm::max(std::abs(s.y), std::abs(s.z)));
     if (!(m > T(0))) return {vec3<T>(0, 0, 0), T(0)}; // l = -v: excluded by the precondition
-    const vec3<T> w = s / m;
+    const vec3<T> w = scaled_by_inverse(s, m);
     const T len_w = glm::length(w);
-    return {w / len_w, glm::min(T(0.5) * m * len_w, T(1))};
+    return {w * (T(1) / len_w), glm::min(T(0.5) * m * len_w, T(1))};
 }
 
 /// The largest channel of an RGB value.

@@ -139,7 +139,8 @@ template <std::floating_point T>
     constexpr T limit = T(9);
     T lo = -limit;
     T hi = k > T(1) / limit ? T(1) / k : limit;
-    const T total = beckmann_visible_slope_cdf(hi, k);
+    // K(9) at k = 0 is (sqrt(pi)/2) erfc(-9), which rounds to sqrt(pi) (erfc(-9) = 2 - 4e-37).
+    const T total = k > T(0) ? beckmann_visible_slope_cdf(hi, k) : T(2) * beckmann_visible_slope_cdf(T(0), T(0));
     const T target = u * total;
     const T resolution = T(2) * std::numeric_limits<T>::epsilon() * total;
     // Winitzki's erfinv(y), y = 2u - 1, 1 - y^2 = 4 u (1 - u).
@@ -161,8 +162,15 @@ template <std::floating_point T>
         else
             return x;
         if (std::abs(value) <= resolution) return x;
-        const T slope = (T(1) - k * x) * std::exp(-x * x);
-        T next = x - value / slope;
+        // Newton's step r / K' on the residual r, with K' = (1 - k x) exp(-x^2), corrected
+        // to Halley's (r / K') / (1 - t), t = r K'' / (2 K'^2), once t is small (near the
+        // root, where Halley converges cubically);
+        // K'' = -(k + 2 x (1 - k x)) exp(-x^2) shares the exponential.
+        const T e = std::exp(-x * x);
+        const T slope = (T(1) - k * x) * e;
+        const T newton = value / slope;
+        const T t = newton * (-(k + T(2) * x * (T(1) - k * x)) * e) / (T(2) * slope);
+        T next = std::abs(t) < T(0.25) ? x - newton / (T(1) - t) : x - newton;
         if (!(next > lo && next < hi)) next = T(0.5) * (lo + hi);
         const T step = std::abs(next - x);
         x = next;
@@ -257,8 +265,19 @@ public:
     /// the isotropic distribution, or for an anisotropic one D of a normal in the t-n plane.
     [[nodiscard]] T D(T n_dot_h) const noexcept { return D_beckmann(n_dot_h, m_x_); }
 
-    /// D(m) in 1/sr of a unit microfacet normal in the local frame (see D_beckmann(m, ...)).
-    [[nodiscard]] T D(const vec3<T>& m) const noexcept { return D_beckmann(m, m_x_, m_y_); }
+    /// D(m) in 1/sr of a unit microfacet normal in the local frame: the formula of
+    /// D_beckmann(m, m_x, m_y), with 1/m_x, 1/m_y and 1/(pi m_x m_y) computed at
+    /// construction and 1/m_z^2 taken once, so that an evaluation divides once (the results
+    /// agree with D_beckmann to a few ulps).
+    [[nodiscard]] T D(const vec3<T>& m) const noexcept {
+        if (!(m.z > T(0))) return T(0);
+        const T inv_c2 = T(1) / (m.z * m.z);
+        const T x = m.x * inv_m_x_;
+        const T y = m.y * inv_m_y_;
+        const T e = std::exp(-(x * x + y * y) * inv_c2);
+        if (!(e > T(0))) return T(0);
+        return e * inv_pi_m_xy_ * (inv_c2 * inv_c2);
+    }
 
     /// Smith's Lambda of the local direction w, exact (see Lambda_beckmann).
     [[nodiscard]] T Lambda(const vec3<T>& w) const noexcept { return Lambda_beckmann(w, m_x_, m_y_); }
@@ -316,6 +335,10 @@ public:
 private:
     T m_x_;
     T m_y_;
+    // Reciprocals used by D(m); set from the slopes by every constructor.
+    T inv_m_x_ = T(1) / m_x_;
+    T inv_m_y_ = T(1) / m_y_;
+    T inv_pi_m_xy_ = T(1) / (pi<T> * m_x_ * m_y_);
 };
 
 } // namespace shade

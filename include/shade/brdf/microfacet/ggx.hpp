@@ -150,8 +150,17 @@ public:
     /// t-n plane.
     [[nodiscard]] T D(T n_dot_h) const noexcept { return D_ggx(n_dot_h, alpha_x_); }
 
-    /// D(m) in 1/sr of a unit microfacet normal m in the local frame (see D_ggx(m, ...)).
-    [[nodiscard]] T D(const vec3<T>& m) const noexcept { return D_ggx(m, alpha_x_, alpha_y_); }
+    /// D(m) in 1/sr of a unit microfacet normal m in the local frame: the formula of
+    /// D_ggx(m, alpha_x, alpha_y), with 1/alpha_x, 1/alpha_y and 1/(pi alpha_x alpha_y)
+    /// computed at construction so that an evaluation divides once (the results agree with
+    /// D_ggx to a few ulps).
+    [[nodiscard]] T D(const vec3<T>& m) const noexcept {
+        if (!(m.z > T(0))) return T(0);
+        const T x = m.x * inv_alpha_x_;
+        const T y = m.y * inv_alpha_y_;
+        const T k = x * x + y * y + m.z * m.z;
+        return inv_pi_alpha_xy_ / (k * k);
+    }
 
     /// Smith's Lambda of the local direction w (see Lambda_ggx).
     [[nodiscard]] T Lambda(const vec3<T>& w) const noexcept { return Lambda_ggx(w, alpha_x_, alpha_y_); }
@@ -208,6 +217,10 @@ public:
 private:
     T alpha_x_;
     T alpha_y_;
+    // Reciprocals used by D(m); set from the alphas by every constructor.
+    T inv_alpha_x_ = T(1) / alpha_x_;
+    T inv_alpha_y_ = T(1) / alpha_y_;
+    T inv_pi_alpha_xy_ = T(1) / (pi<T> * alpha_x_ * alpha_y_);
 };
 
 } // namespace shade
