@@ -24,6 +24,7 @@
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/brdf.hpp>
+#include <shade/check/chi2.hpp>
 #include <shade/core/frame.hpp>
 #include <shade/core/random.hpp>
 #include <shade/core/surface_point.hpp>
@@ -100,22 +101,10 @@ struct sampling_report {
     double drawn_sigma = 0;     ///< its binomial standard deviation
     double chi2 = 0;            ///< chi-square statistic over the bins and "no direction"
     int dof = 0;                ///< its degrees of freedom
-    double p_value = 1;         ///< upper-tail probability of chi2 (Wilson-Hilferty)
+    double p_value = 1;         ///< upper-tail probability of chi2 (shade::check::chi2_p_value)
     int disagreements = 0;      ///< samples whose f, pdf or weight disagree with f(), pdf()
     int below = 0;              ///< samples with n·l <= 0 or a non-unit l
 };
-
-/// Upper tail of the chi-square distribution with k degrees of freedom at x, from the
-/// Wilson-Hilferty normal approximation (Wilson, Hilferty 1931, "The Distribution of
-/// Chi-Square", PNAS 17(12)): (x/k)^(1/3) is nearly normal with mean 1 - 2/(9k) and
-/// variance 2/(9k). Accurate to a few per cent of p for k >= 10, enough to compare with a
-/// significance level.
-inline double chi2_upper_tail(double x, int k) {
-    if (k <= 0) return 1;
-    const double m = 1 - 2.0 / (9 * k);
-    const double z = (std::cbrt(x / k) - m) / std::sqrt(2.0 / (9 * k));
-    return 0.5 * std::erfc(z / std::sqrt(2.0));
-}
 
 /// Significance level of every chi-square test in the BRDF tests: 0.01 split over up to
 /// 10^3 tests (Bonferroni), so that a correct sampler fails none of them with probability
@@ -173,31 +162,17 @@ sampling_report check_sampling(const B& model, const vec3<shade::scalar_of<B>>& 
     r.drawn_sigma = std::sqrt(std::max(r.drawn_fraction * (1 - r.drawn_fraction), 1.0 / double(count)) /
                               double(count));
 
-    // Chi-square over the cells and the outcome "no direction"; cells expecting fewer than
-    // 5 samples are pooled into one outcome (the usual validity rule for the test).
+    // Chi-square over the cells and the outcome "no direction", by the property kit's
+    // Pearson statistic (cells expecting fewer than 5 samples pooled) and p-value.
     const double n = double(count);
-    double pooled_expected = 0, pooled_observed = 0;
-    int outcomes = 0;
-    const auto add = [&](double e, double o) {
-        if (e >= 5) {
-            r.chi2 += (o - e) * (o - e) / e;
-            ++outcomes;
-        } else {
-            pooled_expected += e;
-            pooled_observed += o;
-        }
-    };
-    for (std::size_t i = 0; i < fine.size(); ++i) {
-        add(n * fine[i], observed[i]);
-    }
-    add(std::max(0.0, n * (1 - r.integral)), double(count - drawn));
-    if (pooled_expected > 0 || pooled_observed > 0) {
-        const double e = std::max(pooled_expected, 1.0);
-        r.chi2 += (pooled_observed - e) * (pooled_observed - e) / e;
-        ++outcomes;
-    }
-    r.dof = outcomes - 1;
-    r.p_value = chi2_upper_tail(r.chi2, r.dof);
+    std::vector<double> expected(fine.size() + 1);
+    for (std::size_t i = 0; i < fine.size(); ++i) expected[i] = n * fine[i];
+    expected.back() = std::max(0.0, n * (1 - r.integral));
+    observed.push_back(double(count - drawn));
+    const shade::check::chi2_statistic chi2 = shade::check::pearson_chi2(observed, expected);
+    r.chi2 = chi2.statistic;
+    r.dof = int(chi2.dof);
+    r.p_value = chi2.dof > 0 ? shade::check::chi2_p_value(chi2.statistic, double(chi2.dof)) : 1.0;
     return r;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
-// Sampling checks of the BRDF tests (until the property kit has its own): a binned chi^2
-// test of sample() against pdf(), and the per-sample consistency of f, pdf and weight.
+// Sampling checks of the BRDF tests: a binned chi^2 test of sample() against pdf(), and the
+// per-sample consistency of f, pdf and weight.
 //
 // Bins: directions are binned in a frame around an axis (the lobe's expected centre, e.g.
 // the mirror direction of v), by u = sqrt(theta'/pi) (theta' the angle to the axis; the
@@ -9,10 +9,10 @@
 // (midpoint rule on sub-cells, refined where it has not converged,
 // dw = sin(theta') 2 pi u du dphi'); the samples sample()
 // declines (nullopt) form one more category, expected N (1 - integral of pdf). Categories
-// expected below 5 are pooled (as pbrt-v4's chi2 test and Mitsuba's do), and the p-value of
-// the chi^2 statistic comes from chi2_upper_tail of brdf/sampling.hpp (the shared sampling
-// checks of the other models; this file adds the refined quadrature that the microfacet
-// lobes at grazing views need, and a statistic that callers can compare with a threshold).
+// expected below 5 are pooled and the p-value computed by the property kit
+// (shade::check::pearson_chi2 and chi2_p_value, shade/check/chi2.hpp). Beside the shared
+// checks of brdf/sampling.hpp, this file adds the refined quadrature that the microfacet
+// lobes at grazing views need, and a statistic that callers can compare with a threshold.
 
 #include <cmath>
 #include <cstddef>
@@ -25,6 +25,7 @@
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/brdf.hpp>
+#include <shade/check/chi2.hpp>
 #include <shade/core/frame.hpp>
 #include <shade/core/random.hpp>
 #include <shade/core/surface_point.hpp>
@@ -141,28 +142,11 @@ chi2_result sampling_chi2(const B& b, const shade::vec3<shade::scalar_of<B>>& v,
     }
     out.pdf_integral = total;
     expected.back() = std::max(0.0, 1 - total) * static_cast<double>(count);
-    // Pool the categories expected below 5.
-    double pooled_observed = 0, pooled_expected = 0;
-    int categories = 0;
-    for (std::size_t k = 0; k < expected.size(); ++k) {
-        if (expected[k] < 5) {
-            pooled_observed += observed[k];
-            pooled_expected += expected[k];
-            continue;
-        }
-        out.statistic += (observed[k] - expected[k]) * (observed[k] - expected[k]) / expected[k];
-        ++categories;
-    }
-    if (pooled_expected >= 5) {
-        out.statistic += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / pooled_expected;
-        ++categories;
-    } else if (pooled_observed > 10) {
-        // Samples where pdf says (almost) none should be: count them fully against the fit.
-        out.statistic += pooled_observed * pooled_observed / std::max(pooled_expected, 1.0);
-        ++categories;
-    }
-    out.dof = categories - 1;
-    out.p_value = chi2_upper_tail(out.statistic, out.dof);
+    // The property kit's Pearson statistic (categories expected below 5 pooled) and p-value.
+    const shade::check::chi2_statistic chi2 = shade::check::pearson_chi2(observed, expected);
+    out.statistic = chi2.statistic;
+    out.dof = int(chi2.dof);
+    out.p_value = chi2.dof > 0 ? shade::check::chi2_p_value(chi2.statistic, double(chi2.dof)) : 1.0;
     return out;
 }
 
