@@ -11,7 +11,9 @@
 //                                            parameters); baseline f.
 //                                            Floors of what a sampler cannot avoid:
 //                                            lambert/cosine_direction (the cosine-hemisphere
-//                                            map of u and the frame, no BRDF at all) and
+//                                            map of u and the frame, no BRDF at all),
+//                                            {phong,blinn_phong}/power_cosine_direction (the
+//                                            power-cosine map, exponent 32, and the frame) and
 //                                            cook_torrance_{ggx,beckmann}_smith/visible_normal
 //                                            (the distribution's visible-normal draw alone).
 //
@@ -148,6 +150,19 @@ void add_sampling_floors(const std::string& type) {
             benchmark::DoNotOptimize(l);
         }
     });
+    // The power-cosine map the Phong and Blinn-Phong lobes draw from (exponent 32, as their
+    // models below), into the shading frame: less than either lobe's draw (Phong also builds
+    // a frame about the mirror direction, Blinn-Phong reflects v about the drawn h).
+    const auto add_power_cosine = [&d](const std::string& name) {
+        shade_bench::add(name, double(pair_count), [&d] {
+            for (std::size_t i = 0; i < pair_count; ++i) {
+                v3<T> l = d.at.shading.to_world(shade::square_to_power_cosine_hemisphere(d.u[i], T(32)));
+                benchmark::DoNotOptimize(l);
+            }
+        });
+    };
+    add_power_cosine("brdf_sampling/" + type + "/phong/power_cosine_direction");
+    add_power_cosine("brdf_sampling/" + type + "/blinn_phong/power_cosine_direction");
     const auto add_visible_normal = [&d](const std::string& name, const auto& distribution) {
         shade_bench::add(name, double(pair_count), [&d, distribution] {
             for (std::size_t i = 0; i < pair_count; ++i) {
