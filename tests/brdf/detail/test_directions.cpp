@@ -26,6 +26,34 @@ TEST_CASE_TEMPLATE("half_vector: normalize(l + v), also for nearly opposite graz
     CHECK(close(cos_d, T(1e-30), T(1e-6))); // |l + v|/2 = 1e-30
 }
 
+TEST_CASE_TEMPLATE("normalized_with_length: the same unit vector and length on both sides of its direct floor", T, float,
+                   double) {
+    // s = 2^e (0.3, 0.5, 0.7) for e from far above to far below the floor 2^(min_exponent / 2)
+    // of s.s (the direct path above it, the scaled path below): unit and length as computed
+    // in long double from the same components, each within a few ulps, so nothing is lost
+    // to underflow (the components' squares lose bits once they are subnormal).
+    const T eps = std::numeric_limits<T>::epsilon();
+    const int floor_exponent = std::numeric_limits<T>::min_exponent / 2; // of s.s
+    const vec3<T> direction(T(0.3), T(0.5), T(0.7));
+    const long double x = direction.x, y = direction.y, z = direction.z;
+    const long double norm = std::sqrt(x * x + y * y + z * z);
+    // Down to where the squares are below the smallest subnormal (so all would be 0).
+    const int last = (std::numeric_limits<T>::min_exponent - std::numeric_limits<T>::digits) / 2 - 4;
+    for (int e = floor_exponent / 2 + 8; e >= last; --e) {
+        const T scale = std::ldexp(T(1), e);
+        const auto r = shade::detail::normalized_with_length(direction * scale);
+        CAPTURE(e);
+        CHECK(std::abs(static_cast<long double>(r.unit.x) - x / norm) <= 4 * eps);
+        CHECK(std::abs(static_cast<long double>(r.unit.y) - y / norm) <= 4 * eps);
+        CHECK(std::abs(static_cast<long double>(r.unit.z) - z / norm) <= 4 * eps);
+        CHECK(std::abs(static_cast<long double>(r.length) / static_cast<long double>(scale) / norm - 1) <= 4 * eps);
+    }
+    CHECK(shade::detail::direct_normalization_floor<T> == std::ldexp(T(1), floor_exponent));
+    // Zero and NaN: (0, 0).
+    CHECK(shade::detail::normalized_with_length(vec3<T>(0)).length == T(0));
+    CHECK(shade::detail::normalized_with_length(vec3<T>(std::numeric_limits<T>::quiet_NaN())).unit == vec3<T>(0));
+}
+
 TEST_CASE_TEMPLATE("half_vector_and_cos: cos_theta_d = |l + v|/2 = (l.h + v.h)/2, symmetric in l and v", T, float, double) {
     // (l + v).h = |l + v| for h = (l + v)/|l + v|, so (l.h + v.h)/2 = |l + v|/2 for any l, v
     // (and = l.h = v.h when both are exactly unit). Rounded unit vectors make l.h and v.h

@@ -29,27 +29,40 @@ template <std::floating_point T>
     return c > cos_floor<T> ? c : cos_floor<T>;
 }
 
-/// s / m for a scalar m > 0, as s times 1/m (one division instead of three) when 1/m is
-/// finite, that is when m is a normal number; a subnormal m divides each component.
+/// The smallest s·s that normalized_with_length normalises directly: 2^(min_exponent / 2)
+/// (2^-62 in float, 2^-510 in double). From there on, a component whose square underflows
+/// (below numeric_limits<T>::min()) has a square below 2^(min_exponent / 2) times s·s, far
+/// under an ulp of it, so whether that square keeps its bits does not matter.
 template <std::floating_point T>
-[[nodiscard]] inline vec3<T> scaled_by_inverse(const vec3<T>& s, T m) noexcept {
-    if (m >= std::numeric_limits<T>::min()) return s * (T(1) / m);
-    return s / m;
-}
+inline constexpr T direct_normalization_floor = [] {
+    T x = T(1);
+    for (int e = std::numeric_limits<T>::min_exponent / 2; e < 0; ++e) x *= T(0.5);
+    return x;
+}();
 
-/// The half vector h = normalize(l + v) for unit l and v.
-/// Precondition: n·l > 0 and n·v > 0 for some unit n (both above the surface), which
-/// makes l + v non-zero: |l + v| >= n·(l + v) > 0.
-/// l + v is scaled by the inverse of its largest component before normalising, so that |l + v| as small
-/// as 1e-30 (both directions grazing and nearly opposite) does not underflow to 0 when
-/// squared inside glm::normalize (which would give NaN).
+/// A unit vector and the length it was scaled from.
 template <std::floating_point T>
-[[nodiscard]] inline vec3<T> half_vector(const vec3<T>& l, const vec3<T>& v) noexcept {
-    const vec3<T> s = l + v;
+struct unit_and_length {
+    vec3<T> unit;  ///< s / |s|
+    T length = 0;  ///< |s|
+};
+
+/// s / |s| and |s| for s != 0. Normally |s|^2 = s·s, one square root and one division;
+/// when s·s is below direct_normalization_floor (|s| under about 2^-31 in float, where
+/// squares could underflow and lose the components' bits, or all of them become 0), s is
+/// first divided by its largest component. s = 0 (or NaN) gives (0, 0).
+template <std::floating_point T>
+[[nodiscard]] inline unit_and_length<T> normalized_with_length(const vec3<T>& s) noexcept {
+    const T length2 = glm::dot(s, s);
+    if (length2 >= direct_normalization_floor<T>) {
+        const T length = std::sqrt(length2);
+        return {s * (T(1) / length), length};
+    }
     const T m = glm::max(std::abs(s.x), glm::max(std::abs(s.y), std::abs(s.z)));
-    if (!(m > T(0))) return vec3<T>(0, 0, 0); // l = -v: excluded by the precondition
-    const vec3<T> w = scaled_by_inverse(s, m);
-    return w * (T(1) / glm::length(w));
+    if (!(m > T(0))) return {vec3<T>(0, 0, 0), T(0)};
+    const vec3<T> w = s / m;
+    const T length_w = glm::length(w);
+    return {w / length_w, m * length_w};
 }
 
 /// The half vector with its cosine to l and v: h = normalize(l + v) and
@@ -66,15 +79,29 @@ struct half_angle {
 /// and v (models using it are reciprocal to the last bit) and accurate when l and v are
 /// nearly opposite: there rounded unit vectors make l·h and v·h differ by
 /// (|v|^2 - |l|^2) / (2 |l + v|), which is large when |l + v| is small; their mean does not
-/// suffer from this. Precondition as for half_vector.
+/// suffer from this. Precondition as for half_vector (below).
 template <std::floating_point T>
 [[nodiscard]] inline half_angle<T> half_vector_and_cos(const vec3<T>& l, const vec3<T>& v) noexcept {
+    // normalized_with_length written out: its usual case inline here, so that no
+    // intermediate record is built and copied on this hot path.
     const vec3<T> s = l + v;
-    const T m = glm::max(std::abs(s.x), glm::max(std::abs(s.y), std::abs(s.z)));
-    if (!(m > T(0))) return {vec3<T>(0, 0, 0), T(0)}; // l = -v: excluded by the precondition
-    const vec3<T> w = scaled_by_inverse(s, m);
-    const T len_w = glm::length(w);
-    return {w * (T(1) / len_w), glm::min(T(0.5) * m * len_w, T(1))};
+    const T length2 = glm::dot(s, s);
+    if (length2 >= direct_normalization_floor<T>) {
+        const T length = std::sqrt(length2);
+        return {s * (T(1) / length), glm::min(T(0.5) * length, T(1))};
+    }
+    const unit_and_length<T> small = normalized_with_length(s);
+    return {small.unit, glm::min(T(0.5) * small.length, T(1))};
+}
+
+/// The half vector h = normalize(l + v) for unit l and v.
+/// Precondition: n·l > 0 and n·v > 0 for some unit n (both above the surface), which
+/// makes l + v non-zero: |l + v| >= n·(l + v) > 0. |l + v| as small as 1e-30 (both
+/// directions grazing and nearly opposite) is normalised without underflow
+/// (normalized_with_length); l = -v gives 0.
+template <std::floating_point T>
+[[nodiscard]] inline vec3<T> half_vector(const vec3<T>& l, const vec3<T>& v) noexcept {
+    return half_vector_and_cos(l, v).h;
 }
 
 /// The largest channel of an RGB value.
