@@ -394,7 +394,7 @@ def main():
              "rescales huge or tiny directions, normalises p - c (GLM divides by R, which is "
              "not unit length once p is rounded) and rejects non-finite t, p or normals; the "
              "plane tests t against [t_min, t_max] and p for finiteness.",
-             "- Times are CPU time per operation, the median of 3 repetitions, except the BRDF benchmarks: the fastest of 9 (their runs are short, their goals compare models within a few per cent, and the noise of a shared machine only ever adds time); a ratio is "
+             "- Times are CPU time per operation, the median of 3 repetitions, except the BRDF and BVH benchmarks: the fastest of 9 and of 5 (their goals are ratios, the BRDFs' within a few per cent, and the noise of a shared machine only ever adds time to single-threaded work); a ratio is "
              "time(variant) / time(baseline) of the same group from the same run of the same "
              "binary (below 1: faster than the baseline). On a shared machine (other work "
              "running, see the load average above) single times are noisy; the ratios and "
