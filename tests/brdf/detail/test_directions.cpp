@@ -26,12 +26,13 @@ TEST_CASE_TEMPLATE("half_vector: normalize(l + v), also for nearly opposite graz
     CHECK(close(cos_d, T(1e-30), T(1e-6))); // |l + v|/2 = 1e-30
 }
 
-TEST_CASE_TEMPLATE("normalized_with_length: the same unit vector and length on both sides of its direct floor", T, float,
+TEST_CASE_TEMPLATE("half_vector_and_cos: the same unit vector and |l + v| on both sides of its direct floor", T, float,
                    double) {
-    // s = 2^e (0.3, 0.5, 0.7) for e from far above to far below the floor 2^(min_exponent / 2)
-    // of s.s (the direct path above it, the scaled path below): unit and length as computed
-    // in long double from the same components, each within a few ulps, so nothing is lost
-    // to underflow (the components' squares lose bits once they are subnormal).
+    // l = v = s/2 (exact halving), s = 2^e (0.3, 0.5, 0.7), for e from far above to far below
+    // the floor 2^(min_exponent / 2) of s.s (the direct path above it, the rescaled path
+    // below): h and 2 cos_theta_d = |s| as computed in long double from the same components,
+    // each within a few ulps, so nothing is lost to underflow (the components' squares lose
+    // bits once they are subnormal).
     const T eps = std::numeric_limits<T>::epsilon();
     const int floor_exponent = std::numeric_limits<T>::min_exponent / 2; // of s.s
     const vec3<T> direction(T(0.3), T(0.5), T(0.7));
@@ -41,17 +42,18 @@ TEST_CASE_TEMPLATE("normalized_with_length: the same unit vector and length on b
     const int last = (std::numeric_limits<T>::min_exponent - std::numeric_limits<T>::digits) / 2 - 4;
     for (int e = floor_exponent / 2 + 8; e >= last; --e) {
         const T scale = std::ldexp(T(1), e);
-        const auto r = shade::detail::normalized_with_length(direction * scale);
+        const vec3<T> half = direction * (scale / T(2));
+        const auto [h, cos_d] = shade::detail::half_vector_and_cos(half, half);
         CAPTURE(e);
-        CHECK(std::abs(static_cast<long double>(r.unit.x) - x / norm) <= 4 * eps);
-        CHECK(std::abs(static_cast<long double>(r.unit.y) - y / norm) <= 4 * eps);
-        CHECK(std::abs(static_cast<long double>(r.unit.z) - z / norm) <= 4 * eps);
-        CHECK(std::abs(static_cast<long double>(r.length) / static_cast<long double>(scale) / norm - 1) <= 4 * eps);
+        CHECK(std::abs(static_cast<long double>(h.x) - x / norm) <= 4 * eps);
+        CHECK(std::abs(static_cast<long double>(h.y) - y / norm) <= 4 * eps);
+        CHECK(std::abs(static_cast<long double>(h.z) - z / norm) <= 4 * eps);
+        CHECK(std::abs(2 * static_cast<long double>(cos_d) / static_cast<long double>(scale) / norm - 1) <= 4 * eps);
     }
     CHECK(shade::detail::direct_normalization_floor<T> == std::ldexp(T(1), floor_exponent));
-    // Zero and NaN: (0, 0).
-    CHECK(shade::detail::normalized_with_length(vec3<T>(0)).length == T(0));
-    CHECK(shade::detail::normalized_with_length(vec3<T>(std::numeric_limits<T>::quiet_NaN())).unit == vec3<T>(0));
+    // The rescaled path alone: zero and NaN give (0, 0).
+    CHECK(shade::detail::rescaled_unit_and_length(vec3<T>(0)).length == T(0));
+    CHECK(shade::detail::rescaled_unit_and_length(vec3<T>(std::numeric_limits<T>::quiet_NaN())).unit == vec3<T>(0));
 }
 
 TEST_CASE_TEMPLATE("half_vector_and_cos: cos_theta_d = |l + v|/2 = (l.h + v.h)/2, symmetric in l and v", T, float, double) {

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include <shade/core/error.hpp>
+#include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
 
 namespace shade::detail {
@@ -29,10 +30,12 @@ template <std::floating_point T>
     return c > cos_floor<T> ? c : cos_floor<T>;
 }
 
-/// The smallest s·s that normalized_with_length normalises directly: 2^(min_exponent / 2)
-/// (2^-62 in float, 2^-510 in double). From there on, a component whose square underflows
-/// (below numeric_limits<T>::min()) has a square below 2^(min_exponent / 2) times s·s, far
-/// under an ulp of it, so whether that square keeps its bits does not matter.
+/// The smallest s·s from which half_vector_and_cos normalises s = l + v directly (one
+/// square root, one division): 2^(min_exponent / 2) (2^-62 in float, 2^-510 in double).
+/// From there on, a component whose square underflows (below numeric_limits<T>::min()) has
+/// a square below 2^(min_exponent / 2) times s·s, far under an ulp of it, so whether that
+/// square keeps its bits does not matter. Below it, s is rescaled first
+/// (rescaled_unit_and_length).
 template <std::floating_point T>
 inline constexpr T direct_normalization_floor = [] {
     T x = T(1);
@@ -47,22 +50,17 @@ struct unit_and_length {
     T length = 0;  ///< |s|
 };
 
-/// s / |s| and |s| for s != 0. Normally |s|^2 = s·s, one square root and one division;
-/// when s·s is below direct_normalization_floor (|s| under about 2^-31 in float, where
-/// squares could underflow and lose the components' bits, or all of them become 0), s is
-/// first divided by its largest component. s = 0 (or NaN) gives (0, 0).
+/// s / |s| and |s| for any finite s != 0, however small: s is first multiplied by the
+/// power of two that brings its largest component into [0.5, 1) (exact:
+/// power_of_two_rescale_exponent, times_power_of_two), so s·s can neither underflow nor
+/// overflow, and |s| is scaled back at the end. s = 0 (or NaN) gives (0, 0).
 template <std::floating_point T>
-[[nodiscard]] inline unit_and_length<T> normalized_with_length(const vec3<T>& s) noexcept {
-    const T length2 = glm::dot(s, s);
-    if (length2 >= direct_normalization_floor<T>) {
-        const T length = std::sqrt(length2);
-        return {s * (T(1) / length), length};
-    }
-    const T m = glm::max(std::abs(s.x), glm::max(std::abs(s.y), std::abs(s.z)));
-    if (!(m > T(0))) return {vec3<T>(0, 0, 0), T(0)};
-    const vec3<T> w = s / m;
+[[nodiscard]] inline unit_and_length<T> rescaled_unit_and_length(const vec3<T>& s) noexcept {
+    const int k = power_of_two_rescale_exponent(s);
+    const vec3<T> w(times_power_of_two(s.x, k), times_power_of_two(s.y, k), times_power_of_two(s.z, k));
     const T length_w = glm::length(w);
-    return {w / length_w, m * length_w};
+    if (!(length_w > T(0))) return {vec3<T>(0, 0, 0), T(0)};
+    return {w / length_w, times_power_of_two(length_w, -k)};
 }
 
 /// The half vector with its cosine to l and v: h = normalize(l + v) and
@@ -82,15 +80,13 @@ struct half_angle {
 /// suffer from this. Precondition as for half_vector (below).
 template <std::floating_point T>
 [[nodiscard]] inline half_angle<T> half_vector_and_cos(const vec3<T>& l, const vec3<T>& v) noexcept {
-    // normalized_with_length written out: its usual case inline here, so that no
-    // intermediate record is built and copied on this hot path.
     const vec3<T> s = l + v;
     const T length2 = glm::dot(s, s);
     if (length2 >= direct_normalization_floor<T>) {
         const T length = std::sqrt(length2);
         return {s * (T(1) / length), glm::min(T(0.5) * length, T(1))};
     }
-    const unit_and_length<T> small = normalized_with_length(s);
+    const unit_and_length<T> small = rescaled_unit_and_length(s);
     return {small.unit, glm::min(T(0.5) * small.length, T(1))};
 }
 
@@ -98,7 +94,7 @@ template <std::floating_point T>
 /// Precondition: n·l > 0 and n·v > 0 for some unit n (both above the surface), which
 /// makes l + v non-zero: |l + v| >= n·(l + v) > 0. |l + v| as small as 1e-30 (both
 /// directions grazing and nearly opposite) is normalised without underflow
-/// (normalized_with_length); l = -v gives 0.
+/// (rescaled_unit_and_length); l = -v gives 0.
 template <std::floating_point T>
 [[nodiscard]] inline vec3<T> half_vector(const vec3<T>& l, const vec3<T>& v) noexcept {
     return half_vector_and_cos(l, v).h;

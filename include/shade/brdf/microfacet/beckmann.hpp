@@ -48,6 +48,23 @@ template <std::floating_point T>
     return e / (pi<T> * m2 * c2 * c2);
 }
 
+namespace detail {
+
+/// D_beckmann(m, m_x, m_y) from the reciprocals 1/m_x, 1/m_y and 1/(pi m_x m_y), with
+/// 1/m_z^2 taken once: one division per evaluation (shade::beckmann keeps the reciprocals).
+template <std::floating_point T>
+[[nodiscard]] inline T D_beckmann_from_reciprocals(const vec3<T>& m, T inv_m_x, T inv_m_y, T inv_pi_m_xy) noexcept {
+    if (!(m.z > T(0))) return T(0);
+    const T inv_c2 = T(1) / (m.z * m.z);
+    const T x = m.x * inv_m_x;
+    const T y = m.y * inv_m_y;
+    const T e = std::exp(-(x * x + y * y) * inv_c2);
+    if (!(e > T(0))) return T(0);
+    return e * inv_pi_m_xy * (inv_c2 * inv_c2);
+}
+
+} // namespace detail
+
 /// Anisotropic Beckmann distribution of a microfacet normal m in the local frame.
 ///
 /// Heitz 2014, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs",
@@ -61,13 +78,7 @@ template <std::floating_point T>
 /// give tan^2 with full relative precision near the peak.
 template <std::floating_point T>
 [[nodiscard]] inline T D_beckmann(const vec3<T>& m, T m_x, T m_y) noexcept {
-    if (!(m.z > T(0))) return T(0);
-    const T c2 = m.z * m.z;
-    const T x = m.x / m_x;
-    const T y = m.y / m_y;
-    const T e = std::exp(-(x * x + y * y) / c2);
-    if (!(e > T(0))) return T(0);
-    return e / (pi<T> * m_x * m_y * c2 * c2);
+    return detail::D_beckmann_from_reciprocals(m, T(1) / m_x, T(1) / m_y, T(1) / (pi<T> * m_x * m_y));
 }
 
 namespace detail {
@@ -139,8 +150,9 @@ template <std::floating_point T>
     constexpr T limit = T(9);
     T lo = -limit;
     T hi = k > T(1) / limit ? T(1) / k : limit;
-    // K(9) at k = 0 is (sqrt(pi)/2) erfc(-9), which rounds to sqrt(pi) (erfc(-9) = 2 - 4e-37).
-    const T total = k > T(0) ? beckmann_visible_slope_cdf(hi, k) : T(2) * beckmann_visible_slope_cdf(T(0), T(0));
+    // K(9) at k = 0 is (sqrt(pi)/2) erfc(-9), which rounds to sqrt(pi) (erfc(-9) = 2 - 4e-37):
+    // the same number as 2 (0.5/inv_sqrtpi), the cdf's own constant doubled.
+    const T total = k > T(0) ? beckmann_visible_slope_cdf(hi, k) : T(1) / std::numbers::inv_sqrtpi_v<T>;
     const T target = u * total;
     const T resolution = T(2) * std::numeric_limits<T>::epsilon() * total;
     // Winitzki's erfinv(y), y = 2u - 1, 1 - y^2 = 4 u (1 - u).
@@ -265,18 +277,10 @@ public:
     /// the isotropic distribution, or for an anisotropic one D of a normal in the t-n plane.
     [[nodiscard]] T D(T n_dot_h) const noexcept { return D_beckmann(n_dot_h, m_x_); }
 
-    /// D(m) in 1/sr of a unit microfacet normal in the local frame: the formula of
-    /// D_beckmann(m, m_x, m_y), with 1/m_x, 1/m_y and 1/(pi m_x m_y) computed at
-    /// construction and 1/m_z^2 taken once, so that an evaluation divides once (the results
-    /// agree with D_beckmann to a few ulps).
+    /// D(m) in 1/sr of a unit microfacet normal in the local frame: D_beckmann(m, m_x, m_y),
+    /// the same number, from the reciprocals computed at construction.
     [[nodiscard]] T D(const vec3<T>& m) const noexcept {
-        if (!(m.z > T(0))) return T(0);
-        const T inv_c2 = T(1) / (m.z * m.z);
-        const T x = m.x * inv_m_x_;
-        const T y = m.y * inv_m_y_;
-        const T e = std::exp(-(x * x + y * y) * inv_c2);
-        if (!(e > T(0))) return T(0);
-        return e * inv_pi_m_xy_ * (inv_c2 * inv_c2);
+        return detail::D_beckmann_from_reciprocals(m, inv_m_x_, inv_m_y_, inv_pi_m_xy_);
     }
 
     /// Smith's Lambda of the local direction w, exact (see Lambda_beckmann).

@@ -44,6 +44,22 @@ template <std::floating_point T>
     return a2 / (pi<T> * k * k);
 }
 
+namespace detail {
+
+/// D_ggx(m, alpha_x, alpha_y) from the reciprocals 1/alpha_x, 1/alpha_y and
+/// 1/(pi alpha_x alpha_y), one division per evaluation (shade::ggx keeps them).
+template <std::floating_point T>
+[[nodiscard]] inline T D_ggx_from_reciprocals(const vec3<T>& m, T inv_alpha_x, T inv_alpha_y,
+                                             T inv_pi_alpha_xy) noexcept {
+    if (!(m.z > T(0))) return T(0);
+    const T x = m.x * inv_alpha_x;
+    const T y = m.y * inv_alpha_y;
+    const T k = x * x + y * y + m.z * m.z;
+    return inv_pi_alpha_xy / (k * k);
+}
+
+} // namespace detail
+
 /// Anisotropic GGX distribution of a microfacet normal m in the local frame.
 ///
 /// Heitz 2014, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs",
@@ -59,13 +75,10 @@ template <std::floating_point T>
 /// 1 - cos^2 is lost to the rounding of cos (in float, cos(1e-3) carries an error up to
 /// 3e-8 against 1 - cos = 5e-7, so sin^2 from it is off by up to 6 %, and D with
 /// alpha = 0.01 by up to 1e-3).
+
 template <std::floating_point T>
 [[nodiscard]] inline T D_ggx(const vec3<T>& m, T alpha_x, T alpha_y) noexcept {
-    if (!(m.z > T(0))) return T(0);
-    const T x = m.x / alpha_x;
-    const T y = m.y / alpha_y;
-    const T k = x * x + y * y + m.z * m.z;
-    return T(1) / (pi<T> * alpha_x * alpha_y * k * k);
+    return detail::D_ggx_from_reciprocals(m, T(1) / alpha_x, T(1) / alpha_y, T(1) / (pi<T> * alpha_x * alpha_y));
 }
 
 /// Smith's Lambda for the anisotropic GGX distribution, direction w in the local frame.
@@ -150,16 +163,10 @@ public:
     /// t-n plane.
     [[nodiscard]] T D(T n_dot_h) const noexcept { return D_ggx(n_dot_h, alpha_x_); }
 
-    /// D(m) in 1/sr of a unit microfacet normal m in the local frame: the formula of
-    /// D_ggx(m, alpha_x, alpha_y), with 1/alpha_x, 1/alpha_y and 1/(pi alpha_x alpha_y)
-    /// computed at construction so that an evaluation divides once (the results agree with
-    /// D_ggx to a few ulps).
+    /// D(m) in 1/sr of a unit microfacet normal m in the local frame: D_ggx(m, alpha_x,
+    /// alpha_y), the same number, from the reciprocals computed at construction.
     [[nodiscard]] T D(const vec3<T>& m) const noexcept {
-        if (!(m.z > T(0))) return T(0);
-        const T x = m.x * inv_alpha_x_;
-        const T y = m.y * inv_alpha_y_;
-        const T k = x * x + y * y + m.z * m.z;
-        return inv_pi_alpha_xy_ / (k * k);
+        return detail::D_ggx_from_reciprocals(m, inv_alpha_x_, inv_alpha_y_, inv_pi_alpha_xy_);
     }
 
     /// Smith's Lambda of the local direction w (see Lambda_ggx).
