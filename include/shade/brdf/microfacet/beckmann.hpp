@@ -137,12 +137,15 @@ template <std::floating_point T>
 /// of Visible Normals", EGSR, sec. 4 and appendix (the visible-slope density
 /// (1 - k x) exp(-x^2) for x < 1/k, up to a constant), and Jakob 2014, "An Improved Visible
 /// Normal Sampling Routine for the Beckmann Distribution" (inverting its CDF by Newton's
-/// method inside a shrinking bracket). Here Newton runs on x itself, started from
-/// Winitzki's approximation of erfinv(2u - 1) (Winitzki 2008, "A handy approximation for
-/// the error function and its inverse", a = 0.147), with a bisection step whenever Newton
-/// would leave the bracket, until the step is below a few ulps of x or the residual
-/// |K(x) - u K(x_max)| is within 2 epsilon of K(x_max), the rounding of K itself, beyond
-/// which no step can make the drawn quantile more accurate.
+/// method inside a shrinking bracket). Here Newton runs on x itself, corrected to Halley's
+/// step near the root (x - 2 r K' / (2 K'^2 - r K'') for the residual r; Scavo and Thoo
+/// 1995, "On the Geometry of Halley's Method", American Mathematical Monthly 102(5), which
+/// derives this iteration), started from Winitzki's approximation of erfinv(2u - 1)
+/// (Winitzki 2008, "A handy approximation for the error function and its inverse",
+/// a = 0.147), with a bisection step whenever the step would leave the bracket, until the
+/// step is below a few ulps of x or the residual |K(x) - u K(x_max)| is within 2 epsilon
+/// of K(x_max), the rounding of K itself, beyond which no step can make the drawn quantile
+/// more accurate.
 /// The bracket [-9, 9] loses a mass below exp(-81) ~ 7e-36 (smaller than any u > 0 that
 /// float can pass in the valid range) and keeps exp(-x^2) finite and non-zero.
 template <std::floating_point T>
