@@ -75,7 +75,6 @@ template <std::floating_point T>
 /// 1 - cos^2 is lost to the rounding of cos (in float, cos(1e-3) carries an error up to
 /// 3e-8 against 1 - cos = 5e-7, so sin^2 from it is off by up to 6 %, and D with
 /// alpha = 0.01 by up to 1e-3).
-
 template <std::floating_point T>
 [[nodiscard]] inline T D_ggx(const vec3<T>& m, T alpha_x, T alpha_y) noexcept {
     return detail::D_ggx_from_reciprocals(m, T(1) / alpha_x, T(1) / alpha_y, T(1) / (pi<T> * alpha_x * alpha_y));
