@@ -17,6 +17,7 @@
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/brdf.hpp>
+#include <shade/check/detail/model_ref.hpp>
 #include <shade/check/result.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/frame.hpp>
@@ -146,29 +147,10 @@ double power_lobe_pdf(const vec3<T>& r, double e, const vec3<T>& w) {
     return c > 0 ? (e + 1.0) / (2.0 * pi<double>) * std::pow(c, e) : 0.0;
 }
 
-} // namespace detail
-
-/// Estimates a(v) = ∫ f(l, v) max(n·l, 0) dl for the world-space view v at `at`.
-///
-/// Estimator: a one-sample mixture (defensive importance sampling, Hesterberg 1995,
-/// "Weighted Average Importance Sampling and Defensive Mixture Distributions",
-/// Technometrics 37(2)): l is drawn with density
-///   p(l) = (1 - q) (n·l)/pi + (q/2) P_8(l) + (q/2) P_128(l),   q = lobe_fraction,
-/// where P_e is a Phong lobe of exponent e around the mirror direction of v. The cosine
-/// part keeps p > 0 wherever f (n·l) > 0, so the estimate f (n·l) / p is unbiased for any
-/// BRDF; the lobes put samples where specular models peak, which pure cosine sampling
-/// misses at grazing views (there it is off by tens of percent with 128² samples). The
-/// technique is chosen by the first coordinate of strata² jittered strata (concentric map
-/// for the cosine part), so the samples stay stratified. With lobe_fraction = 0 every
-/// sample of a Lambertian BRDF contributes exactly pi f. Sums are kept in double; the
-/// standard error is the collapsed-strata estimate of detail::stratified_estimate.
-template <brdf B>
-albedo_sample<scalar_of<B>> directional_albedo(const B& model, const vec3<scalar_of<B>>& v,
-                                               const surface_point<scalar_of<B>>& at,
-                                               std::size_t strata = 256,
-                                               std::uint64_t seed = 1,
-                                               double lobe_fraction = 2.0 / 3.0) {
-    using T = scalar_of<B>;
+/// The body of directional_albedo (see there), on the type-erased model.
+template <std::floating_point T>
+albedo_sample<T> run_directional_albedo(const model_ref<T>& model, const vec3<T>& v, const surface_point<T>& at,
+                                        std::size_t strata, std::uint64_t seed, double lobe_fraction) {
     if (strata < 2)
         throw invalid_parameter("strata", "must be >= 2 (strata^2 samples per view)",
                                 shade::detail::to_text(double(strata)));
@@ -198,6 +180,48 @@ albedo_sample<scalar_of<B>> directional_albedo(const B& model, const vec3<scalar
     });
 }
 
+} // namespace detail
+
+/// Estimates a(v) = ∫ f(l, v) max(n·l, 0) dl for the world-space view v at `at`.
+///
+/// Estimator: a one-sample mixture (defensive importance sampling, Hesterberg 1995,
+/// "Weighted Average Importance Sampling and Defensive Mixture Distributions",
+/// Technometrics 37(2)): l is drawn with density
+///   p(l) = (1 - q) (n·l)/pi + (q/2) P_8(l) + (q/2) P_128(l),   q = lobe_fraction,
+/// where P_e is a Phong lobe of exponent e around the mirror direction of v. The cosine
+/// part keeps p > 0 wherever f (n·l) > 0, so the estimate f (n·l) / p is unbiased for any
+/// BRDF; the lobes put samples where specular models peak, which pure cosine sampling
+/// misses at grazing views (there it is off by tens of percent with 128² samples). The
+/// technique is chosen by the first coordinate of strata² jittered strata (concentric map
+/// for the cosine part), so the samples stay stratified. With lobe_fraction = 0 every
+/// sample of a Lambertian BRDF contributes exactly pi f. Sums are kept in double; the
+/// standard error is the collapsed-strata estimate of detail::stratified_estimate.
+template <brdf B>
+albedo_sample<scalar_of<B>> directional_albedo(const B& model, const vec3<scalar_of<B>>& v,
+                                               const surface_point<scalar_of<B>>& at,
+                                               std::size_t strata = 256,
+                                               std::uint64_t seed = 1,
+                                               double lobe_fraction = 2.0 / 3.0) {
+    return detail::run_directional_albedo(detail::model_ref<scalar_of<B>>(model), v, at, strata, seed, lobe_fraction);
+}
+
+namespace detail {
+
+/// The body of sampled_albedo (see there), on the type-erased model.
+template <std::floating_point T>
+albedo_sample<T> run_sampled_albedo(const model_ref<T>& model, const vec3<T>& v, const surface_point<T>& at,
+                                    std::size_t strata, std::uint64_t seed) {
+    if (strata < 2)
+        throw invalid_parameter("strata", "must be >= 2 (strata^2 samples per view)",
+                                shade::detail::to_text(double(strata)));
+    return detail::stratified_estimate<T>(v, strata, seed, true, [&](const vec2<T>& u, rng& random) {
+        const auto s = model.sample(v, random.uniform<T>(), u, at);
+        return s ? glm::dvec3(s->weight) : glm::dvec3(0);
+    });
+}
+
+} // namespace detail
+
 /// Estimates a(v) = ∫ f(l, v) max(n·l, 0) dl with the model's own sampler: the mean of
 /// sample(v, uc, u, at).weight over strata² draws (nullopt counts as 0), u jittered in
 /// strata² strata of the unit square and uc uniform. Unbiased when sample and pdf are
@@ -209,25 +233,17 @@ template <sampled_brdf B>
 albedo_sample<scalar_of<B>> sampled_albedo(const B& model, const vec3<scalar_of<B>>& v,
                                            const surface_point<scalar_of<B>>& at, std::size_t strata = 256,
                                            std::uint64_t seed = 1) {
-    using T = scalar_of<B>;
-    if (strata < 2)
-        throw invalid_parameter("strata", "must be >= 2 (strata^2 samples per view)",
-                                shade::detail::to_text(double(strata)));
-    return detail::stratified_estimate<T>(v, strata, seed, true, [&](const vec2<T>& u, rng& random) {
-        const auto s = model.sample(v, random.uniform<T>(), u, at);
-        return s ? glm::dvec3(s->weight) : glm::dvec3(0);
-    });
+    return detail::run_sampled_albedo(detail::model_ref<scalar_of<B>>(model), v, at, strata, seed);
 }
 
-/// The white-furnace curve: a(v) for every viewing angle and azimuth of `options`, in
-/// order of azimuth, then angle, estimated as options.estimator says.
-template <brdf B>
-std::vector<albedo_sample<scalar_of<B>>> white_furnace(const B& model,
-                                                       const surface_point<scalar_of<B>>& at,
-                                                       const albedo_options& options = {}) {
-    using T = scalar_of<B>;
+namespace detail {
+
+/// The body of white_furnace (see there), on the type-erased model.
+template <std::floating_point T>
+std::vector<albedo_sample<T>> run_white_furnace(const model_ref<T>& model, const surface_point<T>& at,
+                                                const albedo_options& options) {
     require_in_range("max_theta_degrees", options.max_theta_degrees, 0.0, 90.0);
-    if (options.estimator == albedo_estimator::own_sampler && !sampled_brdf<B>)
+    if (options.estimator == albedo_estimator::own_sampler && !model.sampled())
         throw invalid_parameter("estimator", "can be own_sampler only for a sampled_brdf", "own_sampler");
     std::vector<albedo_sample<T>> curve;
     const std::size_t angles = std::max<std::size_t>(options.view_angles, 1);
@@ -240,20 +256,27 @@ std::vector<albedo_sample<scalar_of<B>>> white_furnace(const B& model,
             const vec3<T> v = glm::normalize(at.shading.to_world(spherical_direction(theta, phi)));
             const std::uint64_t seed = options.seed + 7919u * (a * angles + k);
             albedo_sample<T> s;
-            if constexpr (sampled_brdf<B>) {
-                if (options.estimator != albedo_estimator::mixture)
-                    s = sampled_albedo(model, v, at, options.strata, seed);
-                else
-                    s = directional_albedo(model, v, at, options.strata, seed, options.lobe_fraction);
-            } else {
-                s = directional_albedo(model, v, at, options.strata, seed, options.lobe_fraction);
-            }
+            if (model.sampled() && options.estimator != albedo_estimator::mixture)
+                s = run_sampled_albedo(model, v, at, options.strata, seed);
+            else
+                s = run_directional_albedo(model, v, at, options.strata, seed, options.lobe_fraction);
             s.theta_v = theta;
             s.phi_v = phi;
             curve.push_back(s);
         }
     }
     return curve;
+}
+
+} // namespace detail
+
+/// The white-furnace curve: a(v) for every viewing angle and azimuth of `options`, in
+/// order of azimuth, then angle, estimated as options.estimator says.
+template <brdf B>
+std::vector<albedo_sample<scalar_of<B>>> white_furnace(const B& model,
+                                                       const surface_point<scalar_of<B>>& at,
+                                                       const albedo_options& options = {}) {
+    return detail::run_white_furnace(detail::model_ref<scalar_of<B>>(model), at, options);
 }
 
 /// The verdict on a(v) <= 1 + options.tolerance for one point of a white-furnace curve:
@@ -274,17 +297,12 @@ verdict albedo_verdict(const albedo_sample<T>& s, const albedo_options& options)
     return worst;
 }
 
-/// Checks a(v) <= 1 + options.tolerance for every view of the white-furnace curve, with
-/// the three-way verdict of albedo_verdict per view: the check fails when some view fails,
-/// passes when every view passes, and is inconclusive otherwise (more samples decide it).
-/// result::worst is the albedo (largest channel) of the deciding view: the failing view
-/// with the largest albedo, else the inconclusive one, else the largest albedo of all;
-/// result::error is its standard error, result::value that albedo, result::v its view
-/// (result::l is unused and equals v). result::failures counts failing views.
-template <brdf B>
-result<scalar_of<B>> energy_conservation(const B& model, const surface_point<scalar_of<B>>& at,
-                                         const albedo_options& options = {}) {
-    using T = scalar_of<B>;
+namespace detail {
+
+/// The body of energy_conservation (see there), on the type-erased model.
+template <std::floating_point T>
+result<T> run_energy_conservation(const model_ref<T>& model, const surface_point<T>& at,
+                                  const albedo_options& options) {
     result<T> r;
     r.property = "energy conservation";
     r.model = options.model;
@@ -296,7 +314,7 @@ result<scalar_of<B>> energy_conservation(const B& model, const surface_point<sca
     bool have_worst = false;
     bool own_sampler = false;
     const auto rank = [](verdict v) { return v == verdict::fail ? 2 : v == verdict::inconclusive ? 1 : 0; };
-    for (const auto& s : white_furnace(model, at, options)) {
+    for (const auto& s : run_white_furnace(model, at, options)) {
         ++r.tried;
         own_sampler = s.own_sampler;
         const verdict v = albedo_verdict(s, options);
@@ -340,6 +358,21 @@ result<scalar_of<B>> energy_conservation(const B& model, const surface_point<sca
                          : ". Raise strata for a smaller standard error.");
     }
     return r;
+}
+
+} // namespace detail
+
+/// Checks a(v) <= 1 + options.tolerance for every view of the white-furnace curve, with
+/// the three-way verdict of albedo_verdict per view: the check fails when some view fails,
+/// passes when every view passes, and is inconclusive otherwise (more samples decide it).
+/// result::worst is the albedo (largest channel) of the deciding view: the failing view
+/// with the largest albedo, else the inconclusive one, else the largest albedo of all;
+/// result::error is its standard error, result::value that albedo, result::v its view
+/// (result::l is unused and equals v). result::failures counts failing views.
+template <brdf B>
+result<scalar_of<B>> energy_conservation(const B& model, const surface_point<scalar_of<B>>& at,
+                                         const albedo_options& options = {}) {
+    return detail::run_energy_conservation(detail::model_ref<scalar_of<B>>(model), at, options);
 }
 
 } // namespace shade::check

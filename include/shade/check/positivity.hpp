@@ -8,6 +8,7 @@
 #include <string>
 
 #include <shade/brdf/brdf.hpp>
+#include <shade/check/detail/model_ref.hpp>
 #include <shade/check/directions.hpp>
 #include <shade/check/result.hpp>
 
@@ -23,15 +24,11 @@ struct pair_options {
     std::string model = "BRDF";          ///< name used in the message
 };
 
-/// Checks that f(l, v) is finite and >= 0 in every channel for `options.pairs` direction
-/// pairs on the upper hemisphere at `at` (see hemisphere_pairs for which pairs).
-///
-/// result::worst is the most negative channel value found (0 when none is negative), or
-/// +inf if a non-finite value was found; the failing pair is reported.
-template <brdf B>
-result<scalar_of<B>> positivity(const B& model, const surface_point<scalar_of<B>>& at,
-                                const pair_options& options = {}) {
-    using T = scalar_of<B>;
+namespace detail {
+
+/// The body of positivity (see there), on the type-erased model.
+template <std::floating_point T>
+result<T> run_positivity(const model_ref<T>& model, const surface_point<T>& at, const pair_options& options) {
     result<T> r;
     r.property = "positivity";
     r.model = options.model;
@@ -66,6 +63,19 @@ result<scalar_of<B>> positivity(const B& model, const surface_point<scalar_of<B>
                     "goes wrong in that configuration.";
     }
     return r;
+}
+
+} // namespace detail
+
+/// Checks that f(l, v) is finite and >= 0 in every channel for `options.pairs` direction
+/// pairs on the upper hemisphere at `at` (see hemisphere_pairs for which pairs).
+///
+/// result::worst is the most negative channel value found (0 when none is negative), or
+/// +inf if a non-finite value was found; the failing pair is reported.
+template <brdf B>
+result<scalar_of<B>> positivity(const B& model, const surface_point<scalar_of<B>>& at,
+                                const pair_options& options = {}) {
+    return detail::run_positivity(detail::model_ref<scalar_of<B>>(model), at, options);
 }
 
 } // namespace shade::check

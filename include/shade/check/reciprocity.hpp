@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <shade/brdf/brdf.hpp>
+#include <shade/check/detail/model_ref.hpp>
 #include <shade/check/directions.hpp>
 #include <shade/check/positivity.hpp>
 #include <shade/check/result.hpp>
@@ -21,23 +22,11 @@ template <std::floating_point T>
     return sizeof(T) <= 4 ? 1e-3 : 1e-9;
 }
 
-/// Checks f(l, v) = f(v, l) on `options.pairs` upper-hemisphere pairs at `at`.
-///
-/// The measure is the relative difference |f(l,v) - f(v,l)| / max(|f(l,v)|, |f(v,l)|, s),
-/// the largest over the three channels, where s = 1e-3 times the 90th percentile of |f|
-/// over all pairs (a typical value of the model, unaffected by a few singular peaks):
-/// values a thousand times below it are compared on that scale.
-/// Without that scale, rounding alone fails a reciprocal float model where a lobe is
-/// evaluated far in its tail (e.g. r.v ~ 1e-5 computed with an absolute error of one ulp
-/// of 1, a relative error of ~1e-3), while real violations (a factor depending on l or v
-/// alone) are large where the BRDF is large. Pairs where both values are below
-/// options.absolute_floor count as equal. result::worst is the largest measure, compared
-/// with options.relative_tolerance (default: default_reciprocity_tolerance<T>()). A
-/// non-finite value counts as a violation of measure +inf.
-template <brdf B>
-result<scalar_of<B>> reciprocity(const B& model, const surface_point<scalar_of<B>>& at,
-                                 const pair_options& options = {}) {
-    using T = scalar_of<B>;
+namespace detail {
+
+/// The body of reciprocity (see there), on the type-erased model.
+template <std::floating_point T>
+result<T> run_reciprocity(const model_ref<T>& model, const surface_point<T>& at, const pair_options& options) {
     result<T> r;
     r.property = "reciprocity";
     r.model = options.model;
@@ -107,6 +96,27 @@ result<scalar_of<B>> reciprocity(const B& model, const surface_point<scalar_of<B
                     ". Look for a factor that depends on l or v alone (e.g. a division by n.l).";
     }
     return r;
+}
+
+} // namespace detail
+
+/// Checks f(l, v) = f(v, l) on `options.pairs` upper-hemisphere pairs at `at`.
+///
+/// The measure is the relative difference |f(l,v) - f(v,l)| / max(|f(l,v)|, |f(v,l)|, s),
+/// the largest over the three channels, where s = 1e-3 times the 90th percentile of |f|
+/// over all pairs (a typical value of the model, unaffected by a few singular peaks):
+/// values a thousand times below it are compared on that scale.
+/// Without that scale, rounding alone fails a reciprocal float model where a lobe is
+/// evaluated far in its tail (e.g. r.v ~ 1e-5 computed with an absolute error of one ulp
+/// of 1, a relative error of ~1e-3), while real violations (a factor depending on l or v
+/// alone) are large where the BRDF is large. Pairs where both values are below
+/// options.absolute_floor count as equal. result::worst is the largest measure, compared
+/// with options.relative_tolerance (default: default_reciprocity_tolerance<T>()). A
+/// non-finite value counts as a violation of measure +inf.
+template <brdf B>
+result<scalar_of<B>> reciprocity(const B& model, const surface_point<scalar_of<B>>& at,
+                                 const pair_options& options = {}) {
+    return detail::run_reciprocity(detail::model_ref<scalar_of<B>>(model), at, options);
 }
 
 } // namespace shade::check

@@ -17,6 +17,7 @@
 
 #include <shade/brdf/brdf.hpp>
 #include <shade/check/chi2.hpp>
+#include <shade/check/detail/model_ref.hpp>
 #include <shade/check/directions.hpp>
 #include <shade/check/positivity.hpp>
 #include <shade/check/result.hpp>
@@ -176,10 +177,9 @@ glm::dvec3 lobe_axis(const vec3<T>& v, const surface_point<T>& at) {
 /// Bins whose rings hold about equal shares of `pilot` draws of the sampler (quantiles of
 /// c = cos(angle to the axis)); uniform rings when the pilot draws nothing. The pilot is
 /// independent of the tested samples, so the bins do not depend on the data they test.
-template <sampled_brdf B>
-sphere_bins pilot_bins(const B& model, const vec3<scalar_of<B>>& v, const surface_point<scalar_of<B>>& at,
+template <std::floating_point T>
+sphere_bins pilot_bins(const model_ref<T>& model, const vec3<T>& v, const surface_point<T>& at,
                        std::size_t rings, std::size_t sectors, std::size_t pilot, std::uint64_t seed) {
-    using T = scalar_of<B>;
     sphere_bins bins{frame<double>::from_normal(lobe_axis(v, at)), {}, sectors};
     std::vector<double> c;
     c.reserve(pilot);
@@ -204,11 +204,10 @@ sphere_bins pilot_bins(const B& model, const vec3<scalar_of<B>>& v, const surfac
 /// ∫ pdf(l, v) dl over each bin, by nested adaptive Simpson quadrature in (c, phi) around
 /// the bins' axis, where dl = dc dphi (the solid angle in those coordinates). The absolute
 /// tolerance is shared out among the bins; the relative one applies to each.
-template <sampled_brdf B>
-std::vector<integral_estimate> integrate_pdf(const B& model, const vec3<scalar_of<B>>& v,
-                                             const surface_point<scalar_of<B>>& at, const sphere_bins& bins,
+template <std::floating_point T>
+std::vector<integral_estimate> integrate_pdf(const model_ref<T>& model, const vec3<T>& v,
+                                             const surface_point<T>& at, const sphere_bins& bins,
                                              quadrature_tolerance tolerance) {
-    using T = scalar_of<B>;
     std::vector<integral_estimate> cells(bins.count());
     const double sector_width = 2 * pi<double> / double(bins.sectors);
     const double cell_tolerance = tolerance.absolute / double(bins.count());
@@ -249,28 +248,10 @@ void require_view_above(const vec3<T>& v, const surface_point<T>& at) {
         throw invalid_parameter("v", "must be above the surface (n.v > 0)", shade::detail::to_text(v));
 }
 
-} // namespace detail
-
-/// Chi-square goodness-of-fit test of `sample` against `pdf` for the view v (world space,
-/// above the surface) at `at`: the method of pbrt-v4's BSDF tests (Pharr, Jakob, Humphreys
-/// 2023, "Physically Based Rendering", 4th ed., src/pbrt/bsdfs_test.cpp) and Mitsuba 3's
-/// chi2 module, on bins suited to narrow lobes.
-///
-/// The sphere of directions is cut into options.rings rings around the mirror direction of
-/// v (edges at quantiles of a pilot sample) times options.sectors azimuth sectors, plus one
-/// bin for draws that return nullopt. options.samples directions are drawn with independent
-/// uniform (uc, u); the expected count of a bin is N ∫_bin pdf dl, by adaptive quadrature,
-/// and of the nullopt bin N (1 - ∫_sphere pdf dl), since a sampler returns nullopt exactly
-/// for the mass pdf does not account for. Pearson's statistic over the pooled bins
-/// (pearson_chi2) gives the p-value; the test fails when p < sidak_significance(alpha,
-/// tests), when a draw has a non-finite direction or pdf, and is inconclusive when pooling
-/// leaves fewer than two bins. pdf must be 0 below the surface (sample never returns such
-/// directions), or the bins there show it.
-template <sampled_brdf B>
-chi2_result<scalar_of<B>> chi2_goodness_of_fit(const B& model, const vec3<scalar_of<B>>& v,
-                                               const surface_point<scalar_of<B>>& at,
-                                               const chi2_options& options = {}) {
-    using T = scalar_of<B>;
+/// The body of chi2_goodness_of_fit (see there), on the type-erased model.
+template <std::floating_point T>
+chi2_result<T> run_chi2_goodness_of_fit(const model_ref<T>& model, const vec3<T>& v, const surface_point<T>& at,
+                                        const chi2_options& options) {
     detail::require_view_above(v, at);
     if (options.samples < 100)
         throw invalid_parameter("samples", "must be >= 100", shade::detail::to_text(double(options.samples)));
@@ -352,17 +333,36 @@ chi2_result<scalar_of<B>> chi2_goodness_of_fit(const B& model, const vec3<scalar
     return r;
 }
 
-/// Checks ∫ pdf(l, v) dl <= 1 over the sphere for the view v (world space, above the
-/// surface) at `at`: a density may lose mass (a sampler may return nullopt) but never
-/// create it. The integral is computed by adaptive quadrature over the bins of
-/// chi2_goodness_of_fit (options.rings, options.sectors, pilot from options.seed, tolerance
-/// options.quadrature_tolerance). result::worst is the integral and result::error the
-/// quadrature's error estimate; the verdict is decide_at_most(integral, error,
-/// 1 + options.normalization_tolerance, 1).
+} // namespace detail
+
+/// Chi-square goodness-of-fit test of `sample` against `pdf` for the view v (world space,
+/// above the surface) at `at`: the method of pbrt-v4's BSDF tests (Pharr, Jakob, Humphreys
+/// 2023, "Physically Based Rendering", 4th ed., src/pbrt/bsdfs_test.cpp) and Mitsuba 3's
+/// chi2 module, on bins suited to narrow lobes.
+///
+/// The sphere of directions is cut into options.rings rings around the mirror direction of
+/// v (edges at quantiles of a pilot sample) times options.sectors azimuth sectors, plus one
+/// bin for draws that return nullopt. options.samples directions are drawn with independent
+/// uniform (uc, u); the expected count of a bin is N ∫_bin pdf dl, by adaptive quadrature,
+/// and of the nullopt bin N (1 - ∫_sphere pdf dl), since a sampler returns nullopt exactly
+/// for the mass pdf does not account for. Pearson's statistic over the pooled bins
+/// (pearson_chi2) gives the p-value; the test fails when p < sidak_significance(alpha,
+/// tests), when a draw has a non-finite direction or pdf, and is inconclusive when pooling
+/// leaves fewer than two bins. pdf must be 0 below the surface (sample never returns such
+/// directions), or the bins there show it.
 template <sampled_brdf B>
-result<scalar_of<B>> pdf_normalization(const B& model, const vec3<scalar_of<B>>& v,
-                                       const surface_point<scalar_of<B>>& at, const chi2_options& options = {}) {
-    using T = scalar_of<B>;
+chi2_result<scalar_of<B>> chi2_goodness_of_fit(const B& model, const vec3<scalar_of<B>>& v,
+                                               const surface_point<scalar_of<B>>& at,
+                                               const chi2_options& options = {}) {
+    return detail::run_chi2_goodness_of_fit(detail::model_ref<scalar_of<B>>(model), v, at, options);
+}
+
+namespace detail {
+
+/// The body of pdf_normalization (see there), on the type-erased model.
+template <std::floating_point T>
+result<T> run_pdf_normalization(const model_ref<T>& model, const vec3<T>& v, const surface_point<T>& at,
+                                const chi2_options& options) {
     detail::require_view_above(v, at);
     result<T> r;
     r.property = "pdf normalization";
@@ -398,6 +398,21 @@ result<scalar_of<B>> pdf_normalization(const B& model, const vec3<scalar_of<B>>&
     return r;
 }
 
+} // namespace detail
+
+/// Checks ∫ pdf(l, v) dl <= 1 over the sphere for the view v (world space, above the
+/// surface) at `at`: a density may lose mass (a sampler may return nullopt) but never
+/// create it. The integral is computed by adaptive quadrature over the bins of
+/// chi2_goodness_of_fit (options.rings, options.sectors, pilot from options.seed, tolerance
+/// options.quadrature_tolerance). result::worst is the integral and result::error the
+/// quadrature's error estimate; the verdict is decide_at_most(integral, error,
+/// 1 + options.normalization_tolerance, 1).
+template <sampled_brdf B>
+result<scalar_of<B>> pdf_normalization(const B& model, const vec3<scalar_of<B>>& v,
+                                       const surface_point<scalar_of<B>>& at, const chi2_options& options = {}) {
+    return detail::run_pdf_normalization(detail::model_ref<scalar_of<B>>(model), v, at, options);
+}
+
 /// Settings of sample_consistency.
 struct sample_options {
     std::size_t views = 500;            ///< views v (from hemisphere_pairs: hard cases first)
@@ -410,17 +425,12 @@ struct sample_options {
     std::string model = "BRDF";         ///< name used in the message
 };
 
-/// Checks, for options.views views (world space, above the surface) times
-/// options.samples_per_view draws, that every brdf_sample sample() returns is what the
-/// contract says: l is a unit direction above the surface, pdf is finite and > 0 and equals
-/// model.pdf(l, v), f equals model.f(l, v), and weight equals f |n·l| / pdf (each
-/// relative to the larger magnitude, within options.relative_tolerance); and that for views
-/// below the surface sample() returns nullopt. result::worst is the largest relative
-/// discrepancy found (+inf for a broken rule that has no size), and l, v the draw.
-template <sampled_brdf B>
-result<scalar_of<B>> sample_consistency(const B& model, const surface_point<scalar_of<B>>& at,
-                                        const sample_options& options = {}) {
-    using T = scalar_of<B>;
+namespace detail {
+
+/// The body of sample_consistency (see there), on the type-erased model.
+template <std::floating_point T>
+result<T> run_sample_consistency(const model_ref<T>& model, const surface_point<T>& at,
+                                 const sample_options& options) {
     result<T> r;
     r.property = "sample consistency";
     r.model = options.model;
@@ -495,15 +505,26 @@ result<scalar_of<B>> sample_consistency(const B& model, const surface_point<scal
     return r;
 }
 
-/// Checks that pdf covers f: for options.pairs direction pairs (hemisphere_pairs), wherever
-/// some channel of f(l, v) is > 0, pdf(l, v) > 0. A sampler that never draws where f
-/// reflects light makes every estimator built on it biased low, which no chi-square test
-/// of sample against pdf can see. result::worst is the largest f(l, v) |n·l| (any channel)
-/// found where pdf(l, v) = 0, and l, v that pair.
+} // namespace detail
+
+/// Checks, for options.views views (world space, above the surface) times
+/// options.samples_per_view draws, that every brdf_sample sample() returns is what the
+/// contract says: l is a unit direction above the surface, pdf is finite and > 0 and equals
+/// model.pdf(l, v), f equals model.f(l, v), and weight equals f |n·l| / pdf (each
+/// relative to the larger magnitude, within options.relative_tolerance); and that for views
+/// below the surface sample() returns nullopt. result::worst is the largest relative
+/// discrepancy found (+inf for a broken rule that has no size), and l, v the draw.
 template <sampled_brdf B>
-result<scalar_of<B>> pdf_coverage(const B& model, const surface_point<scalar_of<B>>& at,
-                                  const pair_options& options = {}) {
-    using T = scalar_of<B>;
+result<scalar_of<B>> sample_consistency(const B& model, const surface_point<scalar_of<B>>& at,
+                                        const sample_options& options = {}) {
+    return detail::run_sample_consistency(detail::model_ref<scalar_of<B>>(model), at, options);
+}
+
+namespace detail {
+
+/// The body of pdf_coverage (see there), on the type-erased model.
+template <std::floating_point T>
+result<T> run_pdf_coverage(const model_ref<T>& model, const surface_point<T>& at, const pair_options& options) {
     result<T> r;
     r.property = "pdf coverage";
     r.model = options.model;
@@ -534,6 +555,19 @@ result<scalar_of<B>> pdf_coverage(const B& model, const surface_point<scalar_of<
                     ". The sampler never draws directions where the BRDF reflects light.";
     }
     return r;
+}
+
+} // namespace detail
+
+/// Checks that pdf covers f: for options.pairs direction pairs (hemisphere_pairs), wherever
+/// some channel of f(l, v) is > 0, pdf(l, v) > 0. A sampler that never draws where f
+/// reflects light makes every estimator built on it biased low, which no chi-square test
+/// of sample against pdf can see. result::worst is the largest f(l, v) |n·l| (any channel)
+/// found where pdf(l, v) = 0, and l, v that pair.
+template <sampled_brdf B>
+result<scalar_of<B>> pdf_coverage(const B& model, const surface_point<scalar_of<B>>& at,
+                                  const pair_options& options = {}) {
+    return detail::run_pdf_coverage(detail::model_ref<scalar_of<B>>(model), at, options);
 }
 
 } // namespace shade::check

@@ -1,0 +1,79 @@
+#pragma once
+// shade::check::detail::model_ref: the property kit's view of the model it checks. Every
+// public check is a thin template over the model's type that wraps the model in a model_ref
+// and calls the check's body, which is a template over the scalar type only. The bodies
+// (quadrature, binning, stratified estimators, message text) are therefore compiled once
+// per scalar type and translation unit however many models a program checks, instead of
+// once per model; only the model's own f, sample and pdf are compiled per model, once each,
+// behind a function pointer.
+
+#include <concepts>
+#include <optional>
+
+#include <shade/brdf/brdf.hpp>
+#include <shade/core/surface_point.hpp>
+#include <shade/core/types.hpp>
+
+namespace shade::check::detail {
+
+/// A non-owning reference to a BRDF of scalar type T: f, and sample and pdf when the
+/// referenced type is a shade::sampled_brdf (sampled() says which). It refers to the model,
+/// so the model must outlive it; the kit makes one per call and drops it on return.
+/// Calling sample or pdf when sampled() is false is a precondition violation (the public
+/// checks that sample require shade::sampled_brdf at compile time).
+template <std::floating_point T>
+class model_ref {
+public:
+    using scalar_type = T;
+
+    template <brdf B>
+        requires(!std::same_as<B, model_ref> && std::same_as<scalar_of<B>, T>)
+    explicit model_ref(const B& model) noexcept : model_(&model), f_(&call_f<B>) {
+        if constexpr (sampled_brdf<B>) {
+            sample_ = &call_sample<B>;
+            pdf_ = &call_pdf<B>;
+        }
+    }
+
+    /// The model's f(l, v, at) (1/sr, no cosine).
+    [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const {
+        return f_(model_, l, v, at);
+    }
+
+    /// The model's sample(v, uc, u, at). Requires sampled().
+    [[nodiscard]] std::optional<brdf_sample<T>> sample(const vec3<T>& v, T uc, const vec2<T>& u,
+                                                       const surface_point<T>& at) const {
+        return sample_(model_, v, uc, u, at);
+    }
+
+    /// The model's pdf(l, v, at) (1/sr). Requires sampled().
+    [[nodiscard]] T pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const {
+        return pdf_(model_, l, v, at);
+    }
+
+    /// True when the referenced model is a shade::sampled_brdf.
+    [[nodiscard]] bool sampled() const noexcept { return sample_ != nullptr; }
+
+private:
+    template <class B>
+    static rgb<T> call_f(const void* model, const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) {
+        return static_cast<const B*>(model)->f(l, v, at);
+    }
+    template <class B>
+    static std::optional<brdf_sample<T>> call_sample(const void* model, const vec3<T>& v, T uc, const vec2<T>& u,
+                                                     const surface_point<T>& at) {
+        return static_cast<const B*>(model)->sample(v, uc, u, at);
+    }
+    template <class B>
+    static T call_pdf(const void* model, const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) {
+        return static_cast<const B*>(model)->pdf(l, v, at);
+    }
+
+    const void* model_;
+    rgb<T> (*f_)(const void*, const vec3<T>&, const vec3<T>&, const surface_point<T>&);
+    std::optional<brdf_sample<T>> (*sample_)(const void*, const vec3<T>&, T, const vec2<T>&,
+                                             const surface_point<T>&) = nullptr;
+    T (*pdf_)(const void*, const vec3<T>&, const vec3<T>&, const surface_point<T>&) = nullptr;
+};
+
+} // namespace shade::check::detail
