@@ -161,7 +161,8 @@ float embree_closest(RTCScene scene, const shade::ray<float>& r) {
 
 struct built {
     scene_data data;
-    shade::triangle_bvh<float> shade_bvh;
+    shade::triangle_bvh<float> shade_bvh;      // the default width: 8 children where the CPU has AVX
+    shade::triangle_bvh<float> shade_bvh_four; // 4 children, for comparison
     RTCScene embree = nullptr;
 };
 
@@ -175,6 +176,10 @@ void register_scene(const built& b) {
     });
     shade_bench::add(build + "shade", 1.0, [&s] {
         shade::triangle_bvh<float> t(s.triangles);
+        benchmark::DoNotOptimize(t);
+    });
+    shade_bench::add(build + "shade_four", 1.0, [&s] {
+        shade::triangle_bvh<float> t(s.triangles, shade::bvh_width::four);
         benchmark::DoNotOptimize(t);
     });
     for (const bool coherent : {true, false}) {
@@ -202,6 +207,16 @@ void register_scene(const built& b) {
                     benchmark::DoNotOptimize(h);
                 }
             },
+            double(hits) / n,
+            {{"agreement", double(agree) / n}, {"node_width", double(b.shade_bvh.node_width())}});
+        shade_bench::add(
+            group + "shade_four", n,
+            [&b, &rays] {
+                for (const auto& r : rays) {
+                    const auto h = b.shade_bvh_four.closest(r);
+                    benchmark::DoNotOptimize(h);
+                }
+            },
             double(hits) / n, {{"agreement", double(agree) / n}});
     }
 }
@@ -213,6 +228,7 @@ const bool registered = [] {
         auto b = std::make_unique<built>();
         b->data = std::move(s);
         b->shade_bvh = shade::triangle_bvh<float>(b->data.triangles);
+        b->shade_bvh_four = shade::triangle_bvh<float>(b->data.triangles, shade::bvh_width::four);
         b->embree = embree_build(b->data);
         scenes.push_back(std::move(b));
     };

@@ -45,10 +45,10 @@ def strip_name(name):
 
 
 def load_json(path):
-    """{name: {"ns_per_iter", "ops", "hit_rate", "iterations"}} from one JSON file: the
-    fastest repetition when the file holds each repetition (the binary ran without
-    --benchmark_report_aggregates_only), else the median when repetitions were run, else
-    the single run."""
+    """{name: {"ns_per_iter", "ops", "hit_rate", "agreement", "node_width", "iterations"}}
+    from one JSON file: the fastest repetition when the file holds each repetition (the
+    binary ran without --benchmark_report_aggregates_only), else the median when
+    repetitions were run, else the single run."""
     with open(path) as f:
         data = json.load(f)
     runs, medians, fastest = {}, {}, {}
@@ -60,6 +60,7 @@ def load_json(path):
             "ops": float(b.get("ops_per_iter", 1.0)),
             "hit_rate": b.get("hit_rate"),
             "agreement": b.get("agreement"),
+            "node_width": b.get("node_width"),
             "iterations": int(b.get("iterations", 0)),
         }
         if b.get("run_type") == "aggregate":
@@ -286,8 +287,12 @@ def bvh_rows(runs):
         return []
     # Icospheres by size (the number in their name), then the other scenes.
     scenes.sort(key=lambda sc: (0, int(re.sub(r"\D", "", sc) or 0)) if sc.startswith("ico") else (1, sc))
+    widths = {runs[k].get("node_width") for k in runs if k.startswith("bvh/") and k.endswith("/shade")}
+    width = ", ".join(str(int(w)) for w in sorted(w for w in widths if w is not None)) or "?"
     out = ["## Bounding-volume hierarchy against Embree (timed run)", "",
-           "`shade::triangle_bvh<float>` (Möller-Trumbore leaves through the batch kernel) against "
+           "`shade::triangle_bvh<float>` (Möller-Trumbore leaves through the batch kernel; nodes of "
+           f"{width} children, the default width on this CPU; the column 'nodes of 4' is the same "
+           "hierarchy built with `shade::bvh_width::four`) against "
            "Embree 3 (`rtcIntersect1`, default build quality, device `threads=1`) in the same "
            "binary (bench/bvh.cpp), single thread, closest hit; the repetitions of the two are "
            "interleaved (`--benchmark_enable_random_interleaving`). Primary rays: one per pixel "
@@ -295,8 +300,9 @@ def bvh_rows(runs):
            "the mesh and random directions. Agreement: fraction of rays on which both report "
            "the same hit or miss. Goals: primary throughput >= 0.5x Embree's on "
            "every icosphere (0.8x hoped for), build time <= 2x Embree's, agreement >= 99.99 %.", "",
-           "| scene | rays | shade Mrays/s | Embree Mrays/s | shade / Embree | goal | agreement | hits |",
-           "|---|---|---:|---:|---:|---|---:|---:|"]
+           "| scene | rays | shade Mrays/s | Embree Mrays/s | shade / Embree | goal | nodes of 4 / Embree | "
+           "agreement | hits |",
+           "|---|---|---:|---:|---:|---|---:|---:|---:|"]
     for sc in scenes:
         for kind in ("primary", "incoherent"):
             a, e = ns.get(f"bvh/{kind}/{sc}/shade"), ns.get(f"bvh/{kind}/{sc}/embree")
@@ -307,7 +313,9 @@ def bvh_rows(runs):
             goal = ""
             if kind == "primary" and sc.startswith("ico"):
                 goal = "≥ 0.5 " + ("yes" if e / a >= 0.5 else "**no**")
-            out.append(f"| {sc} | {kind} | {1e3 / a:.2f} | {1e3 / e:.2f} | {e / a:.2f}× | {goal} | "
+            four = ns.get(f"bvh/{kind}/{sc}/shade_four")
+            four_ratio = f"{e / four:.2f}×" if four else ""
+            out.append(f"| {sc} | {kind} | {1e3 / a:.2f} | {1e3 / e:.2f} | {e / a:.2f}× | {goal} | {four_ratio} | "
                        f"{'?' if agree is None else f'{agree * 100:.3f} %'} | "
                        f"{'' if hit is None else f'{hit * 100:.1f} %'} |")
     out += ["", "| scene | shade build ms | Embree build ms | shade / Embree | goal |", "|---|---:|---:|---:|---|"]

@@ -3,7 +3,8 @@
 //
 // Input: byte 0 bit 0 double/float, bits 1-2 the structure (0, 3: triangle_bvh with
 // Möller-Trumbore; 1: triangle_bvh<T, watertight>; 2: primitive_bvh<sphere>), bit 3 back
-// faces culled (triangles); byte 1 the number of primitives (0-31); each triangle three
+// faces culled (triangles), bit 4 nodes of eight children (shade::bvh_width::eight; four
+// on a CPU without AVX) instead of four; byte 1 the number of primitives (0-31); each triangle three
 // vectors, each sphere a centre and a radius (any values); then up to four rays, each a
 // byte (bit 0: aimed at a point of a primitive, from barycentric or unit-sphere
 // coordinates decoded next, else a decoded direction), an origin and t_min, t_max.
@@ -183,7 +184,7 @@ ray<T> decode_ray(fuzz::input& in, std::size_t count, PointOf point_of) {
 }
 
 template <class Algorithm, std::floating_point T>
-void run_triangles(fuzz::input& in, culling cull) {
+void run_triangles(fuzz::input& in, culling cull, bvh_width width) {
     const std::size_t count = in.byte() % 32u;
     std::vector<triangle<T>> tris;
     bool all_finite = true;
@@ -194,7 +195,7 @@ void run_triangles(fuzz::input& in, culling cull) {
     }
     std::optional<triangle_bvh<T, Algorithm>> accel;
     try {
-        accel.emplace(std::span<const triangle<T>>(tris));
+        accel.emplace(std::span<const triangle<T>>(tris), width);
     } catch (const invalid_parameter&) {
         expect(!all_finite, "triangle_bvh rejected finite triangles");
         return;
@@ -221,7 +222,7 @@ void run_triangles(fuzz::input& in, culling cull) {
 }
 
 template <std::floating_point T>
-void run_spheres(fuzz::input& in) {
+void run_spheres(fuzz::input& in, bvh_width width) {
     const std::size_t count = in.byte() % 32u;
     std::vector<sphere<T>> spheres;
     for (std::size_t i = 0; i < count; ++i) {
@@ -235,7 +236,7 @@ void run_spheres(fuzz::input& in) {
     }
     std::optional<primitive_bvh<sphere<T>>> built;
     try {
-        built.emplace(std::span<const sphere<T>>(spheres));
+        built.emplace(std::span<const sphere<T>>(spheres), width);
     } catch (const invalid_parameter&) {
         return; // a valid sphere whose box overflows (centre and radius near the largest T)
     }
@@ -262,12 +263,13 @@ template <std::floating_point T>
 void run(fuzz::input& in, unsigned head) {
     const unsigned structure = (head >> 1u) & 3u;
     const culling cull = (head & 8u) != 0 ? culling::back_faces : culling::none;
+    const bvh_width width = (head & 16u) != 0 ? bvh_width::eight : bvh_width::four;
     if (structure == 1)
-        run_triangles<watertight, T>(in, cull);
+        run_triangles<watertight, T>(in, cull, width);
     else if (structure == 2)
-        run_spheres<T>(in);
+        run_spheres<T>(in, width);
     else
-        run_triangles<moller_trumbore, T>(in, cull);
+        run_triangles<moller_trumbore, T>(in, cull, width);
 }
 
 } // namespace

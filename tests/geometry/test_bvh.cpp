@@ -1,7 +1,8 @@
-// Bounding-volume hierarchies (bvh, primitive_bvh, triangle_bvh): closest and any agree
-// with a brute-force loop over every primitive on random rays over random meshes; a
-// closed mesh behind the watertight test lets no ray through shared edges or vertices
-// escape; degenerate inputs (empty, one triangle, all coplanar, NaN vertices).
+// Bounding-volume hierarchies (bvh, primitive_bvh, triangle_bvh), with nodes of four and
+// of eight children: closest and any agree with a brute-force loop over every primitive on
+// random rays over random meshes; a closed mesh behind the watertight test lets no ray
+// through shared edges or vertices escape; degenerate inputs (empty, one triangle, all
+// coplanar, NaN vertices).
 
 #include <cmath>
 #include <cstdint>
@@ -23,6 +24,10 @@ namespace {
 
 template <class T>
 using v3 = shade::vec3<T>;
+
+// Both node widths (eight is four where this build or CPU lacks AVX; the test of
+// shade::bvh_width below checks which).
+constexpr shade::bvh_width widths[] = {shade::bvh_width::four, shade::bvh_width::eight};
 
 template <class T>
 v3<T> in_cube(shade::rng& g, T half) {
@@ -141,9 +146,13 @@ TEST_CASE_TEMPLATE("triangle_bvh: closest and any agree with brute force on rand
     for (const std::size_t n : {std::size_t(2), std::size_t(5), std::size_t(17), std::size_t(300), std::size_t(3000)}) {
         const auto tris = random_mesh<T>(g, n, n > 1000 ? T(0.2) : T(1));
         const auto rays = random_rays<T>(g, 400);
-        check_against_brute_force(shade::triangle_bvh<T>(tris), std::span<const shade::triangle<T>>(tris), rays, count);
-        check_against_brute_force(shade::triangle_bvh<T, shade::watertight>(tris),
-                                  std::span<const shade::triangle<T>>(tris), rays, count);
+        for (const shade::bvh_width width : widths) {
+            CAPTURE(width);
+            check_against_brute_force(shade::triangle_bvh<T>(tris, width), std::span<const shade::triangle<T>>(tris),
+                                      rays, count);
+            check_against_brute_force(shade::triangle_bvh<T, shade::watertight>(tris, width),
+                                      std::span<const shade::triangle<T>>(tris), rays, count);
+        }
     }
     CHECK(count.hits > 200); // both outcomes exercised
     CHECK(count.hits < count.rays);
@@ -163,9 +172,10 @@ TEST_CASE_TEMPLATE("triangle_bvh: closest and any agree with brute force on rand
 TEST_CASE_TEMPLATE("triangle_bvh<watertight>: no ray escapes a closed mesh through shared edges or vertices", T,
                    float, double) {
     const auto tris = closed_sphere<T>(3); // 1280 triangles
-    const shade::triangle_bvh<T, shade::watertight> accel(tris);
+    const shade::triangle_bvh<T, shade::watertight> accel(tris, shade::bvh_width::four);
+    const shade::triangle_bvh<T, shade::watertight> wide(tris, shade::bvh_width::eight);
     shade::rng g(3);
-    std::size_t rays = 0, escaped = 0, escaped_brute = 0;
+    std::size_t rays = 0, escaped = 0, escaped_wide = 0, escaped_brute = 0;
     for (const auto& tri : tris) {
         const v3<T> origin = in_cube<T>(g, T(0.3)); // inside the sphere, off-centre
         const v3<T> targets[] = {tri.v0, tri.v1, (tri.v0 + tri.v1) * T(0.5), tri.v0 + (tri.v2 - tri.v0) * T(0.25)};
@@ -174,12 +184,15 @@ TEST_CASE_TEMPLATE("triangle_bvh<watertight>: no ray escapes a closed mesh throu
             ++rays;
             escaped += !accel.closest(r).has_value();
             escaped += !accel.any(r);
+            escaped_wide += !wide.closest(r).has_value();
+            escaped_wide += !wide.any(r);
             escaped_brute += !brute_force<shade::watertight>(r, std::span<const shade::triangle<T>>(tris));
         }
     }
     CHECK(rays == 4 * tris.size());
     CHECK(escaped_brute == 0);
     CHECK(escaped == 0);
+    CHECK(escaped_wide == 0);
 }
 
 TEST_CASE_TEMPLATE("triangle_bvh: degenerate inputs", T, float, double) {
@@ -194,17 +207,20 @@ TEST_CASE_TEMPLATE("triangle_bvh: degenerate inputs", T, float, double) {
     }
     SUBCASE("one triangle") {
         const std::vector<shade::triangle<T>> one{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}};
-        const shade::triangle_bvh<T> accel(one);
-        const auto h = accel.closest(down);
-        REQUIRE(h);
-        CHECK(h->primitive == 0);
-        CHECK(h->hit.t == T(1));
-        // b1 = b2 = 1/4, b0 = 1/2 at (1/4, 1/4, 0).
-        CHECK(h->hit.barycentric == v3<T>(0.5, 0.25, 0.25));
-        CHECK(h->hit.p == v3<T>(0.25, 0.25, 0));
-        CHECK_FALSE(accel.closest(shade::ray<T>{{0.75, 0.75, 1}, {0, 0, -1}}));
-        CHECK_FALSE(accel.closest(down, shade::culling::back_faces) == std::nullopt); // front face
-        CHECK(accel.any(down));
+        for (const shade::bvh_width width : widths) {
+            CAPTURE(width);
+            const shade::triangle_bvh<T> accel(one, width);
+            const auto h = accel.closest(down);
+            REQUIRE(h);
+            CHECK(h->primitive == 0);
+            CHECK(h->hit.t == T(1));
+            // b1 = b2 = 1/4, b0 = 1/2 at (1/4, 1/4, 0).
+            CHECK(h->hit.barycentric == v3<T>(0.5, 0.25, 0.25));
+            CHECK(h->hit.p == v3<T>(0.25, 0.25, 0));
+            CHECK_FALSE(accel.closest(shade::ray<T>{{0.75, 0.75, 1}, {0, 0, -1}}));
+            CHECK_FALSE(accel.closest(down, shade::culling::back_faces) == std::nullopt); // front face
+            CHECK(accel.any(down));
+        }
     }
     SUBCASE("all triangles coplanar: a flat boxes' hierarchy still finds every hit") {
         // A 40 x 40 grid of unit squares in z = 0 (3200 triangles): every box is flat.
@@ -215,8 +231,10 @@ TEST_CASE_TEMPLATE("triangle_bvh: degenerate inputs", T, float, double) {
                 grid.push_back({a, b, c});
                 grid.push_back({a, c, d});
             }
-        const shade::triangle_bvh<T> accel(grid);
-        const shade::triangle_bvh<T, shade::watertight> tight(grid);
+        const shade::triangle_bvh<T> accel(grid, shade::bvh_width::four);
+        const shade::triangle_bvh<T, shade::watertight> tight(grid, shade::bvh_width::four);
+        const shade::triangle_bvh<T> accel_wide(grid, shade::bvh_width::eight);
+        const shade::triangle_bvh<T, shade::watertight> tight_wide(grid, shade::bvh_width::eight);
         shade::rng g(9);
         tally count;
         std::vector<shade::ray<T>> rays;
@@ -230,6 +248,10 @@ TEST_CASE_TEMPLATE("triangle_bvh: degenerate inputs", T, float, double) {
         check_against_brute_force(accel, std::span<const shade::triangle<T>>(grid), rays, count);
         check_against_brute_force(tight, std::span<const shade::triangle<T>>(grid), rays, count);
         CHECK(count.hits == 600); // every ray from above hits, none in the plane
+        tally wide;
+        check_against_brute_force(accel_wide, std::span<const shade::triangle<T>>(grid), rays, wide);
+        check_against_brute_force(tight_wide, std::span<const shade::triangle<T>>(grid), rays, wide);
+        CHECK(wide.hits == 600);
     }
     SUBCASE("NaN or infinite vertices are rejected naming the triangle") {
         std::vector<shade::triangle<T>> bad{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
@@ -251,34 +273,37 @@ TEST_CASE_TEMPLATE("primitive_bvh and bvh: spheres against brute force", T, floa
     shade::rng g(5);
     std::vector<shade::sphere<T>> spheres;
     for (int i = 0; i < 500; ++i) spheres.emplace_back(in_cube<T>(g, T(5)), T(0.05) + T(0.3) * g.uniform<T>());
-    const shade::primitive_bvh<shade::sphere<T>> accel(spheres);
     std::vector<shade::aabb<T>> boxes;
     for (const auto& s : spheres) boxes.push_back(shade::bounds(s));
-    const shade::bvh<T> tree(boxes);
-    CHECK(tree.size() == spheres.size());
-    std::size_t hits = 0;
-    for (int k = 0; k < 2000; ++k) {
-        const shade::ray<T> r{in_cube<T>(g, T(7)), in_cube<T>(g, T(1))};
-        std::optional<std::pair<std::uint32_t, shade::hit<T>>> best;
-        for (std::uint32_t i = 0; i < spheres.size(); ++i)
-            if (auto h = shade::intersect(r, spheres[i]); h && (!best || h->t < best->second.t)) best = {i, *h};
-        const auto got = accel.closest(r);
-        const auto via_tree = tree.closest(r, [&](std::uint32_t i, const shade::ray<T>& rr) {
-            return shade::intersect(rr, spheres[i]);
-        });
-        REQUIRE(got.has_value() == best.has_value());
-        REQUIRE(via_tree.has_value() == best.has_value());
-        CHECK(accel.any(r) == best.has_value());
-        CHECK(tree.any(r, [&](std::uint32_t i, const shade::ray<T>& rr) { return shade::intersect(rr, spheres[i]).has_value(); }) ==
-              best.has_value());
-        if (!best) continue;
-        ++hits;
-        CHECK(got->hit.t == best->second.t);
-        CHECK(got->primitive == best->first);
-        CHECK(via_tree->hit.t == best->second.t);
+    for (const shade::bvh_width width : widths) {
+        CAPTURE(width);
+        const shade::primitive_bvh<shade::sphere<T>> accel(spheres, width);
+        const shade::bvh<T> tree(boxes, width);
+        CHECK(tree.size() == spheres.size());
+        std::size_t hits = 0;
+        for (int k = 0; k < 2000; ++k) {
+            const shade::ray<T> r{in_cube<T>(g, T(7)), in_cube<T>(g, T(1))};
+            std::optional<std::pair<std::uint32_t, shade::hit<T>>> best;
+            for (std::uint32_t i = 0; i < spheres.size(); ++i)
+                if (auto h = shade::intersect(r, spheres[i]); h && (!best || h->t < best->second.t)) best = {i, *h};
+            const auto got = accel.closest(r);
+            const auto via_tree = tree.closest(r, [&](std::uint32_t i, const shade::ray<T>& rr) {
+                return shade::intersect(rr, spheres[i]);
+            });
+            REQUIRE(got.has_value() == best.has_value());
+            REQUIRE(via_tree.has_value() == best.has_value());
+            CHECK(accel.any(r) == best.has_value());
+            CHECK(tree.any(r, [&](std::uint32_t i, const shade::ray<T>& rr) { return shade::intersect(rr, spheres[i]).has_value(); }) ==
+                  best.has_value());
+            if (!best) continue;
+            ++hits;
+            CHECK(got->hit.t == best->second.t);
+            CHECK(got->primitive == best->first);
+            CHECK(via_tree->hit.t == best->second.t);
+        }
+        CHECK(hits > 100);
+        CHECK(hits < 1900);
     }
-    CHECK(hits > 100);
-    CHECK(hits < 1900);
     std::vector<shade::aabb<T>> bad_boxes{shade::aabb<T>{}};
     CHECK_THROWS_AS(shade::bvh<T>{std::span<const shade::aabb<T>>(bad_boxes)}, shade::invalid_parameter);
 }
@@ -293,20 +318,23 @@ TEST_CASE("bvh: a ray entering an unused child slot visits nothing") {
     const std::vector<shade::sphere<double>> spheres{
         shade::sphere<double>({0.0, 0.0, -0x1p-8}, 0x1.1004001004003p+977),
         shade::sphere<double>({0x1p-7, 0x1p-8, -0.0}, 0x1.8p-6)};
-    const shade::primitive_bvh<shade::sphere<double>> accel(spheres);
     shade::ray<double> r{{0, 0, 0}, {-0x1.014107194c1d2p+977, 0x1.57015ecc657c2p+975, 0x1.57015ecc657c2p+973}};
     r.t_max = 0x1.001004003ffffp-1019;
     std::optional<std::pair<std::uint32_t, double>> nearest;
     for (std::uint32_t i = 0; i < spheres.size(); ++i)
         if (auto h = shade::intersect(r, spheres[i]); h && (!nearest || h->t < nearest->second))
             nearest = {i, h->t};
-    const auto h = accel.closest(r);
-    REQUIRE(h.has_value() == nearest.has_value());
-    if (h) {
-        CHECK(h->primitive == nearest->first);
-        CHECK(h->hit.t == nearest->second);
+    for (const shade::bvh_width width : widths) {
+        CAPTURE(width);
+        const shade::primitive_bvh<shade::sphere<double>> accel(spheres, width);
+        const auto h = accel.closest(r);
+        REQUIRE(h.has_value() == nearest.has_value());
+        if (h) {
+            CHECK(h->primitive == nearest->first);
+            CHECK(h->hit.t == nearest->second);
+        }
+        CHECK(accel.any(r) == nearest.has_value());
     }
-    CHECK(accel.any(r) == nearest.has_value());
 }
 
 // A direction component whose float reciprocal overflows (|d_k| < 2^-128 after the ray's
@@ -323,7 +351,8 @@ TEST_CASE_TEMPLATE("triangle_bvh: directions whose components have no float reci
         {{1, 0, 0}, {0, 0, 0}, {1, 0, 1}},   // in y = 0, the one hit
         {{0, 0, -7}, {-6, -6, -13}, {1, 0, 0}},
         {{1, 1, 0}, {0, 0, 0}, {0, 0, 0}}};  // degenerate (a segment through the vertex)
-    const shade::triangle_bvh<T, shade::watertight> accel(tris);
+    const shade::triangle_bvh<T, shade::watertight> accel(tris, shade::bvh_width::four);
+    const shade::triangle_bvh<T, shade::watertight> wide(tris, shade::bvh_width::eight);
     std::vector<std::pair<T, T>> origins{{T(0x1p-23), T(0x1.0509p-133)}, {T(1), T(0x1p-149)},
                                          {T(0x1p-100), T(0x1p-140)}, {T(0x1p+100), T(0x1p-40)}};
     if constexpr (sizeof(T) == sizeof(double))
@@ -340,9 +369,33 @@ TEST_CASE_TEMPLATE("triangle_bvh: directions whose components have no float reci
         const auto loop = brute_force<shade::watertight, T>(r, tris);
         REQUIRE(loop.has_value());
         CHECK(loop->second.t == T(1));
-        const auto h = accel.closest(r);
-        REQUIRE(h.has_value());
-        CHECK(h->hit.t == loop->second.t);
-        CHECK(accel.any(r));
+        for (const auto* tree : {&accel, &wide}) {
+            const auto h = tree->closest(r);
+            REQUIRE(h.has_value());
+            CHECK(h->hit.t == loop->second.t);
+            CHECK(tree->any(r));
+        }
     }
+}
+
+// Which width a hierarchy gets: four when asked; eight when asked or by default exactly
+// where the build and the CPU can test eight boxes with AVX; the same hits either way
+// (the tests above), in fewer nodes with eight.
+TEST_CASE("bvh_width: eight children where AVX is available, four when asked") {
+    shade::rng g(11);
+    const auto tris = random_mesh<float>(g, 2000, 0.2f);
+    const shade::triangle_bvh<float> four(tris, shade::bvh_width::four);
+    const shade::triangle_bvh<float> eight(tris, shade::bvh_width::eight);
+    const shade::triangle_bvh<float> automatic(tris);
+    const std::size_t expected = shade::detail::bvh_node_width(8); // 8 with AVX, else 4
+    CHECK(four.node_width() == 4);
+    CHECK(eight.node_width() == expected);
+    CHECK(automatic.node_width() == expected);
+    if (expected == 8) CHECK(eight.node_count() < four.node_count());
+    std::vector<shade::aabb<float>> boxes;
+    for (const auto& t : tris) boxes.push_back(shade::bounds(t));
+    CHECK(shade::bvh<float>(boxes, shade::bvh_width::four).node_width() == 4);
+    CHECK(shade::bvh<float>(boxes).node_width() == expected);
+    const std::vector<shade::sphere<double>> one{shade::sphere<double>({0.0, 0.0, 0.0}, 1.0)};
+    CHECK(shade::primitive_bvh<shade::sphere<double>>(one, shade::bvh_width::eight).node_width() == expected);
 }

@@ -60,10 +60,10 @@ public:
     /// An empty hierarchy: nothing is ever hit.
     triangle_bvh() = default;
 
-    /// Builds over a copy of triangles. Throws shade::invalid_parameter naming
-    /// "triangles" when a vertex is not finite (NaN or infinite), or when there are 2^27
-    /// or more triangles. Degenerate (zero-area) triangles are kept and never hit.
-    explicit triangle_bvh(std::span<const triangle<T>> triangles) {
+    /// Builds over a copy of triangles, into nodes of `width` children. Throws
+    /// shade::invalid_parameter naming "triangles" when a vertex is not finite (NaN or
+    /// infinite), or for 2^27 triangles or more. Degenerate ones are kept and never hit.
+    explicit triangle_bvh(std::span<const triangle<T>> triangles, bvh_width width = bvh_width::automatic) {
         detail::require_bvh_size("triangles", triangles.size());
         std::vector<detail::bvh_prim_ref> refs;
         refs.reserve(triangles.size());
@@ -76,10 +76,10 @@ public:
                                             detail::to_text(tri.v2));
             refs.push_back(detail::make_prim_ref(bounds(tri), static_cast<std::uint32_t>(i)));
         }
-        constexpr auto width = static_cast<std::uint32_t>(leaf_width);
-        detail::bvh_tree tree = detail::bvh_builder(batched ? 2 * width : 4, width).build(refs);
-        nodes_ = std::move(tree.nodes);
-        ids_ = std::move(tree.order);
+        constexpr auto leaves = static_cast<std::uint32_t>(leaf_width);
+        tree_ = detail::bvh_builder(batched ? 2 * leaves : 4, leaves)
+                    .build(refs, detail::bvh_node_width(width == bvh_width::four ? 4 : 8));
+        ids_ = std::move(tree_.order);
         triangles_.reserve(ids_.size());
         for (const std::uint32_t id : ids_) triangles_.push_back(triangles[id]);
         if constexpr (batched) pack_batches();
@@ -90,10 +90,10 @@ public:
     /// front_face, barycentrics), or nothing.
     [[nodiscard]] std::optional<primitive_hit<triangle_hit<T>>> closest(ray<T> r,
                                                                        culling cull = culling::none) const {
-        if (nodes_.empty() || !r.valid()) return std::nullopt;
+        if (ids_.empty() || !r.valid()) return std::nullopt;
         std::uint32_t best = no_hit;
         triangle_intersection<T> x;
-        detail::bvh_traverse<true>(nodes_.data(), r, r.t_max, [&](std::uint32_t first, std::uint32_t count) {
+        detail::bvh_traverse<true>(tree_, r, r.t_max, [&](std::uint32_t first, std::uint32_t count) {
             if constexpr (batched) {
                 for (std::uint32_t b = first; b < first + count; ++b) {
                     const auto hits = intersect(r, batches_[b], cull);
@@ -123,9 +123,9 @@ public:
 
     /// True when r hits some triangle within [t_min, t_max] (for shadow rays).
     [[nodiscard]] bool any(const ray<T>& r, culling cull = culling::none) const {
-        if (nodes_.empty() || !r.valid()) return false;
+        if (ids_.empty() || !r.valid()) return false;
         bool found = false;
-        detail::bvh_traverse<false>(nodes_.data(), r, r.t_max, [&](std::uint32_t first, std::uint32_t count) {
+        detail::bvh_traverse<false>(tree_, r, r.t_max, [&](std::uint32_t first, std::uint32_t count) {
             if constexpr (batched) {
                 for (std::uint32_t b = first; b < first + count; ++b)
                     if (intersect(r, batches_[b], cull).hit_bits != 0) return found = true;
@@ -140,8 +140,10 @@ public:
 
     /// Number of triangles.
     [[nodiscard]] std::size_t size() const noexcept { return triangles_.size(); }
-    /// Number of nodes (of up to four children each).
-    [[nodiscard]] std::size_t node_count() const noexcept { return nodes_.size(); }
+    /// Number of nodes (of up to node_width() children each).
+    [[nodiscard]] std::size_t node_count() const noexcept { return tree_.nodes.size() + tree_.wide_nodes.size(); }
+    /// Children per node: 4 or 8 (see shade::bvh_width).
+    [[nodiscard]] std::size_t node_width() const noexcept { return tree_.width; }
 
 private:
     static constexpr std::uint32_t no_hit = ~std::uint32_t(0);
@@ -150,12 +152,13 @@ private:
     /// leaf_width) of them, the last one partly filled).
     void pack_batches() {
         std::size_t batches = 0;
-        for (const detail::bvh_node4& node : nodes_)
+        tree_.for_each_node([&](const auto& node) {
             for (const std::uint32_t ref : node.child)
                 if (detail::is_leaf_ref(ref)) batches += (detail::leaf_count(ref) + leaf_width - 1) / leaf_width;
+        });
         batches_.reserve(batches);
         slot_of_lane_.reserve(batches * leaf_width);
-        for (detail::bvh_node4& node : nodes_) {
+        tree_.for_each_node([&](auto& node) {
             for (std::uint32_t& ref : node.child) {
                 if (!detail::is_leaf_ref(ref)) continue;
                 const std::uint32_t first = detail::leaf_first(ref), count = detail::leaf_count(ref);
@@ -168,10 +171,10 @@ private:
                 }
                 ref = detail::make_leaf_ref(batch_first, static_cast<std::uint32_t>(batches_.size()) - batch_first);
             }
-        }
+        });
     }
 
-    std::vector<detail::bvh_node4> nodes_;
+    detail::bvh_tree tree_;                              // the nodes (its order is moved to ids_)
     std::vector<triangle_batch<T, batch_width>> batches_; // batched only: the leaves' tests
     std::vector<std::uint32_t> slot_of_lane_;            // batched only: lane -> triangles_ index
     std::vector<triangle<T>> triangles_;                 // in leaf order

@@ -1,7 +1,7 @@
 #pragma once
 // The builder behind shade::bvh and shade::triangle_bvh: a binary tree by binned surface
-// area heuristic, collapsed into nodes of four children whose float boxes the traversal
-// (detail/bvh_traverse.hpp) tests together. Internal: use shade/geometry/bvh.hpp.
+// area heuristic, collapsed into nodes of four (or eight) children whose float boxes the
+// traversal (detail/bvh_traverse.hpp) tests together. Internal: use shade/geometry/bvh.hpp.
 
 #include <array>
 #include <bit>
@@ -52,15 +52,18 @@ template <std::floating_point T>
     else return next_float_up(static_cast<float>(x));
 }
 
-/// A node of the collapsed tree: the boxes of up to four children, stored per axis and
-/// side (lo x, hi x, lo y, hi y, lo z, hi z; one float per child in each), so that one
-/// vector load gets one plane of all four, and the children's references. A reference is
-/// an inner node's index, or a leaf (leaf_flag set) holding `count` items from `first`
-/// (see make_leaf_ref). Unused children have an empty box (lo = +inf, hi = -inf), which
-/// no finite ray enters, and an empty leaf (count 0) as their reference. 128 bytes: two cache lines.
-struct alignas(64) bvh_node4 {
-    std::array<std::array<float, 4>, 6> planes; ///< [2 k + side][child]: side 0 lo, 1 hi
-    std::array<std::uint32_t, 4> child;         ///< child references
+/// A node of the collapsed tree: the boxes of up to W children, stored per axis and side
+/// (lo x, hi x, lo y, hi y, lo z, hi z; one float per child in each), so that one vector
+/// load gets one plane of all W, and the children's references. A reference is an inner
+/// node's index, or a leaf (leaf_flag set) holding `count` items from `first` (see
+/// make_leaf_ref). Unused children have an empty box (lo = +inf, hi = -inf), which no
+/// finite ray enters, and an empty leaf (count 0) as their reference. W = 4: 128 bytes (two
+/// cache lines); W = 8: 256 bytes (four). Both widths are always declared; only x86-64
+/// builds with g++ or clang++ build and walk nodes of eight (detail/bvh_traverse.hpp).
+template <std::size_t W>
+struct alignas(64) bvh_node {
+    std::array<std::array<float, W>, 6> planes; ///< [2 k + side][child]: side 0 lo, 1 hi
+    std::array<std::uint32_t, W> child;         ///< child references
 };
 
 inline constexpr std::uint32_t bvh_leaf_flag = 0x8000'0000u;
@@ -134,12 +137,21 @@ template <std::floating_point T>
                         bvh_v4{float_up(b.hi.x), float_up(b.hi.y), float_up(b.hi.z), 0.0f}};
 }
 
-/// The tree a build produces: the collapsed nodes (node 0 is the root; none for no
-/// primitives) and the primitives' indices in leaf order (a leaf reference's first and
-/// count index this array).
+/// The tree a build produces: the collapsed nodes of four children (nodes) or eight
+/// (wide_nodes; node 0 is the root; none for no primitives), and the primitives' indices
+/// in leaf order (a leaf reference's first and count index this array).
 struct bvh_tree {
-    std::vector<bvh_node4> nodes;
+    std::vector<bvh_node<4>> nodes;
+    std::vector<bvh_node<8>> wide_nodes;
     std::vector<std::uint32_t> order;
+    std::size_t width = 4; ///< children per node: 4 (nodes) or 8 (wide_nodes)
+
+    /// Calls f(node) for every node, of either width.
+    template <class F>
+    void for_each_node(F&& f) {
+        for (bvh_node<4>& node : nodes) f(node);
+        for (bvh_node<8>& node : wide_nodes) f(node);
+    }
 };
 
 /// Binned SAH builder (Wald 2007, "On fast Construction of SAH-based Bounding Volume
@@ -163,9 +175,10 @@ public:
 
     bvh_builder(std::uint32_t max_leaf, std::uint32_t block) : max_leaf_(max_leaf), block_(block) {}
 
-    /// Builds over refs (reordered in place).
-    [[nodiscard]] bvh_tree build(std::vector<bvh_prim_ref>& refs) {
+    /// Builds over refs (reordered in place), into nodes of `width` (4 or 8) children.
+    [[nodiscard]] bvh_tree build(std::vector<bvh_prim_ref>& refs, std::size_t width = 4) {
         bvh_tree tree;
+        tree.width = width == 8 ? 8 : 4;
         refs_ = refs.data();
         binary_.clear();
         if (refs.empty()) return tree;
@@ -175,15 +188,8 @@ public:
         const std::uint32_t root = build_binary(0, static_cast<std::uint32_t>(refs.size()), 0, box, centroids);
         tree.order.resize(refs.size());
         for (std::size_t i = 0; i < refs.size(); ++i) tree.order[i] = refs[i].index();
-        tree.nodes.reserve(binary_.size() / 2 + 1);
-        tree.nodes.emplace_back();
-        if (binary_[root].count > 0) {
-            // A single leaf: one root node with one child.
-            set_empty(tree.nodes[0]);
-            set_child(tree.nodes[0], 0, binary_[root].box, leaf_ref(binary_[root]));
-        } else {
-            collapse(tree, 0, root);
-        }
+        if (tree.width == 8) collapse_root(tree.wide_nodes, root);
+        else collapse_root(tree.nodes, root);
         return tree;
     }
 
@@ -197,7 +203,21 @@ private:
 
     [[nodiscard]] std::uint32_t blocks(std::uint32_t n) const noexcept { return (n + block_ - 1) / block_; }
 
-    static void set_empty(bvh_node4& node) noexcept {
+    template <std::size_t W>
+    void collapse_root(std::vector<bvh_node<W>>& nodes, std::uint32_t root) {
+        nodes.reserve(binary_.size() / (W / 2) + 1);
+        nodes.emplace_back();
+        if (binary_[root].count > 0) {
+            // A single leaf: one root node with one child.
+            set_empty(nodes[0]);
+            set_child(nodes[0], 0, binary_[root].box, leaf_ref(binary_[root]));
+        } else {
+            collapse(nodes, 0, root);
+        }
+    }
+
+    template <std::size_t W>
+    static void set_empty(bvh_node<W>& node) noexcept {
         for (auto& plane : node.planes) plane.fill(0.0f);
         for (int k = 0; k < 3; ++k) {
             node.planes[std::size_t(2 * k)].fill(infinity<float>);
@@ -208,7 +228,8 @@ private:
         // the float range) then visits nothing, instead of walking back to the root.
         node.child.fill(make_leaf_ref(0, 0));
     }
-    static void set_child(bvh_node4& node, std::size_t j, const bvh_box& b, std::uint32_t ref) noexcept {
+    template <std::size_t W>
+    static void set_child(bvh_node<W>& node, std::size_t j, const bvh_box& b, std::uint32_t ref) noexcept {
         for (std::size_t k = 0; k < 3; ++k) {
             node.planes[2 * k][j] = b.lo[k];
             node.planes[2 * k + 1][j] = b.hi[k];
@@ -219,12 +240,13 @@ private:
         return make_leaf_ref(n.first, n.count);
     }
 
-    /// Fills tree.nodes[index] with up to four children gathered from the binary subtree
-    /// under `node`: the inner child of largest area is opened until there are four.
-    void collapse(bvh_tree& tree, std::size_t index, std::uint32_t node) {
-        std::array<std::uint32_t, 4> kids{binary_[node].first, binary_[node].right, 0, 0};
+    /// Fills nodes[index] with up to W children gathered from the binary subtree under
+    /// `node`: the inner child of largest area is opened until there are W.
+    template <std::size_t W>
+    void collapse(std::vector<bvh_node<W>>& nodes, std::size_t index, std::uint32_t node) {
+        std::array<std::uint32_t, W> kids{binary_[node].first, binary_[node].right};
         std::size_t n = 2;
-        while (n < 4) {
+        while (n < W) {
             int best = -1;
             float best_area = -1.0f;
             for (std::size_t j = 0; j < n; ++j) {
@@ -239,18 +261,18 @@ private:
             kids[n++] = open.right;
             kids[std::size_t(best)] = open.first;
         }
-        set_empty(tree.nodes[index]);
+        set_empty(nodes[index]);
         for (std::size_t j = 0; j < n; ++j) {
             const binary_node& c = binary_[kids[j]];
             std::uint32_t ref;
             if (c.count > 0) {
                 ref = leaf_ref(c);
             } else {
-                ref = static_cast<std::uint32_t>(tree.nodes.size());
-                tree.nodes.emplace_back();
-                collapse(tree, ref, kids[j]);
+                ref = static_cast<std::uint32_t>(nodes.size());
+                nodes.emplace_back();
+                collapse(nodes, ref, kids[j]);
             }
-            set_child(tree.nodes[index], j, c.box, ref);
+            set_child(nodes[index], j, c.box, ref);
         }
     }
 

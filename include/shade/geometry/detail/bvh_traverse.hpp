@@ -1,10 +1,13 @@
 #pragma once
 // The traversal behind shade::bvh and shade::triangle_bvh: the conservative slab test of
-// four float boxes at once, and the ordered depth-first walk. Internal: use
+// four (or eight) float boxes at once, and the ordered depth-first walk. Internal: use
 // shade/geometry/bvh.hpp.
 //
-// The four boxes are tested in one 16-byte GNU vector (g++ and clang++ compile it to SSE
-// on the x86-64 baseline, NEON on ARM); other compilers test them one at a time.
+// The four boxes of a node are tested in one 16-byte GNU vector (g++ and clang++ compile
+// it to SSE on the x86-64 baseline, NEON on ARM); other compilers test them one at a time.
+// On x86-64 with g++ or clang++, nodes of eight children are tested in one 32-byte vector
+// by a walk compiled for AVX (a function attribute, whatever the flags of the including
+// file), which a hierarchy uses only where the CPU has AVX (bvh_node_width).
 
 #include <array>
 #include <bit>
@@ -16,6 +19,7 @@
 #include <shade/core/types.hpp>
 #include <shade/geometry/aabb.hpp>
 #include <shade/geometry/detail/bvh_build.hpp>
+#include <shade/geometry/detail/cpu.hpp>
 #include <shade/geometry/ray.hpp>
 
 namespace shade::detail {
@@ -130,18 +134,19 @@ struct bvh_parallel_axis {
 /// whose scaled direction component is below bvh_min_normal is tested as in
 /// bvh_parallel_axis. This is the scalar form of bvh_ray4 (used where GNU vectors are
 /// missing).
+#if !defined(__GNUC__)
 struct bvh_float_ray {
+    using lanes = std::array<float, 4>;
     std::array<float, 3> inv;           ///< 1 / scaled direction, per axis
     std::array<float, 3> origin_near;   ///< origin, rounded against the near plane
     std::array<float, 3> origin_far;    ///< origin, rounded against the far plane
-    std::array<std::size_t, 3> near_plane; ///< index of the near plane in bvh_node4::planes
+    std::array<std::size_t, 3> near_plane; ///< index of the near plane in bvh_node<4>::planes
     float enlarge = 1.0f;               ///< factor of the far distances
     float t_min = 0.0f;                 ///< the ray's t_min, scaled and rounded down
 
     template <std::floating_point T>
-    explicit bvh_float_ray(const ray<T>& r) noexcept {
+    bvh_float_ray(const ray<T>& r, const bvh_ray_scale<T>& scale) noexcept {
         constexpr bool exact = sizeof(T) == sizeof(float);
-        const bvh_ray_scale<T> scale(r.direction);
         enlarge = 1.0f + 2.0f * rounding_gamma<float>(exact ? 3 : 4);
         t_min = scale.t_down(r.t_min);
         for (std::size_t k = 0; k < 3; ++k) {
@@ -165,30 +170,12 @@ struct bvh_float_ray {
         }
     }
 };
+#endif
 
 #if defined(__GNUC__)
 using bvh_f4 [[gnu::vector_size(16)]] = float;
 using bvh_i4 [[gnu::vector_size(16)]] = std::int32_t;
 
-[[gnu::always_inline]] inline bvh_f4 bvh_splat(float x) noexcept { return bvh_f4{x, x, x, x}; }
-/// Per lane: t where t > a, else a (a NaN t is ignored: detail::max_ignoring_nan).
-[[gnu::always_inline]] inline bvh_f4 bvh_max(const bvh_f4& t, const bvh_f4& a) noexcept {
-#if defined(__SSE__)
-    return __builtin_ia32_maxps(t, a); // maxps returns its second operand when unordered
-#else
-    const bvh_i4 m = t > a;
-    return reinterpret_cast<bvh_f4>((reinterpret_cast<bvh_i4>(t) & m) | (reinterpret_cast<bvh_i4>(a) & ~m));
-#endif
-}
-/// Per lane: t where t < a, else a (a NaN t is ignored).
-[[gnu::always_inline]] inline bvh_f4 bvh_min(const bvh_f4& t, const bvh_f4& a) noexcept {
-#if defined(__SSE__)
-    return __builtin_ia32_minps(t, a);
-#else
-    const bvh_i4 m = t < a;
-    return reinterpret_cast<bvh_f4>((reinterpret_cast<bvh_i4>(t) & m) | (reinterpret_cast<bvh_i4>(a) & ~m));
-#endif
-}
 [[gnu::always_inline]] inline unsigned bvh_bits(const bvh_i4& m) noexcept {
 #if defined(__SSE__)
     return static_cast<unsigned>(__builtin_ia32_movmskps(reinterpret_cast<bvh_f4>(m)));
@@ -209,24 +196,27 @@ using bvh_u4 [[gnu::vector_size(16)]] = std::uint32_t;
     return reinterpret_cast<bvh_f4>(b + ((1u - 2u * negative) & finite));
 }
 
-/// The values of bvh_float_ray(r) (scaled by `scale`) in the form the four-box test reads them: each per-axis
-/// value in all four lanes, and the byte offsets of the near and far planes in a
-/// bvh_node4. Computed three axes at a time without branches (the direction's signs vary
-/// from ray to ray, so a branch on them would be mispredicted); built once per ray, so
-/// the walk over the nodes only loads the boxes.
-struct bvh_ray4 {
-    std::array<bvh_f4, 3> inv;
-    std::array<bvh_f4, 3> origin_near;
-    std::array<bvh_f4, 3> origin_far;
+using bvh_f8 [[gnu::vector_size(32)]] = float;
+
+/// bvh_float_ray's values (scaled by `scale`) as the test of as many boxes as Lanes holds
+/// (bvh_f4: 4, bvh_f8: 8) reads them: each per-axis value in every lane, and the byte
+/// offsets of the near and far planes in a node. Computed without branches (the signs of
+/// the direction vary from ray to ray), once per ray.
+template <class Lanes>
+struct bvh_ray_lanes {
+    using lanes = Lanes;
+    std::array<Lanes, 3> inv;
+    std::array<Lanes, 3> origin_near;
+    std::array<Lanes, 3> origin_far;
     std::array<std::size_t, 3> near_offset; ///< byte offset of planes[near_plane[k]]
     std::array<std::size_t, 3> far_offset;  ///< byte offset of planes[near_plane[k] ^ 1]
-    bvh_f4 t_min;
-    bvh_f4 enlarge;
+    Lanes t_min;
+    Lanes enlarge;
 
     template <std::floating_point T>
-    [[gnu::always_inline]] explicit bvh_ray4(const ray<T>& r, const bvh_ray_scale<T>& scale) noexcept
-        : t_min(bvh_splat(scale.t_down(r.t_min))),
-          enlarge(bvh_splat(1.0f + 2.0f * rounding_gamma<float>(sizeof(T) == sizeof(float) ? 3 : 4))) {
+    [[gnu::always_inline]] explicit bvh_ray_lanes(const ray<T>& r, const bvh_ray_scale<T>& scale) noexcept
+        : t_min(Lanes{} + scale.t_down(r.t_min)),
+          enlarge(Lanes{} + (1.0f + 2.0f * rounding_gamma<float>(sizeof(T) == sizeof(float) ? 3 : 4))) {
         const vec3<T> d(scale.direction(r.direction.x), scale.direction(r.direction.y),
                         scale.direction(r.direction.z));
         const vec3<T>& o = r.origin;
@@ -261,42 +251,57 @@ struct bvh_ray4 {
             far3[k] = axis.origin_far;
         }
         for (std::size_t k = 0; k < 3; ++k) {
-            inv[k] = bvh_splat(inv3[k]);
-            origin_near[k] = bvh_splat(near3[k]);
-            origin_far[k] = bvh_splat(far3[k]);
+            inv[k] = Lanes{} + inv3[k];
+            origin_near[k] = Lanes{} + near3[k];
+            origin_far[k] = Lanes{} + far3[k];
             const std::size_t near_plane = 2 * k + static_cast<std::size_t>(negative[k] & 1);
-            near_offset[k] = near_plane * sizeof(std::array<float, 4>);
-            far_offset[k] = (near_plane ^ 1u) * sizeof(std::array<float, 4>);
+            near_offset[k] = near_plane * sizeof(Lanes);
+            far_offset[k] = (near_plane ^ 1u) * sizeof(Lanes);
         }
     }
 };
+using bvh_ray4 = bvh_ray_lanes<bvh_f4>;
 
-/// The four floats at byte offset `offset` of node's planes.
-[[gnu::always_inline]] inline bvh_f4 bvh_plane(const bvh_node4& node, std::size_t offset) noexcept {
-    bvh_f4 v;
-    // __builtin_memcpy (g++ and clang++ only, as is this block): no <cstring> needed.
-    __builtin_memcpy(&v, reinterpret_cast<const unsigned char*>(node.planes.data()) + offset, sizeof v);
-    return v;
-}
-
-/// The conservative slab test of r against the four boxes of node within [t_min,
-/// t_max]: bit j set where child j's box is entered; t_enter[j] is where. The three axes
-/// are written out, so that the ray's vectors stay in registers across nodes.
-[[gnu::always_inline]] inline unsigned bvh_test_boxes(const bvh_node4& node, const bvh_ray4& r,
-                                                      const bvh_f4& t_max, bvh_f4& t_enter) noexcept {
-    bvh_f4 near = bvh_max((bvh_plane(node, r.near_offset[0]) - r.origin_near[0]) * r.inv[0], r.t_min);
-    bvh_f4 far = bvh_min((bvh_plane(node, r.far_offset[0]) - r.origin_far[0]) * r.inv[0],
-                         bvh_splat(infinity<float>));
-    near = bvh_max((bvh_plane(node, r.near_offset[1]) - r.origin_near[1]) * r.inv[1], near);
-    far = bvh_min((bvh_plane(node, r.far_offset[1]) - r.origin_far[1]) * r.inv[1], far);
-    near = bvh_max((bvh_plane(node, r.near_offset[2]) - r.origin_near[2]) * r.inv[2], near);
-    far = bvh_min((bvh_plane(node, r.far_offset[2]) - r.origin_far[2]) * r.inv[2], far);
-    far = bvh_min(far * r.enlarge, t_max);
+/// The conservative slab test of r against the boxes of node (as many as Lanes holds)
+/// within [t_min, t_max]: bit j set where child j's box is entered; t_enter[j] is where.
+/// Maximum and minimum are selections that keep the second operand when the first is NaN,
+/// as maxps and minps do (and compile to), so a NaN slab distance is ignored.
+template <std::size_t W, class Lanes>
+[[gnu::always_inline]] inline unsigned bvh_test_boxes(const bvh_node<W>& node, const bvh_ray_lanes<Lanes>& r,
+                                                      float t_max, Lanes& t_enter) noexcept {
+    static_assert(sizeof(Lanes) == sizeof(node.planes[0]));
+    const auto* planes = reinterpret_cast<const unsigned char*>(node.planes.data());
+    Lanes near = r.t_min;
+    Lanes far = Lanes{} + infinity<float>;
+    for (std::size_t k = 0; k < 3; ++k) {
+        Lanes lo, hi;
+        __builtin_memcpy(&lo, planes + r.near_offset[k], sizeof lo);
+        __builtin_memcpy(&hi, planes + r.far_offset[k], sizeof hi);
+        const Lanes t_lo = (lo - r.origin_near[k]) * r.inv[k];
+        const Lanes t_hi = (hi - r.origin_far[k]) * r.inv[k];
+        near = t_lo > near ? t_lo : near;
+        far = t_hi < far ? t_hi : far;
+    }
+    far = far * r.enlarge;
+    const Lanes limit = Lanes{} + t_max;
+    far = far < limit ? far : limit;
     t_enter = near;
-    return bvh_bits(near <= far);
+    const auto entered = near <= far;
+    unsigned bits = 0;
+    for (std::size_t part = 0; part < sizeof entered / sizeof(bvh_i4); ++part) {
+        bvh_i4 four;
+        __builtin_memcpy(&four, reinterpret_cast<const unsigned char*>(&entered) + part * sizeof four, sizeof four);
+        bits |= bvh_bits(four) << (4 * part);
+    }
+    return bits;
 }
-#else
-inline unsigned bvh_test_boxes(const bvh_node4& node, const bvh_float_ray& r, float t_max,
+#endif
+
+#if !defined(__GNUC__)
+using bvh_ray4 = bvh_float_ray;
+
+/// The four-box test one box at a time, where GNU vectors are missing.
+inline unsigned bvh_test_boxes(const bvh_node<4>& node, const bvh_float_ray& r, float t_max,
                                std::array<float, 4>& t_enter) noexcept {
     unsigned bits = 0;
     for (std::size_t j = 0; j < 4; ++j) {
@@ -315,49 +320,38 @@ inline unsigned bvh_test_boxes(const bvh_node4& node, const bvh_float_ray& r, fl
 }
 #endif
 
-/// Entries of the traversal stack: a node reference and where the ray enters its box.
-/// The builder bounds the binary depth (below bvh_builder::median_depth + 27 + 1 levels,
-/// so the collapsed tree is no deeper), and each visited node pushes at most three
-/// children: 256 entries cannot overflow.
+/// Entries of the traversal stack: a node reference and where the ray enters its box. A
+/// path holds at most 76 nodes (the binary depth bound, bvh_builder::median_depth + 28),
+/// each pushing at most W - 1 entries: 228 for four children, 532 for eight.
 struct bvh_stack_entry {
     std::uint32_t ref;
     float t;
 };
-inline constexpr std::size_t bvh_stack_size = 256;
+template <std::size_t W>
+inline constexpr std::size_t bvh_stack_size = W == 4 ? 256 : 544;
 
-/// Walks the nodes whose boxes r enters, and calls leaf(first, count) for every leaf
-/// reached; stops when leaf returns true (any-hit). Ordered: nearest child first (for
-/// closest hits, where a near hit prunes the rest); otherwise in child order, which saves
-/// the sorting where any hit ends the walk.
-/// t_max is read again after each leaf (a closest-hit leaf shrinks it), which prunes
-/// the boxes and the stacked entries that start beyond it. Precondition: nodes is not
-/// empty and r is valid.
-template <bool Ordered, std::floating_point T, class Leaf>
-void bvh_traverse(const bvh_node4* nodes, const ray<T>& r, const T& t_max, Leaf&& leaf) {
+/// The walk of bvh_traverse over nodes of W children, with the ray's values in Ray
+/// (inlined into bvh_traverse, and into bvh_walk_wide, which is compiled for AVX).
+template <bool Ordered, class Ray, std::size_t W, std::floating_point T, class Leaf>
+#if defined(__GNUC__)
+[[gnu::always_inline]]
+#endif
+inline void bvh_walk(const bvh_node<W>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf) {
     // Built only for the rare rays that need scaling, so that the common case stays a few
     // inlined comparisons.
     bvh_ray_scale<T> scale;
     if (bvh_ray_scale<T>::needed(r.direction)) [[unlikely]]
         scale = bvh_ray_scale<T>(r.direction);
-#if defined(__GNUC__)
-    const bvh_ray4 fr(r, scale);
-    bvh_f4 t_enter;
-#else
-    const bvh_float_ray fr(r);
-    std::array<float, 4> t_enter;
-#endif
+    const Ray fr(r, scale);
+    typename Ray::lanes t_enter;
     float t_max_f = scale.t_up(t_max);
-    std::array<bvh_stack_entry, bvh_stack_size> stack;
+    std::array<bvh_stack_entry, bvh_stack_size<W>> stack;
     std::size_t top = 0;
     std::uint32_t ref = 0;
     for (;;) {
         while (!is_leaf_ref(ref)) {
-            const bvh_node4& node = nodes[ref];
-#if defined(__GNUC__)
-            unsigned bits = bvh_test_boxes(node, fr, bvh_splat(t_max_f), t_enter);
-#else
+            const bvh_node<W>& node = nodes[ref];
             unsigned bits = bvh_test_boxes(node, fr, t_max_f, t_enter);
-#endif
             if (bits == 0) goto pop;
             {
                 const auto i0 = static_cast<std::size_t>(std::countr_zero(bits));
@@ -376,7 +370,7 @@ void bvh_traverse(const bvh_node4* nodes, const ray<T>& r, const T& t_max, Leaf&
                     ref = node.child[go];
                     continue;
                 }
-                // Three or four: stack them all, sorted so the nearest is on top, and pop it.
+                // Three or more: stack them all, sorted so the nearest is on top, and pop it.
                 const std::size_t base = top;
                 stack[top++] = {node.child[i0], t_enter[i0]};
                 stack[top++] = {node.child[i1], t_enter[i1]};
@@ -409,5 +403,41 @@ void bvh_traverse(const bvh_node4* nodes, const ray<T>& r, const T& t_max, Leaf&
         ref = stack[top].ref;
     }
 }
+
+#if defined(__GNUC__) && defined(__x86_64__) && (defined(__AVX__) || !defined(SHADE_NO_RUNTIME_DISPATCH))
+// The eight-wide walk: x86-64 with g++ or clang++, unless SHADE_NO_RUNTIME_DISPATCH asks
+// for the build's own target and that lacks AVX.
+#define SHADE_DETAIL_BVH_WIDE 1
+/// bvh_walk over nodes of eight children, compiled for AVX; called only where the CPU runs
+/// AVX (bvh_wide_supported). AVX without FMA: the leaf tests inlined here perform the same
+/// IEEE operations as in the baseline build, so they give the same bits.
+template <bool Ordered, std::floating_point T, class Leaf>
+[[gnu::target("avx")]] void bvh_walk_wide(const bvh_node<8>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf) {
+    bvh_walk<Ordered, bvh_ray_lanes<bvh_f8>>(nodes, r, t_max, leaf);
+}
+#endif
+
+/// The children per node a build uses when `requested` (4 or 8) are asked for: 8 only
+/// where the build has the eight-wide walk and the CPU runs AVX.
+[[nodiscard]] inline std::size_t bvh_node_width([[maybe_unused]] std::size_t requested) noexcept {
+#if defined(SHADE_DETAIL_BVH_WIDE)
+    if (requested == 8 && cpu_has_avx()) return 8;
+#endif
+    return 4;
+}
+
+/// Walks the nodes of tree (of either width) whose boxes r enters, and calls leaf(first,
+/// count) for every leaf reached; stops when leaf returns true (any-hit). Ordered: nearest
+/// child first (closest hits); otherwise in child order (any-hit: no sorting). t_max is
+/// read again after each leaf (a closest-hit leaf shrinks it), which prunes the boxes and
+/// the stacked entries beyond it. Precondition: the tree has nodes and r is valid.
+template <bool Ordered, std::floating_point T, class Leaf>
+void bvh_traverse(const bvh_tree& tree, const ray<T>& r, const T& t_max, Leaf&& leaf) {
+#if defined(SHADE_DETAIL_BVH_WIDE)
+    if (!tree.wide_nodes.empty()) return bvh_walk_wide<Ordered>(tree.wide_nodes.data(), r, t_max, leaf);
+#endif
+    bvh_walk<Ordered, bvh_ray4>(tree.nodes.data(), r, t_max, leaf);
+}
+#undef SHADE_DETAIL_BVH_WIDE
 
 } // namespace shade::detail

@@ -1,27 +1,17 @@
 #pragma once
 // The triangle_batch kernel compiled for AVX (8 floats or 4 doubles per step) for the
-// run-time dispatch of x86-64 builds without -mavx, the baseline kernel it falls back to,
-// and the CPU test that chooses between them. Nothing here exists on other targets.
+// run-time dispatch of x86-64 builds without -mavx and the baseline kernel it falls back
+// to (detail/cpu.hpp chooses between them). Nothing here exists on other targets.
 
 #include <concepts>
 #include <cstddef>
 
+#include <shade/geometry/detail/cpu.hpp>
 #include <shade/geometry/detail/triangle_batch_kernel.hpp>
 #include <shade/geometry/detail/triangle_batch_vector.hpp>
 
 #if defined(__GNUC__) && defined(__x86_64__)
 namespace shade::detail {
-
-/// True when this CPU and its OS support AVX (libgcc's or compiler-rt's CPU model, which
-/// also checks that the OS saves the 256-bit registers). Detected on the first call, in a
-/// function-local static, so that including this header adds no static initialiser.
-[[nodiscard]] inline bool cpu_has_avx() noexcept {
-    static const bool has = [] {
-        __builtin_cpu_init();
-        return __builtin_cpu_supports("avx") != 0;
-    }();
-    return has;
-}
 
 /// The kernel with 32-byte steps (8 floats or 4 doubles), compiled for AVX whatever the
 /// flags of the including file: the x86-64 baseline (SSE2) holds only 4 floats per step.
