@@ -152,13 +152,17 @@ private:
     /// leaf_width) of them, the last one partly filled).
     void pack_batches() {
         std::size_t batches = 0;
-        tree_.for_each_node([&](const auto& node) {
+        const auto each_node = [this](auto&& f) {
+            for (auto& n : tree_.nodes) f(n);
+            for (auto& n : tree_.wide_nodes) f(n);
+        };
+        each_node([&](const auto& node) {
             for (const std::uint32_t ref : node.child)
                 if (detail::is_leaf_ref(ref)) batches += (detail::leaf_count(ref) + leaf_width - 1) / leaf_width;
         });
         batches_.reserve(batches);
         slot_of_lane_.reserve(batches * leaf_width);
-        tree_.for_each_node([&](auto& node) {
+        each_node([&](auto& node) {
             for (std::uint32_t& ref : node.child) {
                 if (!detail::is_leaf_ref(ref)) continue;
                 const std::uint32_t first = detail::leaf_first(ref), count = detail::leaf_count(ref);

@@ -145,13 +145,6 @@ struct bvh_tree {
     std::vector<bvh_node<8>> wide_nodes;
     std::vector<std::uint32_t> order;
     std::size_t width = 4; ///< children per node: 4 (nodes) or 8 (wide_nodes)
-
-    /// Calls f(node) for every node, of either width.
-    template <class F>
-    void for_each_node(F&& f) {
-        for (bvh_node<4>& node : nodes) f(node);
-        for (bvh_node<8>& node : wide_nodes) f(node);
-    }
 };
 
 /// Binned SAH builder (Wald 2007, "On fast Construction of SAH-based Bounding Volume

@@ -198,10 +198,19 @@ using bvh_u4 [[gnu::vector_size(16)]] = std::uint32_t;
 
 using bvh_f8 [[gnu::vector_size(32)]] = float;
 
-/// bvh_float_ray's values (scaled by `scale`) as the test of as many boxes as Lanes holds
-/// (bvh_f4: 4, bvh_f8: 8) reads them: each per-axis value in every lane, and the byte
-/// offsets of the near and far planes in a node. Computed without branches (the signs of
-/// the direction vary from ray to ray), once per ray.
+/// a = the lane-wise maximum (Max) or minimum of t and a, keeping a where t is NaN: maxps or
+/// minps for four lanes (not always formed from a selection), a selection for eight.
+template <bool Max, class Lanes>
+[[gnu::always_inline]] inline void bvh_keep(Lanes& a, const Lanes& t) noexcept {
+#if defined(__SSE__)
+    if constexpr (sizeof a == 16) a = Max ? __builtin_ia32_maxps(t, a) : __builtin_ia32_minps(t, a); else
+#endif
+    a = (Max ? t > a : t < a) ? t : a;
+}
+
+/// bvh_float_ray's values (scaled by `scale`) in every lane of Lanes (bvh_f4, bvh_f8) and
+/// the byte offsets of the near and far planes in a node, as the box test reads them;
+/// computed once per ray, without branches (the direction's signs vary from ray to ray).
 template <class Lanes>
 struct bvh_ray_lanes {
     using lanes = Lanes;
@@ -262,37 +271,32 @@ struct bvh_ray_lanes {
 };
 using bvh_ray4 = bvh_ray_lanes<bvh_f4>;
 
-/// The conservative slab test of r against the boxes of node (as many as Lanes holds)
-/// within [t_min, t_max]: bit j set where child j's box is entered; t_enter[j] is where.
-/// Maximum and minimum are selections that keep the second operand when the first is NaN,
-/// as maxps and minps do (and compile to), so a NaN slab distance is ignored.
+/// The conservative slab test of r against node's boxes (as many as Lanes holds) within
+/// [t_min, t_max]: bit j set where child j's box is entered, t_enter[j] where (bvh_keep
+/// ignores a NaN slab distance).
 template <std::size_t W, class Lanes>
 [[gnu::always_inline]] inline unsigned bvh_test_boxes(const bvh_node<W>& node, const bvh_ray_lanes<Lanes>& r,
-                                                      float t_max, Lanes& t_enter) noexcept {
+                                                      const Lanes& t_max, Lanes& t_enter) noexcept {
     static_assert(sizeof(Lanes) == sizeof(node.planes[0]));
     const auto* planes = reinterpret_cast<const unsigned char*>(node.planes.data());
     Lanes near = r.t_min;
     Lanes far = Lanes{} + infinity<float>;
-    for (std::size_t k = 0; k < 3; ++k) {
+    const auto slab = [&](std::size_t k) { // called with constants: the ray stays in registers
         Lanes lo, hi;
         __builtin_memcpy(&lo, planes + r.near_offset[k], sizeof lo);
         __builtin_memcpy(&hi, planes + r.far_offset[k], sizeof hi);
-        const Lanes t_lo = (lo - r.origin_near[k]) * r.inv[k];
-        const Lanes t_hi = (hi - r.origin_far[k]) * r.inv[k];
-        near = t_lo > near ? t_lo : near;
-        far = t_hi < far ? t_hi : far;
-    }
-    far = far * r.enlarge;
-    const Lanes limit = Lanes{} + t_max;
-    far = far < limit ? far : limit;
+        bvh_keep<true>(near, (lo - r.origin_near[k]) * r.inv[k]);
+        bvh_keep<false>(far, (hi - r.origin_far[k]) * r.inv[k]);
+    };
+    slab(0), slab(1), slab(2);
+    Lanes limit = t_max;
+    bvh_keep<false>(limit, far * r.enlarge);
     t_enter = near;
-    const auto entered = near <= far;
+    const auto entered = near <= limit;
+    bvh_i4 fours[sizeof entered / sizeof(bvh_i4)];
+    __builtin_memcpy(fours, &entered, sizeof fours);
     unsigned bits = 0;
-    for (std::size_t part = 0; part < sizeof entered / sizeof(bvh_i4); ++part) {
-        bvh_i4 four;
-        __builtin_memcpy(&four, reinterpret_cast<const unsigned char*>(&entered) + part * sizeof four, sizeof four);
-        bits |= bvh_bits(four) << (4 * part);
-    }
+    for (std::size_t i = 0; i < sizeof fours / sizeof fours[0]; ++i) bits |= bvh_bits(fours[i]) << (4 * i);
     return bits;
 }
 #endif
@@ -330,13 +334,9 @@ struct bvh_stack_entry {
 template <std::size_t W>
 inline constexpr std::size_t bvh_stack_size = W == 4 ? 256 : 544;
 
-/// The walk of bvh_traverse over nodes of W children, with the ray's values in Ray
-/// (inlined into bvh_traverse, and into bvh_walk_wide, which is compiled for AVX).
+/// bvh_traverse's walk over nodes of W children (inlined there and in bvh_walk_wide).
 template <bool Ordered, class Ray, std::size_t W, std::floating_point T, class Leaf>
-#if defined(__GNUC__)
-[[gnu::always_inline]]
-#endif
-inline void bvh_walk(const bvh_node<W>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf) {
+[[gnu::always_inline]] inline void bvh_walk(const bvh_node<W>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf) {
     // Built only for the rare rays that need scaling, so that the common case stays a few
     // inlined comparisons.
     bvh_ray_scale<T> scale;
@@ -345,13 +345,14 @@ inline void bvh_walk(const bvh_node<W>* nodes, const ray<T>& r, const T& t_max, 
     const Ray fr(r, scale);
     typename Ray::lanes t_enter;
     float t_max_f = scale.t_up(t_max);
+    typename Ray::lanes t_max_lanes = typename Ray::lanes{} + t_max_f;
     std::array<bvh_stack_entry, bvh_stack_size<W>> stack;
     std::size_t top = 0;
     std::uint32_t ref = 0;
     for (;;) {
         while (!is_leaf_ref(ref)) {
             const bvh_node<W>& node = nodes[ref];
-            unsigned bits = bvh_test_boxes(node, fr, t_max_f, t_enter);
+            unsigned bits = bvh_test_boxes(node, fr, t_max_lanes, t_enter);
             if (bits == 0) goto pop;
             {
                 const auto i0 = static_cast<std::size_t>(std::countr_zero(bits));
@@ -396,6 +397,7 @@ inline void bvh_walk(const bvh_node<W>* nodes, const ray<T>& r, const T& t_max, 
         }
         if (leaf(leaf_first(ref), leaf_count(ref))) return;
         t_max_f = scale.t_up(t_max);
+        t_max_lanes = typename Ray::lanes{} + t_max_f;
         do {
             if (top == 0) return;
             --top;
@@ -405,20 +407,16 @@ inline void bvh_walk(const bvh_node<W>* nodes, const ray<T>& r, const T& t_max, 
 }
 
 #if defined(__GNUC__) && defined(__x86_64__) && (defined(__AVX__) || !defined(SHADE_NO_RUNTIME_DISPATCH))
-// The eight-wide walk: x86-64 with g++ or clang++, unless SHADE_NO_RUNTIME_DISPATCH asks
-// for the build's own target and that lacks AVX.
-#define SHADE_DETAIL_BVH_WIDE 1
-/// bvh_walk over nodes of eight children, compiled for AVX; called only where the CPU runs
-/// AVX (bvh_wide_supported). AVX without FMA: the leaf tests inlined here perform the same
-/// IEEE operations as in the baseline build, so they give the same bits.
+#define SHADE_DETAIL_BVH_WIDE 1 // this build has the eight-wide walk (undefined at the end)
+/// bvh_walk over nodes of eight, compiled for AVX (without FMA: leaf tests inlined here
+/// give the baseline build's bits); used only where the CPU has AVX (bvh_node_width).
 template <bool Ordered, std::floating_point T, class Leaf>
 [[gnu::target("avx")]] void bvh_walk_wide(const bvh_node<8>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf) {
     bvh_walk<Ordered, bvh_ray_lanes<bvh_f8>>(nodes, r, t_max, leaf);
 }
 #endif
 
-/// The children per node a build uses when `requested` (4 or 8) are asked for: 8 only
-/// where the build has the eight-wide walk and the CPU runs AVX.
+/// The children per node (4 or 8) a build uses when `requested` are asked for.
 [[nodiscard]] inline std::size_t bvh_node_width([[maybe_unused]] std::size_t requested) noexcept {
 #if defined(SHADE_DETAIL_BVH_WIDE)
     if (requested == 8 && cpu_has_avx()) return 8;
