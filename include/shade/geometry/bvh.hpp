@@ -84,10 +84,9 @@ template <std::floating_point T>
 }
 
 /// Children per node of a hierarchy (bvh, primitive_bvh, triangle_bvh). `eight` gives
-/// eight where the build can test them with AVX (x86-64 with g++ or clang++: chosen at run
+/// eight, tested with AVX, where the build can (x86-64 with g++ or clang++: chosen at run
 /// time, or built with -mavx) and the CPU has AVX, else four (node_width() says which);
-/// `automatic` is `eight`. Eight take a third fewer levels and are tested with one AVX
-/// instruction per plane, four with SSE (or NEON). Every width finds the same hits.
+/// `automatic` is `eight`. The width changes the speed only, never the hits found.
 enum class bvh_width { automatic, four, eight };
 
 /// The nearest hit found by a hierarchy: the primitive's index (its position in the
