@@ -5,7 +5,7 @@
 // Usage:
 //     shade::aabb<float> box;                        // empty
 //     box.grow(p); box.grow(other_box);              // points and boxes
-//     // shade::bounds(triangle) and bounds(sphere): shade/geometry/bvh.hpp
+//     // shade::bounds(triangle), bounds(sphere): with the triangle and the sphere
 //     if (auto span = shade::intersect(r, box))      // where r is inside the box
 //         use(span->t_enter, span->t_exit);
 //

@@ -61,42 +61,6 @@
 
 namespace shade {
 
-/// The bounds of a triangle: the smallest box holding its three vertices.
-template <std::floating_point T>
-[[nodiscard]] aabb<T> bounds(const triangle<T>& tri) noexcept {
-    return aabb<T>{glm::min(tri.v0, glm::min(tri.v1, tri.v2)),
-                   glm::max(tri.v0, glm::max(tri.v1, tri.v2))};
-}
-
-/// The bounds of a sphere: center ± radius on every axis, each rounded outward (one step
-/// toward infinity), so the box holds the exact sphere although c ± r is rounded.
-template <std::floating_point T>
-[[nodiscard]] aabb<T> bounds(const sphere<T>& s) noexcept {
-    const vec3<T> r(s.radius());
-    const vec3<T> lo = s.center() - r;
-    const vec3<T> hi = s.center() + r;
-    aabb<T> box;
-    for (int k = 0; k < 3; ++k) {
-        box.lo[k] = std::nextafter(lo[k], -infinity<T>);
-        box.hi[k] = std::nextafter(hi[k], infinity<T>);
-    }
-    return box;
-}
-
-/// Children per node of a hierarchy (bvh, primitive_bvh, triangle_bvh). `eight` gives
-/// eight, tested with AVX, where the build can (x86-64 with g++ or clang++: chosen at run
-/// time, or built with -mavx) and the CPU has AVX, else four (node_width() says which);
-/// `automatic` is `eight`. The width changes the speed only, never the hits found.
-enum class bvh_width { automatic, four, eight };
-
-/// The nearest hit found by a hierarchy: the primitive's index (its position in the
-/// span the hierarchy was built from) and the primitive test's record.
-template <class H>
-struct primitive_hit {
-    std::uint32_t primitive = 0; ///< index of the primitive hit
-    H hit{};                     ///< what the primitive test returned (t, and so on)
-};
-
 namespace detail {
 
 /// Throws invalid_parameter naming `parameter` unless every coordinate of box is finite

@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <concepts>
+#include <cstdint>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -75,6 +76,15 @@ template <std::floating_point T>
 [[nodiscard]] surface_point<T> surface_at(const hit<T>& h) noexcept {
     return surface_point<T>::at(h.p, h.facing_normal(), h.dpdu, h.uv);
 }
+
+/// The nearest hit found by a hierarchy (shade::bvh, primitive_bvh, triangle_bvh): the
+/// primitive's index (its position in the span the hierarchy was built from) and the
+/// primitive test's record.
+template <class H>
+struct primitive_hit {
+    std::uint32_t primitive = 0; ///< index of the primitive hit
+    H hit{};                     ///< what the primitive test returned (t, and so on)
+};
 
 namespace detail {
 

@@ -12,6 +12,7 @@
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
+#include <shade/geometry/aabb.hpp>
 #include <shade/geometry/hit.hpp>
 #include <shade/geometry/ray.hpp>
 
@@ -190,6 +191,21 @@ template <std::floating_point T>
     std::optional<hit<T>> out = find_intersection(r, s);
     if (out) *out = make_hit(s, *out);
     return out;
+}
+
+/// The bounds of a sphere: center ± radius on every axis, each rounded outward (one step
+/// toward infinity), so the box holds the exact sphere although c ± r is rounded.
+template <std::floating_point T>
+[[nodiscard]] aabb<T> bounds(const sphere<T>& s) noexcept {
+    const vec3<T> r(s.radius());
+    const vec3<T> lo = s.center() - r;
+    const vec3<T> hi = s.center() + r;
+    aabb<T> box;
+    for (int k = 0; k < 3; ++k) {
+        box.lo[k] = std::nextafter(lo[k], -infinity<T>);
+        box.hi[k] = std::nextafter(hi[k], infinity<T>);
+    }
+    return box;
 }
 
 } // namespace shade

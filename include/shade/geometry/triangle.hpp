@@ -47,6 +47,7 @@
 
 #include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
+#include <shade/geometry/aabb.hpp>
 #include <shade/geometry/hit.hpp>
 #include <shade/geometry/ray.hpp>
 
@@ -525,6 +526,13 @@ template <class Algorithm = moller_trumbore, std::floating_point T>
     const std::optional<triangle_intersection<T>> x = Algorithm::find(r, tri, cull);
     if (!x) return std::nullopt;
     return make_hit(tri, *x);
+}
+
+/// The bounds of a triangle: the smallest box holding its three vertices.
+template <std::floating_point T>
+[[nodiscard]] aabb<T> bounds(const triangle<T>& tri) noexcept {
+    return aabb<T>{glm::min(tri.v0, glm::min(tri.v1, tri.v2)),
+                   glm::max(tri.v0, glm::max(tri.v1, tri.v2))};
 }
 
 } // namespace shade

@@ -18,6 +18,7 @@
 // o + t d of that hit lies in its triangle's bounding box, as shade/geometry/bvh.hpp
 // states (a Möller-Trumbore hit reported by rounding just off an edge may lie outside).
 
+#include <array>
 #include <concepts>
 #include <cstdint>
 #include <optional>
@@ -29,7 +30,6 @@
 #include <shade/core/error.hpp>
 #include <shade/core/types.hpp>
 #include <shade/geometry/aabb.hpp>
-#include <shade/geometry/bvh.hpp>
 #include <shade/geometry/detail/bvh_build.hpp>
 #include <shade/geometry/detail/bvh_traverse.hpp>
 #include <shade/geometry/hit.hpp>
@@ -49,11 +49,12 @@ public:
     using scalar_type = T;
     /// True when the leaves are tested with shade::triangle_batch.
     static constexpr bool batched = std::is_same_v<Algorithm, moller_trumbore>;
-    /// Triangles per batch test in a leaf (1 for the scalar algorithms).
-    static constexpr std::size_t leaf_width = batched ? 4 : 1;
+    /// Triangles per batch test in a leaf: 32 bytes of each coordinate, one AVX step (8
+    /// floats or 4 doubles; 1 for the scalar algorithms).
+    static constexpr std::size_t leaf_width = batched ? 32 / sizeof(T) : 1;
 
 private:
-    static constexpr std::size_t batch_width = 4;
+    static constexpr std::size_t batch_width = 32 / sizeof(T);
 
 public:
 
@@ -77,12 +78,16 @@ public:
             refs.push_back(detail::make_prim_ref(bounds(tri), static_cast<std::uint32_t>(i)));
         }
         constexpr auto leaves = static_cast<std::uint32_t>(leaf_width);
-        tree_ = detail::bvh_builder(batched ? 2 * leaves : 4, leaves)
+        tree_ = detail::bvh_builder(batched ? 8 : 4, leaves)
                     .build(refs, detail::bvh_node_width(width == bvh_width::four ? 4 : 8));
+        size_ = triangles.size();
         ids_ = std::move(tree_.order);
-        triangles_.reserve(ids_.size());
-        for (const std::uint32_t id : ids_) triangles_.push_back(triangles[id]);
-        if constexpr (batched) pack_batches();
+        if constexpr (batched) {
+            pack_batches(triangles);
+        } else {
+            triangles_.reserve(ids_.size());
+            for (const std::uint32_t id : ids_) triangles_.push_back(triangles[id]);
+        }
     }
 
     /// The nearest hit of r (double-sided unless cull is culling::back_faces): the index
@@ -90,13 +95,13 @@ public:
     /// front_face, barycentrics), or nothing.
     [[nodiscard]] std::optional<primitive_hit<triangle_hit<T>>> closest(ray<T> r,
                                                                        culling cull = culling::none) const {
-        if (ids_.empty() || !r.valid()) return std::nullopt;
+        if (size_ == 0 || !r.valid()) return std::nullopt;
         std::uint32_t best = no_hit;
         triangle_intersection<T> x;
         detail::bvh_traverse<true>(tree_, r, r.t_max, [&](std::uint32_t first, std::uint32_t count) {
             if constexpr (batched) {
                 for (std::uint32_t b = first; b < first + count; ++b) {
-                    const auto hits = intersect(r, batches_[b], cull);
+                    const auto hits = intersect(r, leaves_[b].batch, cull);
                     if (hits.hit_bits == 0) continue;
                     const std::size_t lane = *hits.closest(); // every hit has t <= r.t_max
                     r.t_max = hits.t[lane];
@@ -117,18 +122,25 @@ public:
             return false;
         });
         if (best == no_hit) return std::nullopt;
-        const std::uint32_t slot = batched ? slot_of_lane_[best] : best;
-        return primitive_hit<triangle_hit<T>>{ids_[slot], make_hit(triangles_[slot], x)};
+        if constexpr (batched) {
+            const leaf_batch& b = leaves_[best / leaf_width];
+            const std::size_t lane = best % leaf_width;
+            const auto& v0 = detail::batch_access<T, batch_width>::v0(b.batch);
+            const triangle<T> tri{vec3<T>(v0.x[lane], v0.y[lane], v0.z[lane]), b.lane[lane].v1, b.lane[lane].v2};
+            return primitive_hit<triangle_hit<T>>{b.lane[lane].id, make_hit(tri, x)};
+        } else {
+            return primitive_hit<triangle_hit<T>>{ids_[best], make_hit(triangles_[best], x)};
+        }
     }
 
     /// True when r hits some triangle within [t_min, t_max] (for shadow rays).
     [[nodiscard]] bool any(const ray<T>& r, culling cull = culling::none) const {
-        if (ids_.empty() || !r.valid()) return false;
+        if (size_ == 0 || !r.valid()) return false;
         bool found = false;
         detail::bvh_traverse<false>(tree_, r, r.t_max, [&](std::uint32_t first, std::uint32_t count) {
             if constexpr (batched) {
                 for (std::uint32_t b = first; b < first + count; ++b)
-                    if (intersect(r, batches_[b], cull).hit_bits != 0) return found = true;
+                    if (intersect(r, leaves_[b].batch, cull).hit_bits != 0) return found = true;
             } else {
                 for (std::uint32_t i = first; i < first + count; ++i)
                     if (Algorithm::find(r, triangles_[i], cull)) return found = true;
@@ -139,7 +151,7 @@ public:
     }
 
     /// Number of triangles.
-    [[nodiscard]] std::size_t size() const noexcept { return triangles_.size(); }
+    [[nodiscard]] std::size_t size() const noexcept { return size_; }
     /// Number of nodes (of up to node_width() children each).
     [[nodiscard]] std::size_t node_count() const noexcept { return tree_.nodes.size() + tree_.wide_nodes.size(); }
     /// Children per node: 4 or 8 (see shade::bvh_width).
@@ -148,41 +160,60 @@ public:
 private:
     static constexpr std::uint32_t no_hit = ~std::uint32_t(0);
 
-    /// Replaces every leaf's range of triangles by its range of batches (ceil(count /
-    /// leaf_width) of them, the last one partly filled).
-    void pack_batches() {
-        std::size_t batches = 0;
+    /// One batch test of a leaf and, next to it, what a hit on it needs besides the batch's
+    /// own v0: each lane's other two vertices and its triangle's index in the list given
+    /// (a partly filled batch repeats its last triangle). A closest hit then reads a line
+    /// of the block whose batch it has just tested, not a lookup in separate arrays.
+    struct lane_record {
+        vec3<T> v1, v2;   // v0 is in the batch, exactly as given
+        std::uint32_t id; // index in the list given
+    };
+    struct leaf_batch {
+        triangle_batch<T, batch_width> batch;
+        std::array<lane_record, batch_width> lane;
+    };
+
+    /// Replaces every leaf's range of triangles (in ids_ order) by its range of leaf_batch
+    /// blocks (ceil(count / leaf_width) of them, the last one partly filled).
+    void pack_batches(std::span<const triangle<T>> triangles) {
+        std::size_t blocks = 0;
         const auto each_node = [this](auto&& f) {
             for (auto& n : tree_.nodes) f(n);
             for (auto& n : tree_.wide_nodes) f(n);
         };
         each_node([&](const auto& node) {
             for (const std::uint32_t ref : node.child)
-                if (detail::is_leaf_ref(ref)) batches += (detail::leaf_count(ref) + leaf_width - 1) / leaf_width;
+                if (detail::is_leaf_ref(ref)) blocks += (detail::leaf_count(ref) + leaf_width - 1) / leaf_width;
         });
-        batches_.reserve(batches);
-        slot_of_lane_.reserve(batches * leaf_width);
+        leaves_.reserve(blocks);
         each_node([&](auto& node) {
             for (std::uint32_t& ref : node.child) {
                 if (!detail::is_leaf_ref(ref)) continue;
                 const std::uint32_t first = detail::leaf_first(ref), count = detail::leaf_count(ref);
-                const auto batch_first = static_cast<std::uint32_t>(batches_.size());
+                const auto block_first = static_cast<std::uint32_t>(leaves_.size());
                 for (std::uint32_t i = first; i < first + count; i += leaf_width) {
                     const std::uint32_t left = first + count - i;
                     const std::uint32_t n = left < leaf_width ? left : std::uint32_t(leaf_width);
-                    batches_.emplace_back(std::span<const triangle<T>>(triangles_.data() + i, n));
-                    for (std::uint32_t j = 0; j < leaf_width; ++j) slot_of_lane_.push_back(i + (j < n - 1 ? j : n - 1));
+                    leaf_batch& b = leaves_.emplace_back();
+                    std::array<triangle<T>, batch_width> tri;
+                    for (std::uint32_t j = 0; j < leaf_width; ++j) {
+                        const std::uint32_t id = ids_[i + (j < n ? j : n - 1)];
+                        tri[j] = triangles[id];
+                        b.lane[j] = {tri[j].v1, tri[j].v2, id};
+                    }
+                    b.batch = triangle_batch<T, batch_width>(std::span<const triangle<T>>(tri.data(), n));
                 }
-                ref = detail::make_leaf_ref(batch_first, static_cast<std::uint32_t>(batches_.size()) - batch_first);
+                ref = detail::make_leaf_ref(block_first, static_cast<std::uint32_t>(leaves_.size()) - block_first);
             }
         });
+        ids_ = {};
     }
 
-    detail::bvh_tree tree_;                              // the nodes (its order is moved to ids_)
-    std::vector<triangle_batch<T, batch_width>> batches_; // batched only: the leaves' tests
-    std::vector<std::uint32_t> slot_of_lane_;            // batched only: lane -> triangles_ index
-    std::vector<triangle<T>> triangles_;                 // in leaf order
-    std::vector<std::uint32_t> ids_;                     // leaf order -> index given
+    detail::bvh_tree tree_;             // the nodes (its order is moved to ids_)
+    std::vector<leaf_batch> leaves_;    // batched only: the leaves' tests and hit data
+    std::vector<triangle<T>> triangles_; // not batched: in leaf order
+    std::vector<std::uint32_t> ids_;     // not batched: leaf order -> index given
+    std::size_t size_ = 0;
 };
 
 } // namespace shade

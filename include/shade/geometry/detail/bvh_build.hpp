@@ -20,6 +20,16 @@
 #include <shade/core/types.hpp>
 #include <shade/geometry/aabb.hpp>
 
+namespace shade {
+
+/// Children per node of a hierarchy (bvh, primitive_bvh, triangle_bvh). `eight` gives
+/// eight, tested with AVX, where the build can (x86-64 with g++ or clang++: chosen at run
+/// time, or built with -mavx) and the CPU has AVX, else four (node_width() says which);
+/// `automatic` is `eight`. The width changes the speed only, never the hits found.
+enum class bvh_width { automatic, four, eight };
+
+} // namespace shade
+
 namespace shade::detail {
 
 /// The next float above f (toward +infinity), or f itself when f is +infinity; f not NaN.

@@ -197,6 +197,13 @@ using bvh_u4 [[gnu::vector_size(16)]] = std::uint32_t;
 }
 
 using bvh_f8 [[gnu::vector_size(32)]] = float;
+#if defined(__x86_64__)
+using bvh_i8 [[gnu::vector_size(32)]] = std::int32_t;
+/// bvh_bits for eight lanes, in the AVX walk.
+[[gnu::target("avx")]] inline unsigned bvh_bits8(const bvh_i8& m) noexcept {
+    return static_cast<unsigned>(__builtin_ia32_movmskps256(reinterpret_cast<bvh_f8>(m)));
+}
+#endif
 
 /// a = the lane-wise maximum (Max) or minimum of t and a, keeping a where t is NaN: maxps or
 /// minps for four lanes (not always formed from a selection), a selection for eight.
@@ -226,14 +233,18 @@ struct bvh_ray_lanes {
     [[gnu::always_inline]] explicit bvh_ray_lanes(const ray<T>& r, const bvh_ray_scale<T>& scale) noexcept
         : t_min(Lanes{} + scale.t_down(r.t_min)),
           enlarge(Lanes{} + (1.0f + 2.0f * rounding_gamma<float>(sizeof(T) == sizeof(float) ? 3 : 4))) {
-        const vec3<T> d(scale.direction(r.direction.x), scale.direction(r.direction.y),
-                        scale.direction(r.direction.z));
+        const vec3<T> d = !scale.scaled ? r.direction
+                                        : vec3<T>(scale.direction(r.direction.x), scale.direction(r.direction.y),
+                                                  scale.direction(r.direction.z));
         const vec3<T>& o = r.origin;
-        bvh_f4 inv3{static_cast<float>(T(1) / d.x), static_cast<float>(T(1) / d.y),
-                    static_cast<float>(T(1) / d.z), 0.0f};
+        const bvh_f4 d3{static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z), 1.0f};
+        // 1 / d per axis, rounded to float (for a float ray, one division of the four lanes).
+        bvh_f4 inv3 = 1.0f / d3;
+        if constexpr (sizeof(T) != sizeof(float))
+            inv3 = bvh_f4{static_cast<float>(T(1) / d.x), static_cast<float>(T(1) / d.y),
+                          static_cast<float>(T(1) / d.z), 1.0f};
         // All ones where the direction's sign bit is set (rounding to float keeps the
         // sign, also of a zero or of a component that underflows).
-        const bvh_f4 d3{static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z), 0.0f};
         bvh_i4 negative = reinterpret_cast<bvh_i4>(d3) >> 31;
         const bvh_f4 o3{static_cast<float>(o.x), static_cast<float>(o.y), static_cast<float>(o.z), 0.0f};
         bvh_f4 up = o3;
@@ -271,6 +282,17 @@ struct bvh_ray_lanes {
 };
 using bvh_ray4 = bvh_ray_lanes<bvh_f4>;
 
+/// bvh_ray_scale<T>::needed(d), for a float direction in one comparison of three lanes.
+template <std::floating_point T>
+[[gnu::always_inline]] inline bool bvh_scale_needed(const vec3<T>& d) noexcept {
+    if constexpr (sizeof(T) != sizeof(float)) {
+        return bvh_ray_scale<T>::needed(d);
+    } else {
+        const auto a = reinterpret_cast<bvh_f4>(reinterpret_cast<bvh_i4>(bvh_f4{d.x, d.y, d.z, 0.0f}) & 0x7fff'ffff);
+        return bvh_bits((a == 0.0f) | ((a >= 0x1p-125f) & (a <= 0x1p+125f))) != 0xfu;
+    }
+}
+
 /// The conservative slab test of r against node's boxes (as many as Lanes holds) within
 /// [t_min, t_max]: bit j set where child j's box is entered, t_enter[j] where (bvh_keep
 /// ignores a NaN slab distance).
@@ -293,16 +315,20 @@ template <std::size_t W, class Lanes>
     bvh_keep<false>(limit, far * r.enlarge);
     t_enter = near;
     const auto entered = near <= limit;
-    bvh_i4 fours[sizeof entered / sizeof(bvh_i4)];
-    __builtin_memcpy(fours, &entered, sizeof fours);
-    unsigned bits = 0;
-    for (std::size_t i = 0; i < sizeof fours / sizeof fours[0]; ++i) bits |= bvh_bits(fours[i]) << (4 * i);
-    return bits;
+#if defined(__x86_64__)
+    if constexpr (sizeof entered == 32) return bvh_bits8(entered); else
+#endif
+    return bvh_bits(entered);
 }
 #endif
 
 #if !defined(__GNUC__)
 using bvh_ray4 = bvh_float_ray;
+
+template <std::floating_point T>
+inline bool bvh_scale_needed(const vec3<T>& d) noexcept {
+    return bvh_ray_scale<T>::needed(d);
+}
 
 /// The four-box test one box at a time, where GNU vectors are missing.
 inline unsigned bvh_test_boxes(const bvh_node<4>& node, const bvh_float_ray& r, float t_max,
@@ -340,7 +366,7 @@ template <bool Ordered, class Ray, std::size_t W, std::floating_point T, class L
     // Built only for the rare rays that need scaling, so that the common case stays a few
     // inlined comparisons.
     bvh_ray_scale<T> scale;
-    if (bvh_ray_scale<T>::needed(r.direction)) [[unlikely]]
+    if (bvh_scale_needed(r.direction)) [[unlikely]]
         scale = bvh_ray_scale<T>(r.direction);
     const Ray fr(r, scale);
     typename Ray::lanes t_enter;
@@ -352,6 +378,9 @@ template <bool Ordered, class Ray, std::size_t W, std::floating_point T, class L
     for (;;) {
         while (!is_leaf_ref(ref)) {
             const bvh_node<W>& node = nodes[ref];
+            // The child references are in the node's last cache line, read only after the
+            // box test: request it with the planes.
+            __builtin_prefetch(node.child.data());
             unsigned bits = bvh_test_boxes(node, fr, t_max_lanes, t_enter);
             if (bits == 0) goto pop;
             {
