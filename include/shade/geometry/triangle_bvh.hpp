@@ -109,6 +109,8 @@ public:
                                                  vec3<T>(hits.b0[lane], hits.b1[lane], hits.b2[lane]),
                                                  hits.front_face(lane)};
                     best = static_cast<std::uint32_t>(b * leaf_width + lane);
+                    // Read when the walk ends (the hit record): fetch it during the rest.
+                    detail::bvh_prefetch(&leaves_[b].lane[lane]);
                 }
             } else {
                 for (std::uint32_t i = first; i < first + count; ++i) {

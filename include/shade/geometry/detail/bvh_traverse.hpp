@@ -203,6 +203,11 @@ using bvh_i8 [[gnu::vector_size(32)]] = std::int32_t;
 [[gnu::target("avx")]] inline unsigned bvh_bits8(const bvh_i8& m) noexcept {
     return static_cast<unsigned>(__builtin_ia32_movmskps256(reinterpret_cast<bvh_f8>(m)));
 }
+/// out = x in all eight lanes (vbroadcastss from memory: without AVX2 there is none from
+/// a register, and Lanes{} + x also adds, to turn -0 into +0).
+[[gnu::target("avx")]] inline void bvh_broadcast8(bvh_f8& out, const float& x) noexcept {
+    out = bvh_f8{x, x, x, x, x, x, x, x};
+}
 #endif
 
 /// a = the lane-wise maximum (Max) or minimum of t and a, keeping a where t is NaN: maxps or
@@ -271,9 +276,19 @@ struct bvh_ray_lanes {
             far3[k] = axis.origin_far;
         }
         for (std::size_t k = 0; k < 3; ++k) {
-            inv[k] = Lanes{} + inv3[k];
-            origin_near[k] = Lanes{} + near3[k];
-            origin_far[k] = Lanes{} + far3[k];
+#if defined(__x86_64__)
+            if constexpr (sizeof(Lanes) == 32) {
+                const std::array<float, 3> values{inv3[k], near3[k], far3[k]};
+                bvh_broadcast8(inv[k], values[0]);
+                bvh_broadcast8(origin_near[k], values[1]);
+                bvh_broadcast8(origin_far[k], values[2]);
+            } else
+#endif
+            {
+                inv[k] = Lanes{} + inv3[k];
+                origin_near[k] = Lanes{} + near3[k];
+                origin_far[k] = Lanes{} + far3[k];
+            }
             const std::size_t near_plane = 2 * k + static_cast<std::size_t>(negative[k] & 1);
             near_offset[k] = near_plane * sizeof(Lanes);
             far_offset[k] = (near_plane ^ 1u) * sizeof(Lanes);
@@ -350,6 +365,13 @@ inline unsigned bvh_test_boxes(const bvh_node<4>& node, const bvh_float_ray& r, 
 }
 #endif
 
+/// Asks for the cache line holding p ahead of its use (nothing where there is no builtin).
+inline void bvh_prefetch([[maybe_unused]] const void* p) noexcept {
+#if defined(__GNUC__)
+    __builtin_prefetch(p);
+#endif
+}
+
 /// Entries of the traversal stack: a node reference and where the ray enters its box. A
 /// path holds at most 76 nodes (the binary depth bound, bvh_builder::median_depth + 28),
 /// each pushing at most W - 1 entries: 228 for four children, 532 for eight.
@@ -380,7 +402,7 @@ template <bool Ordered, class Ray, std::size_t W, std::floating_point T, class L
             const bvh_node<W>& node = nodes[ref];
             // The child references are in the node's last cache line, read only after the
             // box test: request it with the planes.
-            __builtin_prefetch(node.child.data());
+            bvh_prefetch(node.child.data());
             unsigned bits = bvh_test_boxes(node, fr, t_max_lanes, t_enter);
             if (bits == 0) goto pop;
             {
@@ -445,6 +467,12 @@ template <bool Ordered, std::floating_point T, class Leaf>
 }
 #endif
 
+/// bvh_walk over nodes of four, as a function of its own (bvh_traverse is only the choice).
+template <bool Ordered, std::floating_point T, class Leaf>
+void bvh_walk_four(const bvh_node<4>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf) {
+    bvh_walk<Ordered, bvh_ray4>(nodes, r, t_max, leaf);
+}
+
 /// The children per node (4 or 8) a build uses when `requested` are asked for.
 [[nodiscard]] inline std::size_t bvh_node_width([[maybe_unused]] std::size_t requested) noexcept {
 #if defined(SHADE_DETAIL_BVH_WIDE)
@@ -459,11 +487,11 @@ template <bool Ordered, std::floating_point T, class Leaf>
 /// read again after each leaf (a closest-hit leaf shrinks it), which prunes the boxes and
 /// the stacked entries beyond it. Precondition: the tree has nodes and r is valid.
 template <bool Ordered, std::floating_point T, class Leaf>
-void bvh_traverse(const bvh_tree& tree, const ray<T>& r, const T& t_max, Leaf&& leaf) {
+[[gnu::always_inline]] inline void bvh_traverse(const bvh_tree& tree, const ray<T>& r, const T& t_max, Leaf&& leaf) {
 #if defined(SHADE_DETAIL_BVH_WIDE)
     if (!tree.wide_nodes.empty()) return bvh_walk_wide<Ordered>(tree.wide_nodes.data(), r, t_max, leaf);
 #endif
-    bvh_walk<Ordered, bvh_ray4>(tree.nodes.data(), r, t_max, leaf);
+    bvh_walk_four<Ordered>(tree.nodes.data(), r, t_max, leaf);
 }
 #undef SHADE_DETAIL_BVH_WIDE
 
