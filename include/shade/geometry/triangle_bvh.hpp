@@ -101,6 +101,10 @@ public:
         detail::bvh_traverse<true>(tree_, r, r.t_max, [&](std::uint32_t first, std::uint32_t count) {
             if constexpr (batched) {
                 for (std::uint32_t b = first; b < first + count; ++b) {
+                    // The hit record's lines, fetched with the batch's (the lane is not
+                    // known yet): one latency for both in a hierarchy beyond the caches.
+                    for (std::size_t q = 0; q < sizeof leaves_[b].lane; q += 64)
+                        detail::bvh_prefetch(reinterpret_cast<const char*>(leaves_[b].lane.data()) + q);
                     const auto hits = intersect(r, leaves_[b].batch, cull);
                     if (hits.hit_bits == 0) continue;
                     const std::size_t lane = *hits.closest(); // every hit has t <= r.t_max
@@ -109,8 +113,6 @@ public:
                                                  vec3<T>(hits.b0[lane], hits.b1[lane], hits.b2[lane]),
                                                  hits.front_face(lane)};
                     best = static_cast<std::uint32_t>(b * leaf_width + lane);
-                    // Read when the walk ends (the hit record): fetch it during the rest.
-                    detail::bvh_prefetch(&leaves_[b].lane[lane]);
                 }
             } else {
                 for (std::uint32_t i = first; i < first + count; ++i) {
@@ -170,7 +172,7 @@ private:
         vec3<T> v1, v2;   // v0 is in the batch, exactly as given
         std::uint32_t id; // index in the list given
     };
-    struct leaf_batch {
+    struct alignas(64) leaf_batch { // the batch's arrays start a cache line
         triangle_batch<T, batch_width> batch;
         std::array<lane_record, batch_width> lane;
     };
