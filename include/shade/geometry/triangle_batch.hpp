@@ -66,7 +66,8 @@ namespace shade {
 /// e2 = v2 - v0 and m = a × e2, 12 N scalars (48 bytes per triangle in float, 96 in
 /// double) and the count. The vertices v1 and v2, which only a full hit record needs, are
 /// not copied: the caller keeps its triangles and passes them to intersect_closest (so an
-/// array of batches, such as the leaves of shade::triangle_bvh, streams nothing else).
+/// array of batches streams nothing else; shade::triangle_bvh keeps them beside each of
+/// its leaf batches, read only for the hit it returns).
 /// The class is over-aligned (up to 64 bytes, see detail::batch_array_alignment) so that
 /// the kernel's vector loads stay within cache lines; std::vector and new handle that
 /// since C++17.
