@@ -399,3 +399,37 @@ TEST_CASE("bvh_width: eight children where AVX is available, four when asked") {
     const std::vector<shade::sphere<double>> one{shade::sphere<double>({0.0, 0.0, 0.0}, 1.0)};
     CHECK(shade::primitive_bvh<shade::sphere<double>>(one, shade::bvh_width::eight).node_width() == expected);
 }
+
+// The collapse into wide nodes fills the levels next to the leaves. Boxes on a grid of
+// 4 x 8 x 8 cells, one per leaf, give a perfect binary tree of depth 8 (every split halves
+// the longest side of cells: the heuristic's cost is symmetric and convex in the split
+// position). 256 leaves need at least ceil(255 / 7) = 37 nodes of eight (each node adds
+// at most 7 children to the one it takes), which the tree of root with 4 children, 4 of 8
+// and 32 of 8 reaches; opening children from the top down instead gives 1 + 8 + 64 = 73
+// (nodes of 8, 8 and 4). 2 x 8 x 8 cells in nodes of four: at least ceil(127 / 3) = 43.
+TEST_CASE("bvh collapse: a perfect binary tree fills its wide nodes from the leaves up") {
+    const auto grid = [](int nx) {
+        std::vector<shade::detail::bvh_prim_ref> refs;
+        for (int x = 0; x < nx; ++x)
+            for (int y = 0; y < 8; ++y)
+                for (int z = 0; z < 8; ++z) {
+                    const v3<float> lo{float(x), float(y), float(z)};
+                    refs.push_back(shade::detail::make_prim_ref(shade::aabb<float>{lo, lo + v3<float>(0.5f)},
+                                                                static_cast<std::uint32_t>(refs.size())));
+                }
+        return refs;
+    };
+    auto refs8 = grid(4);
+    const auto wide = shade::detail::bvh_builder(1, 1).build(refs8, 8);
+    CHECK(wide.wide_nodes.size() == 37);
+    auto refs4 = grid(2);
+    const auto four = shade::detail::bvh_builder(1, 1).build(refs4, 4);
+    CHECK(four.nodes.size() == 43);
+    // Every leaf is reached exactly once.
+    std::vector<int> seen(refs8.size());
+    for (const auto& node : wide.wide_nodes)
+        for (const std::uint32_t ref : node.child)
+            if (shade::detail::is_leaf_ref(ref) && shade::detail::leaf_count(ref) > 0)
+                ++seen[wide.order[shade::detail::leaf_first(ref)]];
+    for (const int s : seen) CHECK(s == 1);
+}

@@ -204,6 +204,13 @@ private:
         std::uint32_t right = 0; ///< inner: right child
     };
 
+    /// plan_slots's result for one binary node.
+    struct slot_plan {
+        std::array<float, 8> cost{};        ///< [i - 1]: least cost as at most i children
+        std::array<std::uint8_t, 8> left{}; ///< [i - 1]: children from the left subtree; 0: one child, itself
+        std::uint8_t node_left = 0;          ///< as a node of its own: children from the left subtree
+    };
+
     [[nodiscard]] std::uint32_t blocks(std::uint32_t n) const noexcept { return (n + block_ - 1) / block_; }
 
     template <std::size_t W>
@@ -215,7 +222,9 @@ private:
             set_empty(nodes[0]);
             set_child(nodes[0], 0, binary_[root].box, leaf_ref(binary_[root]));
         } else {
+            plan_slots(W);
             collapse(nodes, 0, root);
+            plans_ = {};
         }
     }
 
@@ -243,27 +252,15 @@ private:
         return make_leaf_ref(n.first, n.count);
     }
 
-    /// Fills nodes[index] with up to W children gathered from the binary subtree under
-    /// `node`: the inner child of largest area is opened until there are W.
+    /// Fills nodes[index] with the W (or fewer) children plan_slots chose for the binary
+    /// node `node`, and every inner one of them with its own node, recursively.
     template <std::size_t W>
     void collapse(std::vector<bvh_node<W>>& nodes, std::size_t index, std::uint32_t node) {
-        std::array<std::uint32_t, W> kids{binary_[node].first, binary_[node].right};
-        std::size_t n = 2;
-        while (n < W) {
-            int best = -1;
-            float best_area = -1.0f;
-            for (std::size_t j = 0; j < n; ++j) {
-                const binary_node& c = binary_[kids[j]];
-                if (c.count == 0 && c.box.half_area() > best_area) {
-                    best = static_cast<int>(j);
-                    best_area = c.box.half_area();
-                }
-            }
-            if (best < 0) break;
-            const binary_node& open = binary_[kids[std::size_t(best)]];
-            kids[n++] = open.right;
-            kids[std::size_t(best)] = open.first;
-        }
+        std::array<std::uint32_t, W> kids{};
+        std::size_t n = 0;
+        const std::size_t left = plans_[node].node_left;
+        gather(binary_[node].first, left, kids.data(), n);
+        gather(binary_[node].right, W - left, kids.data(), n);
         set_empty(nodes[index]);
         for (std::size_t j = 0; j < n; ++j) {
             const binary_node& c = binary_[kids[j]];
@@ -276,6 +273,65 @@ private:
                 collapse(nodes, ref, kids[j]);
             }
             set_child(nodes[index], j, c.box, ref);
+        }
+    }
+
+    /// Appends to kids the children that the binary subtree under `node` becomes when it
+    /// may take up to `slots` of them (plans_: itself, or its two subtrees' choices).
+    void gather(std::uint32_t node, std::size_t slots, std::uint32_t* kids, std::size_t& n) const {
+        const std::size_t left = plans_[node].left[slots - 1];
+        if (left == 0) {
+            kids[n++] = node;
+            return;
+        }
+        gather(binary_[node].first, left, kids, n);
+        gather(binary_[node].right, slots - left, kids, n);
+    }
+
+    /// How each binary subtree is best spread over the children of wide nodes, by dynamic
+    /// programming from the leaves up (the conversion of a binary BVH in Ylitie, Karras,
+    /// Laine 2017, "Efficient Incoherent Ray Traversal on GPUs Through Compressed Wide
+    /// BVHs", HPG, here with the binary build's leaves kept as they are): cost[i - 1] is the
+    /// least surface area heuristic cost of the subtree as at most i children of one node,
+    /// a leaf costing its area times its blocks and an inner node of its own its area
+    /// (C_trav = 1, as in the build) plus the cheapest split of its W children between its
+    /// two subtrees. Partly filled nodes then go where they cost least, which fills the
+    /// many nodes next to the leaves.
+    void plan_slots(std::size_t width) {
+        plans_.assign(binary_.size(), slot_plan{});
+        for (std::size_t m = binary_.size(); m-- > 0;) { // children come after their parent
+            const binary_node& b = binary_[m];
+            slot_plan& p = plans_[m];
+            const float area = b.box.half_area();
+            if (b.count > 0) {
+                p.cost.fill(area * float(blocks(b.count)));
+                continue;
+            }
+            const slot_plan& l = plans_[b.first];
+            const slot_plan& r = plans_[b.right];
+            std::array<float, 8> open{};
+            std::array<std::uint8_t, 8> open_left{};
+            for (std::size_t i = 2; i <= width; ++i) {
+                // Half each way unless a split costs less (also where the costs are
+                // infinite or NaN, from boxes beyond the float range).
+                open[i - 1] = infinity<float>;
+                open_left[i - 1] = static_cast<std::uint8_t>(i / 2);
+                for (std::size_t k = 1; k < i; ++k) {
+                    const float c = l.cost[k - 1] + r.cost[i - k - 1];
+                    if (c < open[i - 1]) {
+                        open[i - 1] = c;
+                        open_left[i - 1] = static_cast<std::uint8_t>(k);
+                    }
+                }
+            }
+            p.node_left = open_left[width - 1];
+            p.cost[0] = area + open[width - 1];
+            for (std::size_t i = 2; i <= width; ++i) {
+                // Opened where no costlier than fewer children: fewer nodes on a tie.
+                const bool opened = open[i - 1] <= p.cost[i - 2];
+                p.cost[i - 1] = opened ? open[i - 1] : p.cost[i - 2];
+                p.left[i - 1] = opened ? open_left[i - 1] : p.left[i - 2];
+            }
         }
     }
 
@@ -449,6 +505,7 @@ private:
     std::uint32_t block_;
     bvh_prim_ref* refs_ = nullptr;
     std::vector<binary_node> binary_;
+    std::vector<slot_plan> plans_;
 };
 
 /// Throws shade::invalid_parameter naming `parameter` unless there are fewer than 2^27
