@@ -37,6 +37,14 @@
 #include <shade/geometry/triangle.hpp>
 #include <shade/geometry/triangle_batch.hpp>
 
+#if defined(__GNUC__)
+// Forced inline, so that g++ inlines the AVX kernel's own AVX helpers once the leaf test is
+// in the walk compiled for AVX (see triangle_bvh::test).
+#define SHADE_DETAIL_LEAF_INLINE __attribute__((always_inline))
+#else
+#define SHADE_DETAIL_LEAF_INLINE
+#endif
+
 namespace shade {
 
 /// A hierarchy over a copy of a list of triangles, intersected with Algorithm (a
@@ -98,14 +106,14 @@ public:
         if (size_ == 0 || !r.valid()) return std::nullopt;
         std::uint32_t best = no_hit;
         triangle_intersection<T> x;
-        detail::bvh_traverse<true>(tree_, r, r.t_max, [&](std::uint32_t first, std::uint32_t count) {
+        const auto leaf = [&](std::uint32_t first, std::uint32_t count, auto avx) SHADE_DETAIL_LEAF_INLINE {
             if constexpr (batched) {
                 for (std::uint32_t b = first; b < first + count; ++b) {
                     // The hit record's lines, fetched with the batch's (the lane is not
                     // known yet): one latency for both in a hierarchy beyond the caches.
                     for (std::size_t q = 0; q < sizeof leaves_[b].lane; q += 64)
                         detail::bvh_prefetch(reinterpret_cast<const char*>(leaves_[b].lane.data()) + q);
-                    const auto hits = intersect(r, leaves_[b].batch, cull);
+                    const auto hits = test(r, leaves_[b].batch, cull, avx);
                     if (hits.hit_bits == 0) continue;
                     const std::size_t lane = *hits.closest(); // every hit has t <= r.t_max
                     r.t_max = hits.t[lane];
@@ -124,7 +132,8 @@ public:
                 }
             }
             return false;
-        });
+        };
+        detail::bvh_traverse<true>(tree_, r, r.t_max, leaf);
         if (best == no_hit) return std::nullopt;
         if constexpr (batched) {
             const leaf_batch& b = leaves_[best / leaf_width];
@@ -141,16 +150,17 @@ public:
     [[nodiscard]] bool any(const ray<T>& r, culling cull = culling::none) const {
         if (size_ == 0 || !r.valid()) return false;
         bool found = false;
-        detail::bvh_traverse<false>(tree_, r, r.t_max, [&](std::uint32_t first, std::uint32_t count) {
+        const auto leaf = [&](std::uint32_t first, std::uint32_t count, auto avx) SHADE_DETAIL_LEAF_INLINE {
             if constexpr (batched) {
                 for (std::uint32_t b = first; b < first + count; ++b)
-                    if (intersect(r, leaves_[b].batch, cull).hit_bits != 0) return found = true;
+                    if (test(r, leaves_[b].batch, cull, avx).hit_bits != 0) return found = true;
             } else {
                 for (std::uint32_t i = first; i < first + count; ++i)
                     if (Algorithm::find(r, triangles_[i], cull)) return found = true;
             }
             return false;
-        });
+        };
+        detail::bvh_traverse<false>(tree_, r, r.t_max, leaf);
         return found;
     }
 
@@ -163,6 +173,19 @@ public:
 
 private:
     static constexpr std::uint32_t no_hit = ~std::uint32_t(0);
+
+    /// shade::intersect(r, batch, cull), or, in the walk compiled for AVX (Avx; it runs
+    /// only where the CPU has AVX), the AVX kernel itself, inlined there like this
+    /// function and the leaf lambdas (SHADE_DETAIL_LEAF_INLINE): no test of the CPU and no
+    /// call per leaf. The same bits either way (the kernel's lanes agree bit for bit).
+    template <bool Avx>
+    [[nodiscard]] SHADE_DETAIL_LEAF_INLINE static triangle_batch_hits<T, batch_width>
+    test(const ray<T>& r, const triangle_batch<T, batch_width>& batch, culling cull, std::bool_constant<Avx>) noexcept {
+#if defined(__GNUC__) && defined(__x86_64__)
+        if constexpr (Avx) return detail::intersect_batch<detail::vector_lanes<T, 32>>(r, batch, cull);
+#endif
+        return intersect(r, batch, cull);
+    }
 
     /// One batch test of a leaf and, next to it, what a hit on it needs besides the batch's
     /// own v0: each lane's other two vertices and its triangle's index in the list given
@@ -221,3 +244,4 @@ private:
 };
 
 } // namespace shade
+#undef SHADE_DETAIL_LEAF_INLINE

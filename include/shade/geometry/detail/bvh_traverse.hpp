@@ -14,6 +14,7 @@
 #include <cmath>
 #include <concepts>
 #include <cstdint>
+#include <type_traits>
 
 #include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
@@ -448,7 +449,7 @@ template <bool Ordered, class Ray, std::size_t W, std::floating_point T, class L
             } while (stack[top].t > t_max_f);
             ref = stack[top].ref;
         }
-        if (leaf(leaf_first(ref), leaf_count(ref))) return;
+        if (leaf(leaf_first(ref), leaf_count(ref), std::bool_constant<sizeof(typename Ray::lanes) == 32>{})) return;
         t_max_f = scale.t_up(t_max);
         t_max_lanes = typename Ray::lanes{} + t_max_f;
         do {
@@ -484,7 +485,9 @@ void bvh_walk_four(const bvh_node<4>* nodes, const ray<T>& r, const T& t_max, Le
 }
 
 /// Walks the nodes of tree (of either width) whose boxes r enters, and calls leaf(first,
-/// count) for every leaf reached; stops when leaf returns true (any-hit). Ordered: nearest
+/// count, avx) for every leaf reached, avx being std::true_type in the walk compiled for
+/// AVX (a leaf test may then use AVX inline) and std::false_type otherwise; stops when
+/// leaf returns true (any-hit). Ordered: nearest
 /// child first (closest hits); otherwise in child order (any-hit: no sorting). t_max is
 /// read again after each leaf (a closest-hit leaf shrinks it), which prunes the boxes and
 /// the stacked entries beyond it. Precondition: the tree has nodes and r is valid.
