@@ -230,8 +230,8 @@ struct bvh_ray_lanes {
     std::array<Lanes, 3> inv;
     std::array<Lanes, 3> origin_near;
     std::array<Lanes, 3> origin_far;
-    std::array<std::size_t, 3> near_offset; ///< byte offset of planes[near_plane[k]]
-    std::array<std::size_t, 3> far_offset;  ///< byte offset of planes[near_plane[k] ^ 1]
+    std::array<std::uint32_t, 4> near_offset; ///< [k < 3]: byte offset of planes[near_plane[k]]
+    std::array<std::uint32_t, 4> far_offset;  ///< [k < 3]: byte offset of planes[near_plane[k] ^ 1]
     Lanes t_min;
     Lanes enlarge;
 
@@ -290,10 +290,13 @@ struct bvh_ray_lanes {
                 origin_near[k] = Lanes{} + near3[k];
                 origin_far[k] = Lanes{} + far3[k];
             }
-            const std::size_t near_plane = 2 * k + static_cast<std::size_t>(negative[k] & 1);
-            near_offset[k] = near_plane * sizeof(Lanes);
-            far_offset[k] = (near_plane ^ 1u) * sizeof(Lanes);
         }
+        // Plane 2 k + 1 (hi) is near where the direction is negative, else plane 2 k.
+        const bvh_i4 near_plane = bvh_i4{0, 2, 4, 0} + (negative & 1);
+        const bvh_i4 near_bytes = near_plane * static_cast<std::int32_t>(sizeof(Lanes));
+        const bvh_i4 far_bytes = (near_plane ^ 1) * static_cast<std::int32_t>(sizeof(Lanes));
+        __builtin_memcpy(near_offset.data(), &near_bytes, sizeof near_offset);
+        __builtin_memcpy(far_offset.data(), &far_bytes, sizeof far_offset);
     }
 };
 using bvh_ray4 = bvh_ray_lanes<bvh_f4>;
