@@ -490,10 +490,10 @@ void bvh_walk_four(const bvh_node<4>* nodes, const ray<T>& r, const T& t_max, Le
 /// Walks the nodes of tree (of either width) whose boxes r enters, and calls leaf(first,
 /// count, avx) for every leaf reached, avx being std::true_type in the walk compiled for
 /// AVX (a leaf test may then use AVX inline) and std::false_type otherwise; stops when
-/// leaf returns true (any-hit). Ordered: nearest
-/// child first (closest hits); otherwise in child order (any-hit: no sorting). t_max is
-/// read again after each leaf (a closest-hit leaf shrinks it), which prunes the boxes and
-/// the stacked entries beyond it. Precondition: the tree has nodes and r is valid.
+/// leaf returns true (any-hit). Ordered: nearest child first (closest hits); otherwise in
+/// child order (any-hit: no sorting). t_max is read again after each leaf (a closest-hit
+/// leaf shrinks it), which prunes the boxes and the stacked entries beyond it.
+/// Precondition: the tree has nodes and r is valid.
 template <bool Ordered, std::floating_point T, class Leaf>
 [[gnu::always_inline]] inline void bvh_traverse(const bvh_tree& tree, const ray<T>& r, const T& t_max, Leaf&& leaf) {
 #if defined(SHADE_DETAIL_BVH_WIDE)
