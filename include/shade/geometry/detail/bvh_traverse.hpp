@@ -204,8 +204,8 @@ using bvh_i8 [[gnu::vector_size(32)]] = std::int32_t;
 [[gnu::target("avx")]] inline unsigned bvh_bits8(const bvh_i8& m) noexcept {
     return static_cast<unsigned>(__builtin_ia32_movmskps256(reinterpret_cast<bvh_f8>(m)));
 }
-/// out = x in all eight lanes (vbroadcastss from memory: without AVX2 there is none from
-/// a register, and Lanes{} + x also adds, to turn -0 into +0).
+/// out = x in all eight lanes: a shuffle and an insert without AVX2 (Lanes{} + x would
+/// also add, to turn -0 into +0, which the box test does not need).
 [[gnu::target("avx")]] inline void bvh_broadcast8(bvh_f8& out, const float& x) noexcept {
     out = bvh_f8{x, x, x, x, x, x, x, x};
 }
@@ -244,9 +244,12 @@ struct bvh_ray_lanes {
                                                   scale.direction(r.direction.z));
         const vec3<T>& o = r.origin;
         const bvh_f4 d3{static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z), 1.0f};
-        // 1 / d per axis, rounded to float (for a float ray, one division of the four lanes).
-        bvh_f4 inv3 = 1.0f / d3;
-        if constexpr (sizeof(T) != sizeof(float))
+        // 1 / d per axis, rounded to float: for a float ray one division of the four lanes
+        // (lane 3 divides by 1), for a double ray in double, then rounded.
+        bvh_f4 inv3;
+        if constexpr (sizeof(T) == sizeof(float))
+            inv3 = 1.0f / d3;
+        else
             inv3 = bvh_f4{static_cast<float>(T(1) / d.x), static_cast<float>(T(1) / d.y),
                           static_cast<float>(T(1) / d.z), 1.0f};
         // All ones where the direction's sign bit is set (rounding to float keeps the
