@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -31,6 +32,7 @@
 #include <shade/shade.hpp>
 
 #include "support/cli.hpp"
+#include "support/progress.hpp"
 
 namespace ex = shade::examples;
 
@@ -38,17 +40,19 @@ namespace {
 
 using T = double;
 
-constexpr std::string_view usage = R"(usage: albedo_tables [--out FILE.hpp] [--nodes N] [--strata S] [--threads K]
+constexpr std::string_view usage = R"(usage: albedo_tables [--out FILE.hpp] [--nodes N] [--strata S] [--threads K] [--quiet]
 
 Computes E(mu, alpha) and E_avg(alpha) of the single-scattering GGX and Beckmann lobes
 with F = 1 and of the GGX lobe with the dielectric Fresnel of eta = 1.5, on an N x N grid
 uniform in (c, sqrt(alpha)) (see albedo_table.hpp), each node from S^2 samples of the model's own
 sampler, and writes the header of constants.
 
-  --out FILE.hpp  output (default albedo_data.hpp)
+  --out FILE.hpp  output, a C++ header (.hpp or .h; default albedo_data.hpp)
   --nodes N       nodes per axis, 4 to 512 (default 128)
   --strata S      S^2 samples per node, 16 to 2048 (default 256)
   --threads K     worker threads, 1 to 64 (default 2)
+  --quiet         no progress bar (it is drawn on stderr only when stderr is a terminal
+                  and the run takes more than a second)
 )";
 
 struct settings {
@@ -56,6 +60,7 @@ struct settings {
     std::size_t nodes = shade::detail::albedo_grid_nodes;
     std::size_t strata = 256;
     unsigned threads = 2;
+    bool quiet = false;
 };
 
 // E(mu, alpha) estimated for one model family: make(alpha) builds the lobe.
@@ -82,6 +87,7 @@ struct table {
     double max_error = 0;  // largest standard error of a node
     double max_interpolation = 0; // largest |interpolated - estimated| at the check points
     double max_average = 0; // largest |interpolated E_avg - average of the interpolated E| between rows
+    std::size_t worst_i = 0, worst_j = 0; // the cell of the largest interpolation difference
 };
 
 // Runs job(k) for k in [0, count) on `threads` threads.
@@ -95,10 +101,21 @@ void parallel_for(std::size_t count, unsigned threads, const std::function<void(
     for (auto& th : pool) th.join();
 }
 
-table compute(const std::string& name, const std::string& what, const albedo_function& albedo, const settings& s) {
+// The cells whose centres check the interpolation: every 4th cell along each axis, as
+// (i, j) = (column along c, row along sqrt(alpha)).
+std::vector<std::pair<std::size_t, std::size_t>> check_cells(std::size_t n) {
+    std::vector<std::pair<std::size_t, std::size_t>> cells;
+    for (std::size_t j = 0; j + 1 < n; j += 4)
+        for (std::size_t i = 0; i + 1 < n; i += 4) cells.emplace_back(i, j);
+    return cells;
+}
+
+// One table: n^2 node estimates and the interpolation check, one progress step each.
+table compute(const std::string& name, const std::string& what, const albedo_function& albedo, const settings& s,
+              ex::progress& bar) {
     namespace d = shade::detail;
     const std::size_t n = s.nodes;
-    table out{name, what, std::vector<float>(n * n), std::vector<float>(n), 0, 0, 0};
+    table out{name, what, std::vector<float>(n * n), std::vector<float>(n), 0, 0, 0, 0, 0};
     std::vector<double> errors(n * n);
     parallel_for(n * n, s.threads, [&](std::size_t k) {
         const std::size_t j = k / n, i = k % n;
@@ -107,14 +124,13 @@ table compute(const std::string& name, const std::string& what, const albedo_fun
         const auto a = albedo(mu, alpha, 1 + k);
         out.e[k] = float(std::min(a.albedo.x, 1.0));
         errors[k] = a.standard_error.x;
+        bar.advance();
     });
     out.max_error = *std::max_element(errors.begin(), errors.end());
     for (std::size_t j = 0; j < n; ++j) out.average[j] = float(d::albedo_row_average(out.e.data() + j * n, n, d::albedo_grid_alpha(j, n)));
     // Interpolation check: the centre of every 4th cell along each axis (c and sqrt(alpha)
     // halfway between nodes), estimated afresh and compared.
-    std::vector<std::pair<std::size_t, std::size_t>> cells;
-    for (std::size_t j = 0; j + 1 < n; j += 4)
-        for (std::size_t i = 0; i + 1 < n; i += 4) cells.emplace_back(i, j);
+    const auto cells = check_cells(n);
     std::vector<double> differences(cells.size());
     parallel_for(cells.size(), s.threads, [&](std::size_t k) {
         const auto [i, j] = cells[k];
@@ -123,6 +139,7 @@ table compute(const std::string& name, const std::string& what, const albedo_fun
         const double mu = std::max(d::albedo_grid_mu((double(i) + 0.5) / double(n - 1), alpha), d::albedo_grid_mu_min);
         const auto a = albedo(mu, alpha, 1000003 + k);
         differences[k] = std::abs(d::albedo_lookup(out.e.data(), n, mu, alpha) - a.albedo.x);
+        bar.advance();
     });
     const auto worst = std::max_element(differences.begin(), differences.end());
     out.max_interpolation = *worst;
@@ -138,9 +155,8 @@ table compute(const std::string& name, const std::string& what, const albedo_fun
         const double exact = d::albedo_row_average(blend.data(), n, alpha);
         out.max_average = std::max(out.max_average, std::abs(exact - d::albedo_average_lookup(out.average.data(), n, alpha)));
     }
-    std::fprintf(stderr, "albedo_tables: %s: largest node standard error %.2e, largest interpolation difference %.2e, E_avg consistency %.2e "
-                 "(worst interpolation in the cell of c_%zu, alpha_%zu)\n",
-                 name.c_str(), out.max_error, out.max_interpolation, out.max_average, wi, wj);
+    out.worst_i = wi;
+    out.worst_j = wj;
     return out;
 }
 
@@ -202,28 +218,38 @@ int main(int argc, char** argv) {
             else if (args.option("--nodes")) s.nodes = args.integer<std::size_t>(4, 512);
             else if (args.option("--strata")) s.strata = args.integer<std::size_t>(16, 2048);
             else if (args.option("--threads")) s.threads = args.integer<unsigned>(1, 64);
+            else if (args.flag("--quiet")) s.quiet = true;
             else args.unknown();
         }
+        (void)ex::output_format("--out", s.out, {".hpp", ".h"});
         ex::output_file header(s.out);
+        constexpr std::size_t table_count = 3;
+        std::optional<ex::progress> bar(std::in_place, "albedo_tables",
+                                        table_count * (s.nodes * s.nodes + check_cells(s.nodes).size()), !s.quiet);
         using namespace shade;
         const rgb<T> one(1);
         std::vector<table> tables;
         tables.push_back(compute("ggx_albedo", "the GGX lobe with F = 1 (cook_torrance<ggx, schlick(1), smith_height_correlated>)",
                                  family([one](double a) {
                                      return cook_torrance<ggx<T>, schlick<T>, smith_height_correlated<T>>(ggx<T>(a), schlick<T>(one));
-                                 }, s.strata), s));
+                                 }, s.strata), s, *bar));
         tables.push_back(compute("beckmann_albedo",
                                  "the Beckmann lobe with F = 1 (cook_torrance<beckmann, schlick(1), smith_height_correlated>)",
                                  family([one](double a) {
                                      return cook_torrance<beckmann<T>, schlick<T>, smith_height_correlated<T>>(beckmann<T>(a),
                                                                                                               schlick<T>(one));
-                                 }, s.strata), s));
+                                 }, s.strata), s, *bar));
         tables.push_back(compute("ggx_dielectric_albedo",
                                  "the GGX lobe with the dielectric Fresnel of eta = 1.5 (cook_torrance<ggx, dielectric_fresnel(1.5), smith_height_correlated>)",
                                  family([](double a) {
                                      return cook_torrance<ggx<T>, dielectric_fresnel<T>, smith_height_correlated<T>>(
                                          ggx<T>(a), dielectric_fresnel<T>(1.5));
-                                 }, s.strata), s));
+                                 }, s.strata), s, *bar));
+        bar.reset(); // erases the bar before the messages
+        for (const auto& t : tables)
+            std::fprintf(stderr, "albedo_tables: %s: largest node standard error %.2e, largest interpolation difference "
+                         "%.2e, E_avg consistency %.2e (worst interpolation in the cell of c_%zu, alpha_%zu)\n",
+                         t.name.c_str(), t.max_error, t.max_interpolation, t.max_average, t.worst_i, t.worst_j);
         std::FILE* f = std::fopen(header.temporary().c_str(), "w");
         if (!f) throw std::runtime_error("cannot write " + header.temporary().string());
         write(f, tables, s);

@@ -1,30 +1,36 @@
 // compare: colour differences (CIEDE2000) between two images, or between a region of an
-// image and a measured CIE L*a*b* value. Prints mean, 95th percentile and maximum Delta E00
-// and the mean L*a*b* of each side; optionally writes a Delta E00 heat map.
+// image and a measured CIE L*a*b* value. Prints mean, 95th percentile and maximum Delta E00,
+// the mean L*a*b* of each side and the differences in linear RGB; optionally writes a
+// Delta E00 heat map.
 //
-// Pixels are 8-bit sRGB (IEC 61966-2-1), decoded to linear sRGB, converted to XYZ and to
+// Images are PNG (or JPEG, BMP, TGA: 8-bit sRGB, IEC 61966-2-1, decoded to linear sRGB) or
+// PFM and OpenEXR (linear sRGB radiance, what `trace` writes), told apart by their first
+// bytes. Every pixel is linear sRGB, multiplied by --exposure, converted to XYZ and to
 // L*a*b* relative to D65 (default) or D50 (Bradford-adapted, for measurements reported
 // against the ICC D50 white). Run with --help for usage.
 
 #include <algorithm>
-#include <charconv>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <fstream>
 #include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
-#include <system_error>
 #include <vector>
 
 #include <shade/color/convert.hpp>
 #include <shade/color/delta_e.hpp>
+#include <shade/color/srgb.hpp>
 
 #include "support/cli.hpp"
 #include "support/image.hpp"
+#include "tracer/exr.hpp"
+#include "tracer/pfm.hpp"
 
 namespace {
 
@@ -34,13 +40,20 @@ constexpr int exit_ok = 0;
 constexpr int exit_threshold_exceeded = 1;
 constexpr int exit_error = 2;
 
-constexpr const char* usage_text = R"(Usage:
+constexpr const char* usage_text = R"(usage:
   compare IMAGE_A IMAGE_B [options]
       Delta E00 per pixel between two images of the same size.
   compare IMAGE --lab L,a,b [options]
       Delta E00 per pixel between IMAGE and one measured CIE L*a*b* colour.
 
-Images are read as 8-bit sRGB (PNG, or JPEG/BMP/TGA via stb_image; alpha is ignored).
+Images: PNG (or JPEG, BMP, TGA through stb_image; 8-bit sRGB, alpha ignored), PFM or
+OpenEXR (linear radiance, e.g. from `trace --out x.pfm` or `x.exr`), recognised by their
+contents; the two images may be of different kinds.
+
+How Delta E is computed: 8-bit pixels are decoded to linear sRGB (display white = 1);
+PFM and EXR pixels are linear sRGB already. Both are multiplied by --exposure and taken
+relative to the L*a*b* white: linear (1, 1, 1) is L* = 100, brighter HDR values give
+L* > 100 by the same CIE formula (no tone map, no clipping). Non-finite pixels are refused.
 
 Options:
   --region X,Y,W,H     compare only the W x H pixels whose top-left corner is column X,
@@ -48,6 +61,9 @@ Options:
   --lab L,a,b          the measured L*a*b* colour to compare against
   --white d65|d50      white point of L*a*b* (default d65, the white of sRGB; use d50 for
                        values measured against the ICC D50 white)
+  --exposure X         multiplier of the linear values before L*a*b*, in (0, 1e6]
+                       (default 1): choose it so that the HDR range you care about
+                       sits near linear 1
   --heatmap OUT.png    write a W x H PNG of the per-pixel Delta E00: black at 0, through
                        red and yellow, to white at --scale and above; its path is
                        checked before any work, and the file appears only when complete
@@ -56,17 +72,18 @@ Options:
   --fail-above STAT=T  exit with status 1 if STAT (mean, p95 or max) of Delta E00 > T
   --help               show this help
 
-Output: the mean L*a*b* of each side (the arithmetic mean of the per-pixel L*a*b*), and
-the mean, 95th percentile (nearest rank) and maximum of the per-pixel Delta E00
-(CIEDE2000, Sharma, Wu & Dalal 2005).
+Output: the mean L*a*b* of each side (the arithmetic mean of the per-pixel L*a*b*), the
+mean, 95th percentile (nearest rank) and maximum of the per-pixel Delta E00 (CIEDE2000,
+Sharma, Wu & Dalal 2005), and the mean and largest absolute difference of the linear RGB
+channels (after --exposure).
 
-Exit status: 0 on success, 1 if --fail-above is exceeded, 2 on a usage error or an
-unreadable, mismatched or invalid input (with a message on stderr).
+Exit status: 0 on success, 1 if --fail-above is exceeded, 2 on a usage error, an
+unreadable, mismatched or invalid input, or a heat map that cannot be written (with a
+message on stderr).
 )";
 
 namespace ex = shade::examples;
 
-/// A usage or input error: printed as "compare: error: <message>", exit status 2.
 using ex::usage_error;
 
 struct region {
@@ -88,16 +105,9 @@ struct options {
     std::string white = "d65";
     std::optional<std::string> heatmap;
     real scale = 10;
+    real exposure = 1;
     std::optional<threshold> fail_above;
 };
-
-real parse_real(std::string_view text, std::string_view what) {
-    real value = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
-        throw usage_error(std::string(what) + ": '" + std::string(text) + "' is not a finite number");
-    return value;
-}
 
 std::vector<std::string_view> split(std::string_view text, char separator) {
     std::vector<std::string_view> parts;
@@ -111,50 +121,53 @@ std::vector<std::string_view> split(std::string_view text, char separator) {
     return parts;
 }
 
+// A measured L*a*b* component: any finite number within 1e6 (L* above 100 is allowed, as
+// an HDR pixel can have it).
+constexpr real lab_limit = 1e6;
+
 options parse(int argc, char** argv, bool& help) {
     options o;
     help = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string_view arg = argv[i];
-        auto value = [&](std::string_view name) -> std::string_view {
-            if (i + 1 >= argc) throw usage_error(std::string(name) + " needs a value");
-            return argv[++i];
-        };
-        if (arg == "--help" || arg == "-h") {
+    ex::command_line args(argc, argv);
+    while (args.next()) {
+        if (args.flag("--help") || args.flag("-h")) {
             help = true;
             return o;
-        } else if (arg == "--region") {
-            const std::string_view v = value(arg);
-            const auto parts = split(v, ',');
+        }
+        if (args.option("--region")) {
+            const auto parts = split(args.text(), ',');
             if (parts.size() != 4)
-                throw usage_error("--region expects X,Y,W,H (four integers), got '" + std::string(v) + "'");
+                throw usage_error("option --region needs X,Y,W,H (four whole numbers), got '" + std::string(args.text()) +
+                                  "'");
             constexpr int max = std::numeric_limits<int>::max();
-            o.area = region{ex::parse_integer(std::string(arg) + " X", parts[0], 0, max),
-                            ex::parse_integer(std::string(arg) + " Y", parts[1], 0, max),
-                            ex::parse_integer(std::string(arg) + " W", parts[2], 1, max),
-                            ex::parse_integer(std::string(arg) + " H", parts[3], 1, max)};
-        } else if (arg == "--lab") {
-            const std::string_view v = value(arg);
-            const auto parts = split(v, ',');
+            o.area = region{ex::parse_integer("--region X", parts[0], 0, max),
+                            ex::parse_integer("--region Y", parts[1], 0, max),
+                            ex::parse_integer("--region W", parts[2], 1, max),
+                            ex::parse_integer("--region H", parts[3], 1, max)};
+        } else if (args.option("--lab")) {
+            const auto parts = split(args.text(), ',');
             if (parts.size() != 3)
-                throw usage_error("--lab expects L,a,b (three numbers), got '" + std::string(v) + "'");
-            o.measured = shade::lab<real>{parse_real(parts[0], "--lab L"), parse_real(parts[1], "--lab a"),
-                                          parse_real(parts[2], "--lab b")};
-        } else if (arg == "--white") {
-            const std::string_view v = value(arg);
+                throw usage_error("option --lab needs L,a,b (three numbers), got '" + std::string(args.text()) + "'");
+            o.measured = shade::lab<real>{ex::parse_real("--lab L", parts[0], -lab_limit, lab_limit),
+                                          ex::parse_real("--lab a", parts[1], -lab_limit, lab_limit),
+                                          ex::parse_real("--lab b", parts[2], -lab_limit, lab_limit)};
+        } else if (args.option("--white")) {
+            const std::string_view v = args.text();
             if (v != "d65" && v != "d50")
-                throw usage_error("--white must be d65 or d50, got '" + std::string(v) + "'");
+                throw usage_error("option --white must be d65 or d50, got '" + std::string(v) + "'");
             o.white = std::string(v);
-        } else if (arg == "--heatmap") {
-            o.heatmap = std::string(value(arg));
-            if (o.heatmap->empty()) throw usage_error("--heatmap needs a non-empty file name");
-        } else if (arg == "--scale") {
-            o.scale = ex::parse_real(arg, value(arg), 0, 1e6, ex::lower_limit::exclusive);
-        } else if (arg == "--fail-above") {
-            const std::string_view v = value(arg);
+        } else if (args.option("--heatmap")) {
+            o.heatmap = args.path().string();
+            (void)ex::output_format("--heatmap", *o.heatmap, {".png"});
+        } else if (args.option("--scale")) {
+            o.scale = args.real(0, 1e6, ex::lower_limit::exclusive);
+        } else if (args.option("--exposure")) {
+            o.exposure = args.real(0, 1e6, ex::lower_limit::exclusive);
+        } else if (args.option("--fail-above")) {
+            const std::string_view v = args.text();
             const auto parts = split(v, '=');
             if (parts.size() != 2)
-                throw usage_error("--fail-above expects STAT=T with STAT mean, p95 or max, got '" +
+                throw usage_error("option --fail-above needs STAT=T with STAT mean, p95 or max, got '" +
                                   std::string(v) + "'");
             threshold t;
             t.name = std::string(parts[0]);
@@ -165,13 +178,13 @@ options parse(int argc, char** argv, bool& help) {
             else if (parts[0] == "max")
                 t.stat = statistic::max;
             else
-                throw usage_error("--fail-above: unknown statistic '" + t.name + "' (use mean, p95 or max)");
-            t.limit = parse_real(parts[1], "--fail-above threshold");
+                throw usage_error("option --fail-above: unknown statistic '" + t.name + "' (use mean, p95 or max)");
+            t.limit = ex::parse_real("--fail-above T", parts[1], 0, std::numeric_limits<real>::max());
             o.fail_above = t;
-        } else if (arg.size() > 1 && arg[0] == '-') {
-            throw usage_error("unknown option '" + std::string(arg) + "' (see --help)");
+        } else if (args.is_option()) {
+            args.unknown();
         } else {
-            o.images.emplace_back(arg);
+            o.images.emplace_back(args.current());
         }
     }
     if (o.measured) {
@@ -180,16 +193,77 @@ options parse(int argc, char** argv, bool& help) {
                               std::to_string(o.images.size()) + ")");
     } else if (o.images.size() != 2) {
         throw usage_error("give two images, or one image and --lab L,a,b (got " + std::to_string(o.images.size()) +
-                          " image arguments; see --help)");
+                          " image arguments)");
     }
     return o;
 }
 
-std::string size_text(const shade::examples::image& img) {
+/// An input image as linear sRGB, whatever its file format.
+struct linear_image {
+    int width = 0;
+    int height = 0;
+    std::vector<shade::rgb<real>> pixels; ///< row-major, top row first
+    [[nodiscard]] const shade::rgb<real>& at(int x, int y) const {
+        return pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+    }
+};
+
+enum class file_kind { pfm, exr, other };
+
+// The kind of an image file from its first bytes: "PF"/"Pf" and a whitespace for PFM, the
+// magic number 76 2f 31 01 for OpenEXR; anything else goes to stb_image.
+file_kind sniff(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::array<char, 4> head{};
+    in.read(head.data(), head.size());
+    if (in.gcount() < 3) return file_kind::other;
+    const auto space = [](char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; };
+    if (head[0] == 'P' && (head[1] == 'F' || head[1] == 'f') && space(head[2])) return file_kind::pfm;
+    if (in.gcount() == 4 && static_cast<unsigned char>(head[0]) == 0x76 && static_cast<unsigned char>(head[1]) == 0x2f &&
+        static_cast<unsigned char>(head[2]) == 0x31 && static_cast<unsigned char>(head[3]) == 0x01)
+        return file_kind::exr;
+    return file_kind::other;
+}
+
+// Reads any supported image as linear sRGB times `exposure`. Throws usage_error (an input
+// error: exit status 2) naming the file when it cannot be read or has a non-finite pixel.
+linear_image load_linear(const std::string& path, real exposure) {
+    linear_image out;
+    try {
+        const file_kind kind = sniff(path);
+        if (kind == file_kind::other) {
+            const ex::image img = ex::load_image(path);
+            out.width = img.width;
+            out.height = img.height;
+            out.pixels.reserve(std::size_t(img.width) * std::size_t(img.height));
+            for (int y = 0; y < img.height; ++y)
+                for (int x = 0; x < img.width; ++x) out.pixels.push_back(shade::decode_srgb8<real>(img.at(x, y)));
+        } else {
+            const tracer::radiance_image img = kind == file_kind::pfm ? tracer::load_pfm(path) : tracer::load_exr(path);
+            out.width = img.width;
+            out.height = img.height;
+            out.pixels.assign(img.pixels.begin(), img.pixels.end());
+        }
+    } catch (const usage_error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw usage_error(e.what());
+    }
+    for (std::size_t i = 0; i < out.pixels.size(); ++i) {
+        const auto& c = out.pixels[i];
+        if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
+            throw usage_error("image '" + path + "': pixel (" + std::to_string(i % std::size_t(out.width)) + ", " +
+                              std::to_string(i / std::size_t(out.width)) + ") is not finite");
+        out.pixels[i] = c * exposure;
+    }
+    return out;
+}
+
+std::string size_text(const linear_image& img) {
     return std::to_string(img.width) + "x" + std::to_string(img.height);
 }
 
-region checked_region(const std::optional<region>& requested, const shade::examples::image& img,
+region checked_region(const std::optional<region>& requested, const linear_image& img,
                       const std::string& path) {
     if (!requested) return {0, 0, img.width, img.height};
     const region r = *requested;
@@ -220,10 +294,10 @@ int run(const options& o) {
     const auto white = o.white == "d50" ? shade::white_point<real>::d50() : shade::white_point<real>::d65();
     const shade::srgb_lab_converter<real> convert(white);
 
-    const ex::image a = ex::load_image(o.images[0]);
-    std::optional<ex::image> b;
+    const linear_image a = load_linear(o.images[0], o.exposure);
+    std::optional<linear_image> b;
     if (!o.measured) {
-        b = ex::load_image(o.images[1]);
+        b = load_linear(o.images[1], o.exposure);
         if (a.width != b->width || a.height != b->height)
             throw usage_error("image sizes differ: '" + o.images[0] + "' is " + size_text(a) + ", '" + o.images[1] +
                               "' is " + size_text(*b));
@@ -234,11 +308,17 @@ int run(const options& o) {
     std::vector<real> delta_e;
     delta_e.reserve(count);
     shade::lab<real> sum_a{0, 0, 0}, sum_b{0, 0, 0};
+    real linear_sum = 0, linear_max = 0; // |a - b| over the channels (two images only)
     for (int y = r.y; y < r.y + r.h; ++y)
         for (int x = r.x; x < r.x + r.w; ++x) {
             const shade::lab<real> lab_a = convert.to_lab(a.at(x, y));
             const shade::lab<real> lab_b = b ? convert.to_lab(b->at(x, y)) : *o.measured;
             delta_e.push_back(shade::delta_e_2000(lab_a, lab_b));
+            if (b) {
+                const shade::rgb<real> d = glm::abs(a.at(x, y) - b->at(x, y));
+                linear_sum += d.x + d.y + d.z;
+                linear_max = std::max({linear_max, d.x, d.y, d.z});
+            }
             sum_a = {sum_a.L + lab_a.L, sum_a.a + lab_a.a, sum_a.b + lab_a.b};
             sum_b = {sum_b.L + lab_b.L, sum_b.a + lab_b.a, sum_b.b + lab_b.b};
         }
@@ -254,8 +334,8 @@ int run(const options& o) {
     const real p95 = sorted[std::max<std::size_t>(rank, 1) - 1];
     const real max = sorted.back();
 
-    std::printf("region: %d,%d,%d,%d (%zu pixels), L*a*b* white %s\n", r.x, r.y, r.w, r.h, count,
-                o.white == "d50" ? "D50" : "D65");
+    std::printf("region: %d,%d,%d,%d (%zu pixels), L*a*b* white %s, exposure %.6g\n", r.x, r.y, r.w, r.h, count,
+                o.white == "d50" ? "D50" : "D65", o.exposure);
     print_lab(("mean L*a*b* " + o.images[0] + ":").c_str(), {sum_a.L / n, sum_a.a / n, sum_a.b / n});
     if (b)
         print_lab(("mean L*a*b* " + o.images[1] + ":").c_str(), {sum_b.L / n, sum_b.a / n, sum_b.b / n});
@@ -264,6 +344,10 @@ int run(const options& o) {
     std::printf("Delta E00 mean: %.4f\n", mean);
     std::printf("Delta E00 p95:  %.4f\n", p95);
     std::printf("Delta E00 max:  %.4f\n", max);
+    if (b) {
+        std::printf("linear RGB |a - b| mean: %.6g\n", linear_sum / (3 * n));
+        std::printf("linear RGB |a - b| max:  %.6g\n", linear_max);
+    }
 
     if (o.heatmap) {
         auto heat = ex::image::filled(r.w, r.h);
@@ -290,16 +374,19 @@ int run(const options& o) {
 } // namespace
 
 int main(int argc, char** argv) {
-    try {
-        bool help = false;
-        const options o = parse(argc, argv, help);
-        if (help) {
-            std::fputs(usage_text, stdout);
-            return exit_ok;
-        }
-        return run(o);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "compare: error: %s\n", e.what());
-        return exit_error;
-    }
+    // Input errors are usage errors (status 2, "(try --help)"); any other failure, such as
+    // a heat map that cannot be written, is status 2 as well, so that status 1 means only
+    // "--fail-above exceeded".
+    return ex::run_cli(
+        "compare",
+        [&] {
+            bool help = false;
+            const options o = parse(argc, argv, help);
+            if (help) {
+                std::fputs(usage_text, stdout);
+                return exit_ok;
+            }
+            return run(o);
+        },
+        exit_error);
 }

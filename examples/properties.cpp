@@ -5,7 +5,7 @@
 // for multiple scattering against single scattering (a table, and a plot of albedo against
 // roughness).
 //
-//   properties [--out white_furnace.png] [--roughness-out albedo_roughness.png] [--strata N] [--samples N]
+//   properties [--out white_furnace.png] [--roughness-out albedo_roughness.png] [--strata N] [--samples N] [--quiet]
 //
 // The tables in docs/properties.md are this program's output.
 
@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,6 +24,7 @@
 
 #include "support/canvas.hpp"
 #include "support/cli.hpp"
+#include "support/progress.hpp"
 
 namespace {
 
@@ -32,19 +34,22 @@ using T = double;
 using shade::rgb;
 using shade::vec3;
 
-constexpr std::string_view usage = R"(usage: properties [--out FILE.png] [--roughness-out FILE.png] [--strata N] [--samples N]
+constexpr std::string_view usage = R"(usage: properties [--out FILE.png] [--roughness-out FILE.png] [--strata N] [--samples N] [--quiet]
 
 Runs every shade model through the positivity, reciprocity and energy checks and the
 sampling checks (chi-square of sample() against pdf(), sample consistency, pdf
-normalization and coverage), prints Markdown tables and writes the white-furnace plot.
+normalization and coverage) and prints Markdown tables on stdout. Plots are written only
+when asked for.
 
-  --out FILE.png  the white-furnace plot (default white_furnace.png)
+  --out FILE.png  the white-furnace plot (albedo against the view angle, every model)
   --roughness-out FILE.png
                   the plot of albedo against roughness, compensated for multiple
-                  scattering and not (default albedo_roughness.png)
+                  scattering and not
   --strata N      N^2 samples per albedo estimate, 16 to 4096 (default 128); below 16^2
                   samples per view the energy check cannot give a verdict
   --samples N     directions per chi-square test, 1000 to 10000000 (default 100000)
+  --quiet         no progress bar (it is drawn on stderr only when stderr is a terminal
+                  and the run takes more than a second)
 )";
 
 // Views of the sampling checks: from the normal to grazing, azimuth 0.4 rad off the
@@ -56,8 +61,9 @@ constexpr std::size_t curve_points = 30;
 constexpr std::size_t chi2_family = 32 * std::size(sampling_views_deg);
 
 struct settings {
-    std::filesystem::path out = "white_furnace.png";
-    std::filesystem::path roughness_out = "albedo_roughness.png";
+    std::optional<std::filesystem::path> out;           ///< the white-furnace plot, if asked for
+    std::optional<std::filesystem::path> roughness_out; ///< the roughness plot, if asked for
+    bool quiet = false;
     std::size_t strata = 128;
     std::size_t samples = 100000;
 };
@@ -146,64 +152,68 @@ row evaluate(const std::string& name, const B& model, const settings& s, rgb<flo
     return r;
 }
 
-std::vector<row> evaluate_all(const settings& s) {
+/// One job per model of the tables: each evaluates its model when called.
+std::vector<std::function<row()>> model_jobs(const settings& s) {
     using namespace shade;
     const rgb<T> one(1), half(0.5), zero(0);
-    std::vector<row> rows;
+    std::vector<std::function<row()>> jobs;
+    const auto add = [&](std::string name, const auto& model, rgb<float> colour) {
+        jobs.emplace_back([name = std::move(name), model, colour, &s] { return evaluate(name, model, s, colour); });
+    };
     // Colours of the plot's curves (linear RGB).
     const auto c = [](float r, float g, float b) { return rgb<float>(r, g, b); };
     using ggx_smith = cook_torrance<ggx<T>, schlick<T>, smith_ggx<T>>;
     using beckmann_smith = cook_torrance<beckmann<T>, schlick<T>, smith_beckmann<T>>;
-    rows.push_back(evaluate("Lambert (k_d = 1)", lambert<T>(one), s, c(0.1f, 0.1f, 0.1f)));
-    rows.push_back(evaluate("Phong classic, / n.l (k_s = 1, s = 10)", classic_phong<T>(zero, one, 10), s, c(0.8f, 0.1f, 0.1f)));
-    rows.push_back(evaluate("Phong modified, unnormalized (k_s = 1, s = 2)", modified_phong<T>(zero, one, 2), s, c(0.9f, 0.5f, 0.0f)));
-    rows.push_back(evaluate("Phong normalized (k_d = k_s = 0.5, s = 20)", normalized_phong<T>(half, half, 20), s, c(0.1f, 0.5f, 0.1f)));
-    rows.push_back(evaluate("Phong normalized (k_s = 1, s = 10000)", normalized_phong<T>(zero, one, 10000), s, c(0.3f, 0.7f, 0.3f)));
-    rows.push_back(evaluate("Blinn-Phong classic, / n.l (k_s = 1, s = 20)",
-                            blinn_phong<T, blinn_phong_form::classic>(zero, one, 20), s, c(0.6f, 0.1f, 0.6f)));
-    rows.push_back(evaluate("Blinn-Phong normalized (k_d = k_s = 0.5, s = 50)", blinn_phong<T>(half, half, 50), s, c(0.1f, 0.3f, 0.8f)));
-    rows.push_back(evaluate("Blinn-Phong normalized (k_s = 1, s = 10000)", blinn_phong<T>(zero, one, 10000), s, c(0.4f, 0.5f, 0.9f)));
-    rows.push_back(evaluate("Cook-Torrance Walter, Beckmann/Smith, m = 0.3, F = 1",
-                            beckmann_smith(beckmann<T>(0.3), schlick<T>(one)), s, c(0.0f, 0.6f, 0.6f)));
-    rows.push_back(evaluate("Cook-Torrance Walter, Beckmann/Smith, m = 0.01, F = 1",
-                            beckmann_smith(beckmann<T>(0.01), schlick<T>(one)), s, c(0.0f, 0.4f, 0.4f)));
-    rows.push_back(evaluate("Cook-Torrance Walter, GGX/Smith, alpha = 0.3, F = 1",
-                            ggx_smith(ggx<T>(0.3), schlick<T>(one)), s, c(0.3f, 0.3f, 0.9f)));
-    rows.push_back(evaluate("Cook-Torrance Walter, GGX/Smith, alpha = 0.01, F = 1",
-                            ggx_smith(ggx<T>(0.01), schlick<T>(one)), s, c(0.2f, 0.2f, 0.6f)));
-    rows.push_back(evaluate("Cook-Torrance Walter, GGX/Smith, alpha = 1, F = 1",
-                            ggx_smith(ggx<T>(1), schlick<T>(one)), s, c(0.5f, 0.5f, 1.0f)));
-    rows.push_back(evaluate("Cook-Torrance Walter, GGX/Smith, alpha = 0.05 x 0.5, F = 1",
-                            ggx_smith(ggx<T>(0.05, 0.5), schlick<T>(one)), s, c(0.6f, 0.3f, 0.9f)));
-    rows.push_back(evaluate("Cook-Torrance Walter, GGX/height-correlated Smith, alpha = 0.3, F = 1",
+    add("Lambert (k_d = 1)", lambert<T>(one), c(0.1f, 0.1f, 0.1f));
+    add("Phong classic, / n.l (k_s = 1, s = 10)", classic_phong<T>(zero, one, 10), c(0.8f, 0.1f, 0.1f));
+    add("Phong modified, unnormalized (k_s = 1, s = 2)", modified_phong<T>(zero, one, 2), c(0.9f, 0.5f, 0.0f));
+    add("Phong normalized (k_d = k_s = 0.5, s = 20)", normalized_phong<T>(half, half, 20), c(0.1f, 0.5f, 0.1f));
+    add("Phong normalized (k_s = 1, s = 10000)", normalized_phong<T>(zero, one, 10000), c(0.3f, 0.7f, 0.3f));
+    add("Blinn-Phong classic, / n.l (k_s = 1, s = 20)",
+                            blinn_phong<T, blinn_phong_form::classic>(zero, one, 20), c(0.6f, 0.1f, 0.6f));
+    add("Blinn-Phong normalized (k_d = k_s = 0.5, s = 50)", blinn_phong<T>(half, half, 50), c(0.1f, 0.3f, 0.8f));
+    add("Blinn-Phong normalized (k_s = 1, s = 10000)", blinn_phong<T>(zero, one, 10000), c(0.4f, 0.5f, 0.9f));
+    add("Cook-Torrance Walter, Beckmann/Smith, m = 0.3, F = 1",
+                            beckmann_smith(beckmann<T>(0.3), schlick<T>(one)), c(0.0f, 0.6f, 0.6f));
+    add("Cook-Torrance Walter, Beckmann/Smith, m = 0.01, F = 1",
+                            beckmann_smith(beckmann<T>(0.01), schlick<T>(one)), c(0.0f, 0.4f, 0.4f));
+    add("Cook-Torrance Walter, GGX/Smith, alpha = 0.3, F = 1",
+                            ggx_smith(ggx<T>(0.3), schlick<T>(one)), c(0.3f, 0.3f, 0.9f));
+    add("Cook-Torrance Walter, GGX/Smith, alpha = 0.01, F = 1",
+                            ggx_smith(ggx<T>(0.01), schlick<T>(one)), c(0.2f, 0.2f, 0.6f));
+    add("Cook-Torrance Walter, GGX/Smith, alpha = 1, F = 1",
+                            ggx_smith(ggx<T>(1), schlick<T>(one)), c(0.5f, 0.5f, 1.0f));
+    add("Cook-Torrance Walter, GGX/Smith, alpha = 0.05 x 0.5, F = 1",
+                            ggx_smith(ggx<T>(0.05, 0.5), schlick<T>(one)), c(0.6f, 0.3f, 0.9f));
+    add("Cook-Torrance Walter, GGX/height-correlated Smith, alpha = 0.3, F = 1",
                             cook_torrance<ggx<T>, schlick<T>, smith_height_correlated<T>>(ggx<T>(0.3), schlick<T>(one)),
-                            s, c(0.2f, 0.6f, 0.9f)));
+                            c(0.2f, 0.6f, 0.9f));
     using ggx_ms = compensated_ggx_conductor<T>;
     using beckmann_ms = compensated_beckmann_conductor<T>;
-    rows.push_back(evaluate("Cook-Torrance Walter, GGX/height-correlated Smith + Kulla-Conty, alpha = 1, F = 1",
-                            ggx_ms(ggx<T>(1), schlick<T>(one)), s, c(0.0f, 0.0f, 0.0f)));
-    rows.push_back(evaluate("Cook-Torrance Walter, GGX/height-correlated Smith + Kulla-Conty, alpha = 0.05 x 0.5, gold",
-                            ggx_ms(ggx<T>(0.05, 0.5), schlick<T>(rgb<T>(1.0, 0.71, 0.29))), s, c(0.8f, 0.6f, 0.1f)));
-    rows.push_back(evaluate("Cook-Torrance Walter, Beckmann/height-correlated Smith + Kulla-Conty, m = 0.5, F = 1",
-                            beckmann_ms(beckmann<T>(0.5), schlick<T>(one)), s, c(0.0f, 0.3f, 0.3f)));
-    rows.push_back(evaluate("Coupled plastic (GGX alpha = 0.5, k_d = 1)", coupled_plastic<T>(ggx<T>(0.5), one), s,
-                            c(0.9f, 0.4f, 0.6f)));
-    rows.push_back(evaluate("Cook-Torrance Walter, Beckmann/V-groove, m = 0.3, F = 1",
-                            cook_torrance<beckmann<T>, schlick<T>, v_groove<T>>(beckmann<T>(0.3), schlick<T>(one)), s,
-                            c(0.5f, 0.5f, 0.2f)));
-    rows.push_back(evaluate("Cook-Torrance course slides (4/pi), Beckmann/V-groove, m = 0.3, F = 1",
+    add("Cook-Torrance Walter, GGX/height-correlated Smith + Kulla-Conty, alpha = 1, F = 1",
+                            ggx_ms(ggx<T>(1), schlick<T>(one)), c(0.0f, 0.0f, 0.0f));
+    add("Cook-Torrance Walter, GGX/height-correlated Smith + Kulla-Conty, alpha = 0.05 x 0.5, gold",
+                            ggx_ms(ggx<T>(0.05, 0.5), schlick<T>(rgb<T>(1.0, 0.71, 0.29))), c(0.8f, 0.6f, 0.1f));
+    add("Cook-Torrance Walter, Beckmann/height-correlated Smith + Kulla-Conty, m = 0.5, F = 1",
+                            beckmann_ms(beckmann<T>(0.5), schlick<T>(one)), c(0.0f, 0.3f, 0.3f));
+    add("Coupled plastic (GGX alpha = 0.5, k_d = 1)", coupled_plastic<T>(ggx<T>(0.5), one),
+                            c(0.9f, 0.4f, 0.6f));
+    add("Cook-Torrance Walter, Beckmann/V-groove, m = 0.3, F = 1",
+                            cook_torrance<beckmann<T>, schlick<T>, v_groove<T>>(beckmann<T>(0.3), schlick<T>(one)),
+                            c(0.5f, 0.5f, 0.2f));
+    add("Cook-Torrance course slides (4/pi), Beckmann/V-groove, m = 0.3, F = 1",
                             cook_torrance<beckmann<T>, schlick<T>, v_groove<T>, cook_torrance_form::course>(
                                 beckmann<T>(0.3), schlick<T>(one)),
-                            s, c(0.9f, 0.2f, 0.5f)));
-    rows.push_back(evaluate("Cook-Torrance 1982 paper (x4), Beckmann/V-groove, m = 0.3, F = 1",
+                            c(0.9f, 0.2f, 0.5f));
+    add("Cook-Torrance 1982 paper (x4), Beckmann/V-groove, m = 0.3, F = 1",
                             cook_torrance<beckmann<T>, schlick<T>, v_groove<T>, cook_torrance_form::paper_1982>(
                                 beckmann<T>(0.3), schlick<T>(one)),
-                            s, c(0.5f, 0.2f, 0.0f)));
-    rows.push_back(evaluate("Oren-Nayar (rho = 0.8, sigma = 0.3)", oren_nayar<T>(rgb<T>(0.8), 0.3), s, c(0.6f, 0.4f, 0.2f)));
-    rows.push_back(evaluate("Oren-Nayar (rho = 1, sigma = 0.5)", oren_nayar<T>(one, 0.5), s, c(0.8f, 0.6f, 0.3f)));
-    rows.push_back(evaluate("Ashikhmin-Shirley (R_d = 0.8, R_s = 0.2, p = 10, 200)",
-                            ashikhmin_shirley<T>(rgb<T>(0.8), rgb<T>(0.2), 10, 200), s, c(0.2f, 0.7f, 0.3f)));
-    return rows;
+                            c(0.5f, 0.2f, 0.0f));
+    add("Oren-Nayar (rho = 0.8, sigma = 0.3)", oren_nayar<T>(rgb<T>(0.8), 0.3), c(0.6f, 0.4f, 0.2f));
+    add("Oren-Nayar (rho = 1, sigma = 0.5)", oren_nayar<T>(one, 0.5), c(0.8f, 0.6f, 0.3f));
+    add("Ashikhmin-Shirley (R_d = 0.8, R_s = 0.2, p = 10, 200)",
+                            ashikhmin_shirley<T>(rgb<T>(0.8), rgb<T>(0.2), 10, 200), c(0.2f, 0.7f, 0.3f));
+    return jobs;
 }
 
 void print_tables(const std::vector<row>& rows, const settings& s) {
@@ -288,7 +298,7 @@ std::string cell(double a, double se) {
     return text;
 }
 
-std::vector<compensation_row> evaluate_compensation(const settings& s) {
+std::vector<compensation_row> evaluate_compensation(const settings& s, ex::progress& bar) {
     using namespace shade;
     const rgb<T> one(1);
     const std::size_t strata = 4 * s.strata;
@@ -343,6 +353,7 @@ std::vector<compensation_row> evaluate_compensation(const settings& s) {
                              (1 - double(plastic.coating_albedo(T(mu)))) * (1 - a_s) / (1 - e_s_avg);
                   });
         add_own("coupled plastic k_d = 1 (own sampler)", plastic, strata);
+        bar.advance();
     }
     return rows;
 }
@@ -498,19 +509,40 @@ int main(int argc, char** argv) {
             else if (args.option("--roughness-out")) s.roughness_out = args.path();
             else if (args.option("--strata")) s.strata = args.integer<std::size_t>(16, 4096);
             else if (args.option("--samples")) s.samples = args.integer<std::size_t>(1000, 10000000);
+            else if (args.flag("--quiet")) s.quiet = true;
             else args.unknown();
         }
-        // The output path is checked (and its temporary file created) before the checks run.
-        ex::output_file png(s.out);
-        ex::output_file roughness_png(s.roughness_out);
-        const auto rows = evaluate_all(s);
+        // Formats and paths are checked (and the temporary files created) before the checks run.
+        if (s.out) (void)ex::output_format("--out", *s.out, {".png"});
+        if (s.roughness_out) (void)ex::output_format("--roughness-out", *s.roughness_out, {".png"});
+        std::optional<ex::output_file> png, roughness_png;
+        if (s.out) png.emplace(*s.out);
+        if (s.roughness_out) roughness_png.emplace(*s.roughness_out);
+
+        const auto jobs = model_jobs(s);
+        std::vector<row> rows;
+        std::vector<compensation_row> compensation;
+        {
+            // One step per model, then one per roughness of the compensation table.
+            ex::progress bar("properties", jobs.size() + std::size(compensation_alphas), !s.quiet);
+            for (const auto& job : jobs) {
+                rows.push_back(job());
+                bar.advance();
+            }
+            compensation = evaluate_compensation(s, bar);
+        }
         print_tables(rows, s);
-        print_compensation(evaluate_compensation(s), s);
-        plot(rows, png.temporary());
-        plot_roughness(roughness_png.temporary(), s);
-        png.commit();
-        roughness_png.commit();
-        std::fprintf(stderr, "properties: wrote %s and %s\n", s.out.string().c_str(), s.roughness_out.string().c_str());
+        print_compensation(compensation, s);
+        if (png) {
+            plot(rows, png->temporary());
+            png->commit();
+            std::fprintf(stderr, "properties: wrote %s\n", s.out->string().c_str());
+        }
+        if (roughness_png) {
+            plot_roughness(roughness_png->temporary(), s);
+            roughness_png->commit();
+            std::fprintf(stderr, "properties: wrote %s\n", s.roughness_out->string().c_str());
+        }
         return 0;
     });
 }

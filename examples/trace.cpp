@@ -1,6 +1,6 @@
 // trace: shade's reference ray tracer. Renders one of the built-in scenes to a PNG, or to
-// a PFM or an OpenEXR file (linear radiance, no tone map) when the output name ends in
-// .pfm or .exr.
+// a PFM or an OpenEXR file (linear radiance, no tone map): the output name's extension
+// chooses, and any other extension is refused before rendering.
 //
 //   trace --scene gallery --width 640 --height 360 --spp 4 --out gallery.png
 //   trace --scene furnace --integrator path --out out/furnace.pfm
@@ -18,10 +18,6 @@
 #include <string>
 #include <string_view>
 
-#if defined(__unix__) || defined(__APPLE__)
-#include <unistd.h>
-#endif
-
 #include "support/cli.hpp"
 #include "support/image.hpp"
 #include "tracer/exr.hpp"
@@ -33,7 +29,7 @@ namespace {
 
 constexpr std::string_view usage = R"(usage: trace [options]
 
-Renders one of shade's reference scenes to a PNG image (or a PFM: linear radiance).
+Renders one of shade's reference scenes to a PNG image, or to linear radiance (PFM, EXR).
 
 options:
   --scene NAME     gallery (default): one sphere per shading model on a checker plane;
@@ -59,27 +55,17 @@ options:
   --area-samples N area lights are sampled N x N times per hit, 1 to 256 (default 4)
   --exposure X     exposure multiplier before tone mapping, in (0, 1e6] (default 1)
   --seed N         seed of the per-pixel random numbers (default 1)
-  --out FILE       output PNG, or linear radiance as PFM when FILE ends in .pfm
-                   or as OpenEXR (32-bit float RGB) when it ends in .exr
-                   (default <scene>.png);
-                   written to a temporary file next
-                   to it and renamed when complete, so a failed or interrupted run
-                   never leaves a partial FILE
-  --quiet          no progress bar (it is drawn only when stderr is a terminal)
+  --out FILE       output image (default <scene>.png); its extension sets the format:
+                   .png (exposure, tone map, 8-bit sRGB), .pfm or .exr (linear
+                   radiance, 32-bit float RGB); any other is refused before rendering.
+                   Written to a temporary file next to it and renamed when complete,
+                   so a failed or interrupted run never leaves a partial FILE
+  --quiet          no progress bar (it is drawn only when stderr is a terminal and
+                   the render takes more than a second)
   --help           this text
 
 limits: at most 2^26 pixels (width x height) and 2^32 samples (pixels x spp).
 )";
-
-// True when stderr is a terminal, where a redrawn progress bar belongs (in a log file or a
-// pipe it would only add lines of carriage returns).
-bool stderr_is_terminal() {
-#if defined(__unix__) || defined(__APPLE__)
-    return isatty(STDERR_FILENO) == 1;
-#else
-    return false;
-#endif
-}
 
 // Limits checked before anything is allocated or rendered: an image side of at most
 // 16384 pixels, at most 2^26 pixels (the radiance buffer then stays under 1 GiB in double,
@@ -97,6 +83,7 @@ struct arguments {
     tracer::render_options render;
     double exposure = 1;
     std::filesystem::path out;
+    std::string format; ///< ".png", ".pfm" or ".exr", from out's extension
     bool quiet = false;
     bool help = false;
 };
@@ -146,6 +133,7 @@ arguments parse(int argc, char** argv) {
     ex::check_limit("the number of samples (--width x --height x --spp)", pixels * std::uint64_t(a.render.spp),
                     max_samples);
     if (!out_given) a.out = a.scene + ".png";
+    a.format = ex::output_format("--out", a.out, {".png", ".pfm", ".exr"});
     return a;
 }
 
@@ -164,11 +152,11 @@ int main(int argc, char** argv) {
         const double aspect = double(args.render.width) / double(args.render.height);
         const tracer::scene scene = tracer::make_scene(args.scene, aspect);
         tracer::render_options options = args.render;
-        options.progress = !args.quiet && stderr_is_terminal();
+        options.progress = !args.quiet;
         const auto radiance = tracer::render(scene, options);
-        if (args.out.extension() == ".pfm")
+        if (args.format == ".pfm")
             tracer::save_pfm(out.temporary(), radiance);
-        else if (args.out.extension() == ".exr")
+        else if (args.format == ".exr")
             tracer::save_exr(out.temporary(), radiance);
         else
             shade::examples::save_png(out.temporary(), tracer::to_srgb8(radiance, args.exposure));

@@ -1,6 +1,8 @@
 #include "support/cli.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <atomic>
 #include <cerrno>
 #include <charconv>
@@ -28,7 +30,7 @@ std::string concat(const Parts&... parts) {
 
 } // namespace
 
-int run_cli(std::string_view program, const std::function<int()>& body) {
+int run_cli(std::string_view program, const std::function<int()>& body, int failure_status) {
     const std::string name(program);
     try {
         return body();
@@ -37,14 +39,33 @@ int run_cli(std::string_view program, const std::function<int()>& body) {
         return exit_usage_error;
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "%s: out of memory\n", name.c_str());
-        return exit_failure;
+        return failure_status;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "%s: %s\n", name.c_str(), e.what());
-        return exit_failure;
+        return failure_status;
     }
 }
 
 namespace detail {
+
+namespace {
+
+template <std::integral I>
+std::string integer_text(I x) {
+    std::array<char, 24> buffer{};
+    const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), x);
+    return ec == std::errc() ? std::string(buffer.data(), end) : std::string("?");
+}
+
+} // namespace
+
+std::string integer_range(std::intmax_t min, std::intmax_t max) {
+    return concat("[", integer_text(min), ", ", integer_text(max), "]");
+}
+
+std::string integer_range(std::uintmax_t min, std::uintmax_t max) {
+    return concat("[", integer_text(min), ", ", integer_text(max), "]");
+}
 
 void throw_not_whole(std::string_view option, std::string_view text, const std::string& range) {
     throw usage_error("option " + std::string(option) + " needs a whole number in " + range + ", got '" +
@@ -114,6 +135,21 @@ void check_limit(std::string_view what, std::uint64_t value, std::uint64_t limit
     if (value > limit)
         throw usage_error(std::string(what) + " is " + std::to_string(value) + ", more than the limit of " +
                           std::to_string(limit));
+}
+
+std::string output_format(std::string_view option, const std::filesystem::path& path,
+                          std::initializer_list<std::string_view> supported) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    for (const std::string_view s : supported)
+        if (extension == s) return extension;
+    std::string list;
+    for (const std::string_view s : supported) list = concat(list, list.empty() ? "" : ", ", s);
+    const std::string problem =
+        extension.empty() ? std::string("no file extension") : concat("unsupported format '", extension, "'");
+    throw usage_error(concat("option ", option, ": cannot write '", path.string(), "': ", problem, " (supported: ",
+                             list, ")"));
 }
 
 // ---- temporary files removed on SIGINT, SIGTERM and SIGHUP ----

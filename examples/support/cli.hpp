@@ -30,10 +30,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <type_traits>
 
 namespace shade::examples {
 
@@ -51,8 +53,8 @@ inline constexpr int exit_failure = 1;
 /// Runs `body` (returning the exit status) and turns its exceptions into a message on
 /// stderr and a non-zero status: usage_error -> "<program>: <message>\n(try --help)",
 /// status 2; any other std::exception (std::bad_alloc included) -> "<program>: <message>",
-/// status 1.
-int run_cli(std::string_view program, const std::function<int()>& body);
+/// status `failure_status` (1 unless the program gives 1 another meaning).
+int run_cli(std::string_view program, const std::function<int()>& body, int failure_status = exit_failure);
 
 /// `text` as an integer of type I in [min, max]. Throws usage_error
 /// "option <option> needs a whole number in [min, max], got '<text>'" if it is not one
@@ -63,13 +65,19 @@ template <std::integral I>
 [[nodiscard]] I parse_integer(std::string_view option, std::string_view text, I min, I max);
 
 namespace detail {
+/// "[min, max]", the range an integer option accepts, as parse_integer's messages show it.
+[[nodiscard]] std::string integer_range(std::intmax_t min, std::intmax_t max);
+[[nodiscard]] std::string integer_range(std::uintmax_t min, std::uintmax_t max);
 [[noreturn]] void throw_not_whole(std::string_view option, std::string_view text, const std::string& range);
 [[noreturn]] void throw_out_of_range(std::string_view option, std::string_view text, const std::string& range);
 } // namespace detail
 
 template <std::integral I>
 I parse_integer(std::string_view option, std::string_view text, I min, I max) {
-    const std::string range = "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
+    // Widened to the largest type of I's signedness, so one compiled function formats
+    // every I's range.
+    using widest = std::conditional_t<std::is_signed_v<I>, std::intmax_t, std::uintmax_t>;
+    const std::string range = detail::integer_range(widest(min), widest(max));
     I value{};
     const char* const last = text.data() + text.size();
     const auto [end, ec] = std::from_chars(text.data(), last, value);
@@ -152,6 +160,15 @@ private:
 /// value > limit. For limits on products (pixels = width x height, samples = pixels x
 /// spp) computed in 64 bits before anything of that size is allocated.
 void check_limit(std::string_view what, std::uint64_t value, std::uint64_t limit);
+
+/// The format of the output path given with `option`, from its extension: returns the
+/// extension lower-cased with its dot (".png") when it is one of `supported` (lower-case,
+/// with their dots). Otherwise throws usage_error "option <option>: cannot write '<path>':
+/// unsupported format '<ext>' (supported: .png, .pfm, .exr)", or "...: no file extension
+/// (supported: ...)": called before any work and before output_file creates anything, so
+/// a refused path leaves no file.
+[[nodiscard]] std::string output_format(std::string_view option, const std::filesystem::path& path,
+                                        std::initializer_list<std::string_view> supported);
 
 /// An output file written atomically. The constructor checks the target path before any
 /// work is done (non-empty, not a directory, in an existing directory) and creates an

@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -19,6 +18,7 @@
 #include <shade/color/srgb.hpp>
 
 #include "support/image.hpp"
+#include "support/progress.hpp"
 
 #include "path.hpp"
 #include "scene.hpp"
@@ -43,7 +43,7 @@ struct render_options {
     /// (false: the estimate is then of the radiance along one ray, without the variance of
     /// integrating over the pixel's area, e.g. to compare light-transport estimators).
     bool jitter = true;
-    bool progress = false;  ///< draw a progress bar on stderr once a render passes 1 s
+    bool progress = false;  ///< a progress bar on stderr, when it is a terminal, once a render passes 1 s
 };
 
 /// A linear-radiance image, row-major from the top row.
@@ -88,8 +88,8 @@ inline radiance_image render(const scene& s, const render_options& options) {
     const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
     const unsigned threads = options.threads > 0 ? unsigned(options.threads) : hardware;
     std::atomic<int> next_row{0};
-    std::atomic<int> rows_done{0};
-    const auto start = std::chrono::steady_clock::now();
+    // Rows are the bar's steps; it draws only on a terminal (support/progress.hpp).
+    shade::examples::progress bar("trace", std::uint64_t(options.height), options.progress);
 
     const auto work = [&] {
         for (int y = next_row++; y < options.height; y = next_row++) {
@@ -100,35 +100,14 @@ inline radiance_image render(const scene& s, const render_options& options) {
                 for (int k = 0; k < options.spp; ++k) sum += sample_pixel(s, options, x, y, random);
                 image.pixels[std::size_t(index)] = sum / real(options.spp);
             }
-            ++rows_done;
+            bar.advance();
         }
     };
 
     std::vector<std::thread> pool;
     for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-    if (options.progress) {
-        // The calling thread draws the bar (after 1 s) and then joins the work.
-        std::thread bar([&] {
-            bool shown = false;
-            while (rows_done.load() < options.height) {
-                std::this_thread::sleep_for(std::chrono::milliseconds(100));
-                const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-                if (elapsed < 1.0) continue;
-                shown = true;
-                const int done = rows_done.load();
-                const int filled = 40 * done / options.height;
-                std::fprintf(stderr, "\r[%-40.*s] %3d%% %.1fs", filled,
-                             "########################################", 100 * done / options.height, elapsed);
-            }
-            if (shown) std::fprintf(stderr, "\r%70s\r", "");
-        });
-        work();
-        for (auto& t : pool) t.join();
-        bar.join();
-    } else {
-        work();
-        for (auto& t : pool) t.join();
-    }
+    work();
+    for (auto& t : pool) t.join();
     return image;
 }
 

@@ -178,3 +178,25 @@ TEST_CASE("output_file: bad paths fail at construction, naming the path") {
     CHECK(files_in(dir) == std::vector<fs::path>{"file"});
     fs::remove_all(dir);
 }
+
+TEST_CASE("output_format: the extension chooses the format; others are refused naming the supported ones") {
+    CHECK(ex::output_format("--out", "render.png", {".png", ".pfm", ".exr"}) == ".png");
+    CHECK(ex::output_format("--out", "dir.v2/render.EXR", {".png", ".pfm", ".exr"}) == ".exr");
+    CHECK(ex::output_format("--out", "a.pfm", {".png", ".pfm", ".exr"}) == ".pfm");
+    CHECK(message_of([] { (void)ex::output_format("--out", "x.jpg", {".png", ".pfm", ".exr"}); }) ==
+          "option --out: cannot write 'x.jpg': unsupported format '.jpg' (supported: .png, .pfm, .exr)");
+    CHECK(message_of([] { (void)ex::output_format("--out", "wf.txt", {".png"}); }) ==
+          "option --out: cannot write 'wf.txt': unsupported format '.txt' (supported: .png)");
+    // A dot in a directory name is no extension.
+    CHECK(message_of([] { (void)ex::output_format("--out", "out.d/plot", {".png"}); }) ==
+          "option --out: cannot write 'out.d/plot': no file extension (supported: .png)");
+}
+
+TEST_CASE("parse_integer: range messages for the widest types") {
+    CHECK(message_of([] { (void)ex::parse_integer<std::int64_t>("--n", "x", INT64_MIN, INT64_MAX); }) ==
+          "option --n needs a whole number in [-9223372036854775808, 9223372036854775807], got 'x'");
+    CHECK(message_of([] { (void)ex::parse_integer<std::uint64_t>("--n", "-1", 0, UINT64_MAX); }) ==
+          "option --n needs a whole number in [0, 18446744073709551615], got '-1'");
+    CHECK(message_of([] { (void)ex::parse_integer<unsigned char>("--n", "300", 1, 200); }) ==
+          "option --n must be in [1, 200], got 300");
+}
