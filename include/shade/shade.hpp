@@ -8,12 +8,16 @@
 
 #include <shade/version.hpp>
 
+#include <shade/core/alias_table.hpp>
 #include <shade/core/config.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/frame.hpp>
 #include <shade/core/math.hpp>
+#include <shade/core/mis.hpp>
 #include <shade/core/random.hpp>
+#include <shade/core/sampler.hpp>
 #include <shade/core/sampling.hpp>
+#include <shade/core/sobol.hpp>
 #include <shade/core/surface_point.hpp>
 #include <shade/core/types.hpp>
 
@@ -52,6 +56,7 @@
 #include <shade/light/incident_sample.hpp>
 #include <shade/light/light.hpp>
 #include <shade/light/light_sample.hpp>
+#include <shade/light/light_sampler.hpp>
 #include <shade/light/point.hpp>
 #include <shade/light/sphere.hpp>
 #include <shade/light/spot.hpp>
