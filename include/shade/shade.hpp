@@ -44,6 +44,8 @@
 #include <shade/brdf/oren_nayar.hpp>
 #include <shade/brdf/phong.hpp>
 
+#include <shade/bsdf/refract.hpp>
+
 #include <shade/light/any_light.hpp>
 #include <shade/light/area.hpp>
 #include <shade/light/area_emitter.hpp>

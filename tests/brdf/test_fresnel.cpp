@@ -213,3 +213,23 @@ TEST_CASE_TEMPLATE("conductor_fresnel: per channel, f0, validation", T, float, d
     check_throws_naming([] { (void)shade::conductor_fresnel<T>(rgb<T>(T(1)), rgb<T>(T(1), T(-1), T(1))); }, "kappa");
     check_throws_naming([] { (void)shade::conductor_fresnel<T>(rgb<T>(T(1)), rgb<T>(std::numeric_limits<T>::quiet_NaN())); }, "kappa");
 }
+
+TEST_CASE_TEMPLATE("F_dielectric_two_sided: from outside as F_dielectric, from inside with 1/eta", T, float, double) {
+    // Outside (n·w > 0): the relative index is eta; inside (n·w < 0): 1/eta, with total
+    // internal reflection beyond sin(theta) = 1/eta (eta = 1.5: cos < sqrt(5)/3 = 0.745).
+    const T eta = T(1.5);
+    for (int i = 0; i <= 100; ++i) {
+        const T c = T(i) / T(100);
+        CAPTURE(c);
+        CHECK(shade::F_dielectric_two_sided(c, eta) == shade::F_dielectric(c, eta));
+        CHECK(shade::F_dielectric_two_sided(-c, eta) == shade::F_dielectric(c, T(1) / eta));
+    }
+    CHECK(shade::F_dielectric_two_sided(T(-0.7), eta) == T(1));
+    CHECK(shade::F_dielectric_two_sided(T(-0.8), eta) < T(1));
+    // Normal incidence from either side: ((eta - 1)/(eta + 1))^2 = 0.04.
+    CHECK(close(shade::F_dielectric_two_sided(T(-1), eta), T(0.04), T(1e-5)));
+    CHECK(close(shade::F_dielectric_two_sided(T(1), eta), T(0.04), T(1e-5)));
+    // Grazing from either side reflects everything.
+    CHECK(shade::F_dielectric_two_sided(T(-0.0), eta) == T(1));
+    CHECK(close(shade::F_dielectric_two_sided(T(1e-9), eta), T(1), T(1e-6)));
+}

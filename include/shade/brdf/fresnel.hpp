@@ -1,9 +1,11 @@
 #pragma once
-// Fresnel terms F of the microfacet models: Schlick's approximation and the exact
-// unpolarized Fresnel reflectance of a dielectric interface and of a conductor (complex
-// index of refraction). Each exists as a function (F_schlick, F_dielectric, F_conductor)
-// and as a small term type (schlick<T>, dielectric_fresnel<T>, conductor_fresnel<T>) for
-// shade::cook_torrance and shade::ashikhmin_shirley. Measured metals: shade/brdf/metals.hpp.
+// Fresnel terms F of the microfacet models and of the smooth interfaces in shade/bsdf:
+// Schlick's approximation and the exact unpolarized Fresnel reflectance of a dielectric
+// interface and of a conductor (complex index of refraction). Each exists as a function
+// (F_schlick, F_dielectric, F_conductor) and as a small term type (schlick<T>,
+// dielectric_fresnel<T>, conductor_fresnel<T>) for shade::cook_torrance and
+// shade::ashikhmin_shirley; F_dielectric_two_sided takes a signed cosine for light from
+// either side of a dielectric. Measured metals: shade/brdf/metals.hpp.
 //
 // The argument cos_theta is the cosine between the incident direction and the normal of
 // the reflecting (micro)facet, e.g. l·h = v·h in a microfacet model.
@@ -83,6 +85,19 @@ template <std::floating_point T>
     const T denominator = c * g_minus_c + T(1);
     const T b = denominator > T(0) ? (c * g_plus_c - T(1)) / denominator : T(1);
     return glm::min(T(0.5) * a * a * (T(1) + b * b), T(1));
+}
+
+/// The exact Fresnel reflectance of a dielectric interface seen from either side: for
+/// light arriving along w with cos_theta = n·w, where n is the normal pointing outside and
+/// eta = n_inside / n_outside (shade's convention for transmission, docs/conventions.md).
+/// cos_theta > 0 (w outside) is F_dielectric(cos_theta, eta); cos_theta < 0 (w inside,
+/// e.g. a ray leaving glass) is F_dielectric(-cos_theta, 1 / eta), totally internally
+/// reflected (1) beyond the critical angle, sin(theta) > 1 / eta for eta > 1. Returns the
+/// reflectance in [0, 1]; at cos_theta = 0 (grazing, from either side) it is 1 for
+/// eta != 1. eta must be finite and > 0.
+template <std::floating_point T>
+[[nodiscard]] inline T F_dielectric_two_sided(T cos_theta, T eta) noexcept {
+    return cos_theta >= T(0) ? F_dielectric(cos_theta, eta) : F_dielectric(-cos_theta, T(1) / eta);
 }
 
 /// The exact Fresnel reflectance of a conductor (complex index of refraction) for
