@@ -44,7 +44,11 @@
 #include <shade/brdf/oren_nayar.hpp>
 #include <shade/brdf/phong.hpp>
 
+#include <shade/bsdf/bsdf.hpp>
 #include <shade/bsdf/refract.hpp>
+#include <shade/bsdf/smooth_conductor.hpp>
+#include <shade/bsdf/smooth_dielectric.hpp>
+#include <shade/bsdf/thin_dielectric.hpp>
 
 #include <shade/light/any_light.hpp>
 #include <shade/light/area.hpp>

@@ -208,6 +208,17 @@ private:
     T eta_;
 };
 
+/// Smallest accepted index of refraction eta = n_inside / n_outside of the dielectrics in
+/// shade/bsdf: 1e-4. A refraction scales radiance by up to eta^2 or 1/eta^2 (1e8 at the
+/// bounds, finite in float); an eta near 1e-20 would make that weight overflow.
+template <std::floating_point T>
+inline constexpr T dielectric_eta_min = T(1e-4);
+
+/// Largest accepted index of refraction of the dielectrics in shade/bsdf: 1e4 (see
+/// dielectric_eta_min).
+template <std::floating_point T>
+inline constexpr T dielectric_eta_max = T(1e4);
+
 /// Largest accepted eta and kappa of a conductor: 1e4 (keeps every intermediate of
 /// F_conductor, up to (eta^2 + kappa^2)^2 ~ 4e16, finite in float).
 template <std::floating_point T>

@@ -6,7 +6,8 @@
 //       t, b  unit tangent and bitangent, with (t, b, n) orthonormal and right-handed
 //       (cross(t, b) == n).
 //   * A direction w is above the surface when dot(n, w) > 0. Reflection models return zero
-//     when l or v is not above the surface.
+//     when l or v is not above the surface. Models that transmit (shade/bsdf) take
+//     directions on either side; inside is the side opposite n.
 //   * h = normalize(l + v) is the half vector.
 //   * In the local frame, n is +z, t is +x and b is +y, so cos(theta) = w.z.
 //   * Colours are linear RGB (shade::rgb<T>), never sRGB-encoded.
