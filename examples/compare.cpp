@@ -74,8 +74,8 @@ Options:
 
 Output: the mean L*a*b* of each side (the arithmetic mean of the per-pixel L*a*b*), the
 mean, 95th percentile (nearest rank) and maximum of the per-pixel Delta E00 (CIEDE2000,
-Sharma, Wu & Dalal 2005), and the mean and largest absolute difference of the linear RGB
-channels (after --exposure).
+Sharma, Wu & Dalal 2005), and the mean and largest absolute difference and the root mean
+square difference of the linear RGB channels (after --exposure; over pixels and channels).
 
 Exit status: 0 on success, 1 if --fail-above is exceeded, 2 on a usage error, an
 unreadable, mismatched or invalid input, or a heat map that cannot be written (with a
@@ -308,7 +308,7 @@ int run(const options& o) {
     std::vector<real> delta_e;
     delta_e.reserve(count);
     shade::lab<real> sum_a{0, 0, 0}, sum_b{0, 0, 0};
-    real linear_sum = 0, linear_max = 0; // |a - b| over the channels (two images only)
+    real linear_sum = 0, linear_max = 0, linear_sum2 = 0; // |a - b| over the channels (two images only)
     for (int y = r.y; y < r.y + r.h; ++y)
         for (int x = r.x; x < r.x + r.w; ++x) {
             const shade::lab<real> lab_a = convert.to_lab(a.at(x, y));
@@ -317,6 +317,7 @@ int run(const options& o) {
             if (b) {
                 const shade::rgb<real> d = glm::abs(a.at(x, y) - b->at(x, y));
                 linear_sum += d.x + d.y + d.z;
+                linear_sum2 += d.x * d.x + d.y * d.y + d.z * d.z;
                 linear_max = std::max({linear_max, d.x, d.y, d.z});
             }
             sum_a = {sum_a.L + lab_a.L, sum_a.a + lab_a.a, sum_a.b + lab_a.b};
@@ -347,6 +348,7 @@ int run(const options& o) {
     if (b) {
         std::printf("linear RGB |a - b| mean: %.6g\n", linear_sum / (3 * n));
         std::printf("linear RGB |a - b| max:  %.6g\n", linear_max);
+        std::printf("linear RGB RMSE:         %.6g\n", std::sqrt(linear_sum2 / (3 * n)));
     }
 
     if (o.heatmap) {

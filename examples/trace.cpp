@@ -45,6 +45,9 @@ options:
   --integrator M   direct (default): classic direct lighting; path: path tracing in
                    physical units with next-event estimation, MIS and Russian roulette
   --strategy S     path integrator only: mis (default), light or brdf sampling alone
+  --sampler S      path integrator: independent (default) uniform numbers, or sobol:
+                   Owen-scrambled Sobol points, less noise at the same spp (use powers
+                   of two)
   --bounces N      path integrator only: scattering events at most, 1 to 100000
                    (default 1024; 1 is direct lighting)
   --width N        image width in pixels, 1 to 16384 (default 640)
@@ -117,6 +120,11 @@ arguments parse(int argc, char** argv) {
             else if (m == "light") a.render.path.sampling = tracer::strategy::light;
             else if (m == "brdf") a.render.path.sampling = tracer::strategy::brdf;
             else throw ex::usage_error("option --strategy must be mis, light or brdf, got '" + m + "'");
+        } else if (args.option("--sampler")) {
+            const std::string m(args.text());
+            if (m == "independent") a.render.sampler = tracer::sampler_kind::independent;
+            else if (m == "sobol") a.render.sampler = tracer::sampler_kind::sobol;
+            else throw ex::usage_error("option --sampler must be independent or sobol, got '" + m + "'");
         } else if (args.option("--bounces")) a.render.path.max_bounces = args.integer(1, 100000);
         else if (args.option("--area-samples")) a.render.lighting.area_samples_per_side = args.integer(1, max_area_samples);
         else if (args.option("--seed")) a.render.seed = args.integer<std::uint64_t>(0, UINT64_MAX);

@@ -12,8 +12,10 @@
 
 #include <glm/geometric.hpp>
 
-#include <shade/core/random.hpp>
+#include <shade/core/mis.hpp>
+#include <shade/core/sampler.hpp>
 #include <shade/geometry/ray.hpp>
+#include <shade/light/light_sampler.hpp>
 
 #include "scene.hpp"
 
@@ -35,18 +37,6 @@ struct path_options {
 
 namespace detail {
 
-/// The power heuristic with exponent 2 (Veach 1997, "Robust Monte Carlo Methods for Light
-/// Transport Simulation", PhD thesis, Stanford, eq. 9.13, beta = 2): the weight of a
-/// sample drawn with density pdf_a when the other strategy would have drawn it with
-/// pdf_b, pdf_a^2 / (pdf_a^2 + pdf_b^2). Both densities are in 1/sr and include the
-/// probability of choosing the light.
-inline real power_heuristic(real pdf_a, real pdf_b) {
-    const real a = pdf_a * pdf_a;
-    const real b = pdf_b * pdf_b;
-    if (!(a > 0)) return 0;
-    return a / (a + b);
-}
-
 /// The origin of rays leaving surface point p on the side of the unit normal n, pushed off
 /// the surface by 2^-32 relative to |p| (the scene's self-intersection margin, see
 /// scene::visible).
@@ -64,8 +54,9 @@ inline real max_channel(const rgb& c) { return std::max(c.x, std::max(c.y, c.z))
 /// without a physical material (object::brdf) absorb everything.
 ///
 /// At every vertex the direct light is estimated twice and the two combined by MIS
-/// (Veach 1997, ch. 9): (a) next-event estimation: one light chosen uniformly (probability
-/// 1/N), sample_incident toward it, a shadow ray, weight w_l = power_heuristic(P_l, P_f);
+/// (Veach 1997, ch. 9; shade::power_heuristic): (a) next-event estimation: one light chosen
+/// uniformly (shade::uniform_light_sampler, probability 1/N), sample_incident toward it, a
+/// shadow ray, weight w_l = power_heuristic(P_l, P_f);
 /// (b) the BRDF-sampled continuation ray: when it hits an emitter (or leaves the scene
 /// into an environment light), its radiance counts with weight power_heuristic(P_f, P_l),
 /// P_l = pdf_incident / N at the previous vertex. Delta lights are reached by (a) alone,
@@ -74,31 +65,38 @@ inline real max_channel(const rgb& c) { return std::max(c.x, std::max(c.y, c.z))
 /// the path continues with probability q = min(1, max channel of beta) and beta is
 /// divided by q (Russian roulette, Arvo, Kirk 1990, "Particle Transport and Image
 /// Synthesis", SIGGRAPH), which keeps the estimate unbiased.
-inline rgb trace_path(const scene& s, shade::ray<real> r, shade::rng& random, const path_options& options) {
+///
+/// The random numbers come from `sampler`, in the same order at every vertex (the
+/// dimensions of a shade::sampler): the light's index (1D), the point on it (2D), the
+/// BRDF's lobe (1D) and direction (2D), Russian roulette (1D); a strategy that skips a
+/// draw still takes its numbers, so each decision keeps its dimension.
+template <shade::sampler S>
+rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_options& options) {
     rgb radiance(0);
     rgb beta(1);
-    const std::size_t light_count = s.lights.size();
-    const real pick = light_count > 0 ? real(1) / real(light_count) : real(0);
+    const shade::uniform_light_sampler<real> light_sampler(s.lights.size());
     real previous_brdf_pdf = 0; // 0: the ray came from the camera
     for (int bounce = 0;; ++bounce) {
         const bool from_camera = previous_brdf_pdf == 0;
         // The weight of emission found by this ray, against light sampling at its origin.
-        const auto emission_weight = [&](const shade::any_light<real>& light) -> real {
+        const auto emission_weight = [&](std::size_t light_index) -> real {
+            const auto& light = s.lights[light_index];
+            const real pick = light_sampler.probability(light_index);
             if (from_camera || options.sampling == strategy::brdf) return 1;
             if (options.sampling == strategy::light) return 0;
-            return detail::power_heuristic(previous_brdf_pdf, pick * light.pdf_incident(r.origin, r.direction));
+            return shade::power_heuristic(previous_brdf_pdf, pick * light.pdf_incident(r.origin, r.direction));
         };
         const auto h = s.intersect(r);
         if (!h) {
-            for (const auto& light : s.lights)
-                if (std::holds_alternative<shade::environment_light<real>>(light.get()))
-                    radiance += beta * emission_weight(light) * light.incident_radiance(r.origin, r.direction);
+            for (std::size_t i = 0; i < s.lights.size(); ++i)
+                if (std::holds_alternative<shade::environment_light<real>>(s.lights[i].get()))
+                    radiance += beta * emission_weight(i) * s.lights[i].incident_radiance(r.origin, r.direction);
             break;
         }
         const object& o = s.objects[h->object];
         if (o.emitter >= 0) {
-            const auto& light = s.lights[std::size_t(o.emitter)];
-            radiance += beta * emission_weight(light) * light.incident_radiance(r.origin, r.direction);
+            const auto i = std::size_t(o.emitter);
+            radiance += beta * emission_weight(i) * s.lights[i].incident_radiance(r.origin, r.direction);
         }
         if (!o.brdf || bounce >= options.max_bounces) break;
 
@@ -107,11 +105,13 @@ inline rgb trace_path(const scene& s, shade::ray<real> r, shade::rng& random, co
         const vec3 origin = detail::offset_origin(h->p, h->geometric_n);
 
         // (a) Next-event estimation.
-        if (options.sampling != strategy::brdf && light_count > 0) {
-            const std::size_t k = std::min(light_count - 1, std::size_t(random.uniform<real>() * real(light_count)));
-            const auto& light = s.lights[k];
-            const vec2 u(random.uniform<real>(), random.uniform<real>());
-            const auto ls = light.sample_incident(origin, u);
+        const real u_light = sampler.next_1d();
+        const vec2 u_point = sampler.next_2d();
+        const auto choice = light_sampler.sample(u_light);
+        if (options.sampling != strategy::brdf && choice) {
+            const auto& light = s.lights[choice->index];
+            const real pick = choice->probability;
+            const auto ls = light.sample_incident(origin, u_point);
             if (ls && glm::dot(ls->l, h->geometric_n) > 0) {
                 const rgb f = o.brdf->f(ls->l, v, at);
                 const real cos_l = std::abs(glm::dot(at.n(), ls->l));
@@ -123,7 +123,7 @@ inline rgb trace_path(const scene& s, shade::ray<real> r, shade::rng& random, co
                     } else {
                         const real pdf_l = pick * ls->pdf;
                         const real w = options.sampling == strategy::mis
-                                           ? detail::power_heuristic(pdf_l, o.brdf->pdf(ls->l, v, at))
+                                           ? shade::power_heuristic(pdf_l, o.brdf->pdf(ls->l, v, at))
                                            : real(1);
                         radiance += beta * f * ls->radiance * (cos_l * w / pdf_l);
                     }
@@ -132,8 +132,9 @@ inline rgb trace_path(const scene& s, shade::ray<real> r, shade::rng& random, co
         }
 
         // (b) BRDF sampling: the continuation, which also finds emitters.
-        const real uc = random.uniform<real>();
-        const vec2 u(random.uniform<real>(), random.uniform<real>());
+        const real uc = sampler.next_1d();
+        const vec2 u = sampler.next_2d();
+        const real u_roulette = sampler.next_1d();
         const auto bs = o.brdf->sample(v, uc, u, at);
         if (!bs || !(glm::dot(bs->l, h->geometric_n) > 0)) break;
         beta *= bs->weight;
@@ -141,7 +142,7 @@ inline rgb trace_path(const scene& s, shade::ray<real> r, shade::rng& random, co
         r = shade::ray<real>{origin, bs->l};
         if (bounce + 1 >= options.roulette_after) {
             const real q = std::min(real(1), detail::max_channel(beta));
-            if (!(q > 0) || random.uniform<real>() >= q) break;
+            if (!(q > 0) || u_roulette >= q) break;
             beta /= q;
         }
     }

@@ -3,9 +3,10 @@
 // with shadow rays, several samples per pixel, rows shared between threads, and the
 // linear-radiance -> exposure -> tone map -> sRGB 8-bit chain.
 //
-// Determinism: every pixel draws its random numbers from its own generator, seeded by the
-// pixel's index (and the render seed), so the image does not depend on which thread
-// rendered which row, nor on the number of threads.
+// Determinism: every pixel sample draws its numbers from a sampler started at (pixel,
+// sample index) and the classic integrator from a generator seeded by the pixel's index
+// (both with the render seed), so the image does not depend on which thread rendered which
+// row, nor on the number of threads.
 
 #include <algorithm>
 #include <atomic>
@@ -16,6 +17,8 @@
 #include <vector>
 
 #include <shade/color/srgb.hpp>
+#include <shade/core/sampler.hpp>
+#include <shade/core/sobol.hpp>
 
 #include "support/image.hpp"
 #include "support/progress.hpp"
@@ -29,6 +32,14 @@ namespace tracer {
 /// sampled n x n), or path tracing in physical units (tracer::trace_path).
 enum class integrator { direct, path };
 
+/// Where the path integrator's random numbers come from (the classic direct integrator
+/// always uses a PCG32 stream per pixel for its area-light strata):
+///   independent: shade::independent_sampler, independent uniform numbers (the default);
+///   sobol:       shade::sobol_sampler, Owen-scrambled Sobol points (Burley 2020), lower
+///                error at the same spp for the smooth parts of the integrand; use spp
+///                that are powers of two.
+enum class sampler_kind { independent, sobol };
+
 /// Settings of one render.
 struct render_options {
     int width = 480;
@@ -39,6 +50,7 @@ struct render_options {
     lighting_options lighting{};
     integrator method = integrator::direct;
     path_options path{};    ///< settings of the path integrator
+    sampler_kind sampler = sampler_kind::independent; ///< the path integrator's numbers (and the pixel jitter)
     /// Whether samples are spread over the pixel (true) or all go through its centre
     /// (false: the estimate is then of the radiance along one ray, without the variance of
     /// integrating over the pixel's area, e.g. to compare light-transport estimators).
@@ -62,17 +74,37 @@ inline rgb trace(const scene& s, const shade::ray<real>& r, shade::rng& random, 
     return s.shade_hit(*h, v, random, options);
 }
 
-/// One sample of pixel (x, y): a camera ray through a point of the pixel (its centre when
-/// spp is 1 or options.jitter is false, else jittered with two numbers from `random`) and
-/// the radiance the chosen integrator estimates along it.
-inline rgb sample_pixel(const scene& s, const render_options& options, int x, int y, shade::rng& random) {
+/// Sample `k` of pixel (x, y): a camera ray through a point of the pixel (its centre when
+/// spp is 1 or options.jitter is false, else jittered by the sampler's first 2D draw) and
+/// the radiance the chosen integrator estimates along it. The path integrator draws its
+/// numbers from `sampler` (started here at (x, y, k)); the classic one from `random`.
+template <shade::sampler S>
+rgb sample_pixel(const scene& s, const render_options& options, int x, int y, int k, S& sampler,
+                 shade::rng& random) {
+    sampler.start_pixel_sample(std::uint32_t(x), std::uint32_t(y), std::uint32_t(k));
     const bool centre = options.spp == 1 || !options.jitter;
-    const real jx = centre ? real(0.5) : random.uniform<real>();
-    const real jy = centre ? real(0.5) : random.uniform<real>();
+    const vec2 jitter = sampler.next_2d();
+    const real jx = centre ? real(0.5) : jitter.x;
+    const real jy = centre ? real(0.5) : jitter.y;
     const auto r = s.camera->ray_for_raster(real(x) + jx, real(y) + jy, options.width, options.height);
-    if (options.method == integrator::path) return trace_path(s, r, random, options.path);
+    if (options.method == integrator::path) return trace_path(s, r, sampler, options.path);
     return trace(s, r, random, options.lighting);
 }
+
+namespace detail {
+
+/// Calls f with the sampler options.sampler names, seeded by options.seed.
+template <class F>
+decltype(auto) with_sampler(const render_options& options, F&& f) {
+    if (options.sampler == sampler_kind::sobol) {
+        shade::sobol_sampler<real> sampler(options.seed);
+        return f(sampler);
+    }
+    shade::independent_sampler<real> sampler(options.seed);
+    return f(sampler);
+}
+
+} // namespace detail
 
 /// Renders the scene with its camera. Throws std::invalid_argument for a scene without a
 /// camera or non-positive sizes.
@@ -92,16 +124,18 @@ inline radiance_image render(const scene& s, const render_options& options) {
     shade::examples::progress bar("trace", std::uint64_t(options.height), options.progress);
 
     const auto work = [&] {
-        for (int y = next_row++; y < options.height; y = next_row++) {
-            for (int x = 0; x < options.width; ++x) {
-                const std::uint64_t index = std::uint64_t(y) * std::uint64_t(options.width) + std::uint64_t(x);
-                shade::rng random(options.seed, index);
-                rgb sum(0);
-                for (int k = 0; k < options.spp; ++k) sum += sample_pixel(s, options, x, y, random);
-                image.pixels[std::size_t(index)] = sum / real(options.spp);
+        detail::with_sampler(options, [&](auto& sampler) {
+            for (int y = next_row++; y < options.height; y = next_row++) {
+                for (int x = 0; x < options.width; ++x) {
+                    const std::uint64_t index = std::uint64_t(y) * std::uint64_t(options.width) + std::uint64_t(x);
+                    shade::rng random(options.seed, index);
+                    rgb sum(0);
+                    for (int k = 0; k < options.spp; ++k) sum += sample_pixel(s, options, x, y, k, sampler, random);
+                    image.pixels[std::size_t(index)] = sum / real(options.spp);
+                }
+                bar.advance();
             }
-            bar.advance();
-        }
+        });
     };
 
     std::vector<std::thread> pool;
