@@ -15,6 +15,7 @@
 #include <shade/core/mis.hpp>
 #include <shade/core/sampler.hpp>
 #include <shade/geometry/ray.hpp>
+#include <shade/geometry/spawn.hpp>
 #include <shade/light/light_sampler.hpp>
 
 #include "scene.hpp"
@@ -36,14 +37,6 @@ struct path_options {
 };
 
 namespace detail {
-
-/// The origin of rays leaving surface point p on the side of the unit normal n, pushed off
-/// the surface by 2^-32 relative to |p| (the scene's self-intersection margin, see
-/// scene::visible).
-inline vec3 offset_origin(const vec3& p, const vec3& n) {
-    const real scale = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), real(1)});
-    return p + n * (scale * 0x1p-32);
-}
 
 /// Largest channel.
 inline real max_channel(const rgb& c) { return std::max(c.x, std::max(c.y, c.z)); }
@@ -102,7 +95,9 @@ rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_option
 
         const auto at = surface_point::at(h->p, h->shading_n);
         const vec3 v = -r.direction;
-        const vec3 origin = detail::offset_origin(h->p, h->geometric_n);
+        // Rays leave on the side of the geometric normal (the path ends below it), off the
+        // surface by the hit point's rounding bound (shade/geometry/spawn.hpp).
+        const vec3 origin = shade::offset_ray_origin(h->p, h->p_error, h->geometric_n, h->geometric_n);
 
         // (a) Next-event estimation.
         const real u_light = sampler.next_1d();

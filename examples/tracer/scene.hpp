@@ -22,6 +22,7 @@
 #include <shade/geometry/bvh.hpp>
 #include <shade/geometry/camera.hpp>
 #include <shade/geometry/plane.hpp>
+#include <shade/geometry/spawn.hpp>
 #include <shade/geometry/sphere.hpp>
 #include <shade/geometry/triangle.hpp>
 #include <shade/geometry/triangle_bvh.hpp>
@@ -46,6 +47,7 @@ struct lighting_query {
     const scene& lit_scene;
     const surface_point& at;
     const vec3& geometric_n;    ///< unit geometric normal (shadow rays start off it)
+    const vec3& p_error;        ///< the rounding bound of at.p (shade::hit::p_error)
     const vec3& v;              ///< unit direction toward the viewer
     shade::rng& random;         ///< jitters the area lights' strata
     const lighting_options& options;
@@ -83,6 +85,7 @@ enum class mesh_shading { flat, gouraud, phong };
 struct scene_hit {
     real t = 0;
     vec3 p{0};
+    vec3 p_error{0};           ///< bound on p's rounding (shade::hit::p_error), for spawned rays
     vec3 geometric_n{0, 0, 1}; ///< unit geometric normal, flipped toward the ray origin
     vec3 shading_n{0, 0, 1};   ///< unit shading normal, same side as geometric_n
     std::size_t object = 0;    ///< index into scene::objects
@@ -210,12 +213,12 @@ struct scene {
                 const vec3 pk = o.mesh->positions[vi];
                 const vec3 vk = glm::normalize(eye - pk);
                 const auto at = surface_point::at(pk, o.mesh->normals[vi]);
-                c += h.barycentric[k] * light_point(o, at, h.geometric_n, vk, random, options, false);
+                c += h.barycentric[k] * light_point(o, at, h.geometric_n, h.p_error, vk, random, options, false);
             }
             return c;
         }
         const auto at = surface_point::at(h.p, h.shading_n);
-        return light_point(o, at, h.geometric_n, v, random, options, true);
+        return light_point(o, at, h.geometric_n, h.p_error, v, random, options, true);
     }
 
 private:
@@ -251,6 +254,7 @@ private:
             if (!h) return std::nullopt;
             out.t = h->t;
             out.p = h->p;
+            out.p_error = h->p_error;
             out.geometric_n = out.shading_n = h->facing_normal();
             return out;
         }
@@ -259,6 +263,7 @@ private:
             if (!h) return std::nullopt;
             out.t = h->t;
             out.p = h->p;
+            out.p_error = h->p_error;
             out.geometric_n = out.shading_n = h->facing_normal();
             return out;
         }
@@ -270,6 +275,7 @@ private:
             const shade::triangle_hit<real>& h = x->hit;
             out.t = h.t;
             out.p = h.p;
+            out.p_error = h.p_error;
             out.barycentric = h.barycentric;
             out.geometric_n = h.facing_normal();
             out.shading_n = out.geometric_n;
@@ -294,7 +300,9 @@ public:
     template <class S>
     [[nodiscard]] rgb sum_lights(const S& s, const lighting_query& q) const {
         const auto jitter = [&](int, int) { return vec2(q.random.uniform<real>(), q.random.uniform<real>()); };
-        const vec3 origin = shadow_origin(q.at.p, q.geometric_n); // the same for every sample
+        // The same origin for every sample: off the surface on the side of the geometric
+        // normal (shadow rays toward lights below it are never traced).
+        const vec3 origin = shade::offset_ray_origin(q.at.p, q.p_error, q.geometric_n, q.geometric_n);
         const auto unoccluded = [&](const light_sample& ls) { return !q.shadows || visible(origin, q.geometric_n, ls); };
         return shade::sum_over_lights(s, q.at, q.v, lights, unoccluded, q.options.area_samples_per_side, jitter);
     }
@@ -302,22 +310,12 @@ public:
 private:
     /// Lights `at` with object o's material.
     [[nodiscard]] rgb light_point(const object& o, const surface_point& at, const vec3& geometric_n,
-                                  const vec3& v, shade::rng& random, const lighting_options& options,
-                                  bool shadows) const {
-        return o.surface(lighting_query{*this, at, geometric_n, v, random, options, shadows});
+                                  const vec3& p_error, const vec3& v, shade::rng& random,
+                                  const lighting_options& options, bool shadows) const {
+        return o.surface(lighting_query{*this, at, geometric_n, p_error, v, random, options, shadows});
     }
 
-    /// Where shadow rays from p leave the surface. Self-intersection: the origin is pushed
-    /// off the surface along the geometric normal by a distance relative to |p| (the
-    /// rounding error of a computed hit point is a few ulps of its largest coordinate;
-    /// 2^-32 relative is ~2^20 such ulps in double, far above that error yet far below any
-    /// feature of the scenes).
-    [[nodiscard]] static vec3 shadow_origin(const vec3& p, const vec3& geometric_n) {
-        const real scale = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), real(1)});
-        return p + geometric_n * (scale * 0x1p-32);
-    }
-
-    /// Shadow ray from `origin` (shadow_origin of the shaded point) toward the light
+    /// Shadow ray from `origin` (shade::offset_ray_origin of the shaded point) toward the light
     /// sample. A light below the geometric surface is always shadowed.
     [[nodiscard]] bool visible(const vec3& origin, const vec3& geometric_n, const light_sample& s) const {
         if (!(glm::dot(s.l, geometric_n) > 0)) return false;

@@ -26,6 +26,7 @@
 #include <shade/geometry/hit.hpp>
 #include <shade/geometry/plane.hpp>
 #include <shade/geometry/ray.hpp>
+#include <shade/geometry/spawn.hpp>
 #include <shade/geometry/sphere.hpp>
 #include <shade/geometry/triangle.hpp>
 

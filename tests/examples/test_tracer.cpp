@@ -440,12 +440,15 @@ TEST_CASE("a checker material chooses its cell once per point and lights it as t
         const auto at = shade::surface_point<real>::at(p, {0, 1, 0});
         const vec3 v = glm::normalize(vec3(0.2, 1, 0.7));
         const vec3 n(0, 1, 0);
+        // p is exactly on the floor (y = 0); a bound of a few ulps of its coordinates starts
+        // shadow rays off it, as a computed hit's p_error does.
+        const vec3 p_error(1e-15);
         const tracer::lighting_options options{};
         const auto both = [&](const auto& shader) {
             shade::rng r1(3, std::uint64_t(i));
             shade::rng r2(3, std::uint64_t(i));
-            const tracer::lighting_query q1{s, at, n, v, r1, options, true};
-            const tracer::lighting_query q2{s, at, n, v, r2, options, true};
+            const tracer::lighting_query q1{s, at, n, p_error, v, r1, options, true};
+            const tracer::lighting_query q2{s, at, n, p_error, v, r2, options, true};
             const rgb chosen = tracer::light_with(shader, q1);
             const rgb whole = s.sum_lights(shader, q2);
             CHECK(chosen == whole); // bit for bit

@@ -9,6 +9,14 @@
 // which is what shading with the "away from the surface" convention of
 // shade/core/frame.hpp wants.
 //
+// Rounding: p_error bounds, per coordinate, how far the computed p can be from the exact
+// point of the surface that the record describes (|p - p_exact| <= p_error in each
+// coordinate), with Higham's gamma_n = n u / (1 - n u) bounds (Higham 2002, "Accuracy and
+// Stability of Numerical Algorithms", 2nd ed., sec. 3.1; their use for ray origins: Pharr,
+// Jakob, Humphreys 2023, "Physically Based Rendering", 4th ed., sec. 6.8).
+// shade::spawn_ray (shade/geometry/spawn.hpp) moves a new ray's origin off the surface by
+// it, so that the ray cannot hit the surface it starts on.
+//
 // Parameterisation: uv are the surface parameters of p and dpdu the tangent dp/du (not
 // unit length). Every shape's (u, v) is right-handed about the outward normal:
 // cross(dp/du, dp/dv) points along n (for a triangle, with its default barycentric uv or
@@ -17,6 +25,7 @@
 #include <cmath>
 #include <concepts>
 #include <cstdint>
+#include <limits>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -44,6 +53,7 @@ struct hit {
     bool front_face = true; ///< true when the ray struck the side n points into
     vec2<T> uv{0, 0};      ///< surface parameters (u, v) of p; the shape says how they map
     vec3<T> dpdu{0, 0, 0}; ///< tangent dp/du at p, perpendicular to n, zero where undefined
+    vec3<T> p_error{0, 0, 0}; ///< bound on |p - exact point| per coordinate (see "Rounding" above)
 
     /// n if the ray struck the front face, -n otherwise: the unit normal on the side of
     /// the ray's origin.
@@ -87,6 +97,14 @@ struct primitive_hit {
 };
 
 namespace detail {
+
+/// Higham's gamma_n = n u / (1 - n u), with u = epsilon / 2 the unit roundoff of T: a
+/// computation of n roundings has relative error at most gamma_n (Higham 2002, lemma 3.1).
+template <std::floating_point T>
+[[nodiscard]] constexpr T gamma(int n) noexcept {
+    constexpr T u = std::numeric_limits<T>::epsilon() / 2;
+    return (T(n) * u) / (T(1) - T(n) * u);
+}
 
 /// v / |v| without underflow or overflow: v is first divided by its largest absolute
 /// component (so the squares below lie in [0, 3]), then normalised. Returns the zero

@@ -1,7 +1,9 @@
 #pragma once
 // shade::plane and ray/plane intersection.
 
+#include <cmath>
 #include <concepts>
+#include <limits>
 #include <optional>
 
 #include <glm/geometric.hpp>
@@ -58,7 +60,8 @@ private:
 /// (ed.), An Introduction to Ray Tracing, section on ray/plane intersection): with n the
 /// unit normal and q a point of the plane, n·(o + t d - q) = 0 gives
 ///     t = n·(q - o) / n·d.
-/// Returns the hit with that t, p = o + t d, the plane's normal, front_face = (n·d < 0),
+/// Returns the hit with that t, p = o + t d (p_error bounding its distance from the plane),
+/// the plane's normal, front_face = (n·d < 0),
 /// uv = the coordinates of p - point() along tangent() and bitangent(), dpdu = tangent().
 /// No hit when r is not valid(), when n·d == 0 exactly (ray parallel to the plane, also
 /// when it lies in it; no epsilon, so nearly parallel rays hit far away as they should),
@@ -96,6 +99,15 @@ template <std::floating_point T>
     out->p = p;
     out->n = n;
     out->front_face = n_dot_d < T(0);
+    // The distance of p from the plane, n·(p - q) = n·(o - q) + t (n·d) + the rounding of
+    // o + t d, is the error of n·(q - o) (gamma_4), of the division (u), of n·d times t
+    // (gamma_3) and of the sum (gamma_2), together below gamma_8 (|o|_1 + |q|_1 + |t d|_1),
+    // bounding each |x|_2 by |x|_1. It is given in every coordinate, so that spawn_ray's
+    // offset, dot(|n|, p_error) = p_error |n|_1 >= p_error, clears it whatever n is.
+    const auto l1 = [](const vec3<T>& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z); };
+    const T distance_error = detail::gamma<T>(8) * (l1(r.origin) + l1(pl.point()) + l1(t * r.direction));
+    // Coordinates near overflow make the sum infinite: the largest finite bound instead.
+    out->p_error = vec3<T>(std::isfinite(distance_error) ? distance_error : std::numeric_limits<T>::max());
     const vec3<T> offset = p - pl.point();
     out->uv = vec2<T>(glm::dot(offset, pl.tangent()), glm::dot(offset, pl.bitangent()));
     out->dpdu = pl.tangent();

@@ -92,8 +92,9 @@ template <std::floating_point T>
 /// Returns the nearer root in [t_min, t_max] (front_face = true: the ray enters), else the
 /// farther one (front_face = false: the ray leaves, e.g. when the origin is inside).
 /// A tangent ray (discriminant exactly 0) returns its single touching point as an
-/// entering hit. The normal is the outward unit normal: p - c normalised (its length is
-/// R up to rounding).
+/// entering hit. The normal is the outward unit normal: o + t d - c normalised (its length
+/// is R up to rounding), and the point is on the sphere along it, p = c + R n, with p_error
+/// = gamma_6 (|c| + R) per coordinate.
 /// No hit for an invalid ray, a negative discriminant or roots outside [t_min, t_max].
 ///
 /// Declared inline (a hint a template does not otherwise carry) so that g++ 12 -O3 inlines
@@ -164,12 +165,20 @@ template <std::floating_point T>
     } else {
         return out;
     }
-    const vec3<T> p = r.at(t);
-    const vec3<T> n = detail::normalize_expected_length(p - s.center(), normal_scale);
-    if (!is_finite(p) || !detail::is_unit_normal(n)) return out;
+    const vec3<T> on_ray = r.at(t);
+    const vec3<T> n = detail::normalize_expected_length(on_ray - s.center(), normal_scale);
+    if (!is_finite(on_ray) || !detail::is_unit_normal(n)) return out;
+    // The point is reprojected onto the sphere, c + R n (Pharr, Jakob, Humphreys 2023,
+    // sec. 6.8.5): o + t d can lie off the surface by t's error times |d|, which grows for
+    // rays that graze the sphere; c + R n is on it up to the rounding of n (gamma_4
+    // relative), of R n (u) and of the sum with c (u), below gamma_6 (|c| + R) in each
+    // coordinate.
+    const vec3<T> p = s.center() + s.radius() * n;
+    if (!is_finite(p)) return out;
     out.emplace();
     out->t = t;
     out->p = p;
+    out->p_error = detail::gamma<T>(6) * (glm::abs(s.center()) + vec3<T>(s.radius()));
     out->n = n;
     out->front_face = entering;
     return out;

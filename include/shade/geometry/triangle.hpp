@@ -115,9 +115,13 @@ struct triangle_intersection {
 /// tri: x's t, barycentrics and front_face, the geometric unit normal tri.normal(), the
 /// barycentric parameterisation uv = (b1, b2) with dpdu = v1 - v0 (the triangle is
 /// p = v0 + u (v1 - v0) + v (v2 - v0), right-handed about its normal), and
-/// the point p = b0 v0 + b1 v1 + b2 v2. Where that sum overflows (vertices within a few
-/// ulps of the largest finite value), each coordinate of p is clamped to the triangle's
-/// bounding box, so p is always finite.
+/// the point p = b0 v0 + b1 v1 + b2 v2 with its bound p_error = gamma_7 (|b0 v0| + |b1 v1|
+/// + |b2 v2|) (p's rounding) + gamma_6 L (1 / sin(angle at v0) + 1) in every coordinate
+/// (the rounding of the plane the intersection tests evaluate, L the longest edge), so
+/// that a ray spawned from p (shade::spawn_ray) is on the side it leaves by for every
+/// algorithm. Where the sum overflows (vertices within a few ulps of the largest finite
+/// value), each coordinate of p is clamped to the triangle's bounding box, so p is always
+/// finite, and p_error is the box's width.
 /// Precondition: x came from a find (or intersect) on this same triangle, which
 /// guarantees a non-degenerate, finite triangle and finite barycentrics >= 0.
 template <std::floating_point T>
@@ -125,16 +129,42 @@ template <std::floating_point T>
                                        const triangle_intersection<T>& x) noexcept {
     const vec3<T>& b = x.barycentric;
     vec3<T> p = b.x * tri.v0 + b.y * tri.v1 + b.z * tri.v2;
-    if (!is_finite(p)) {
+    // Two parts, both distances from the plane that the intersection tests see:
+    // * p's rounding: each coordinate is three products and two sums (five roundings) of
+    //   weights that sum to 1 within a few roundings (each test divides its numerators by
+    //   one determinant): gamma_7 of the sum of the terms' magnitudes (Pharr, Jakob,
+    //   Humphreys 2023, eq. 6.24). The weights' own errors move p within the plane.
+    // * the tests' plane: Moller-Trumbore decides on which side of the plane a ray starts
+    //   from T = (v0 - o)·((v0 - v1) x (v2 - v0)), whose rounding (edges and cross product
+    //   gamma_4, origin difference and dot product gamma_3 more) is, as a distance, below
+    //   gamma_6 |v0 - o| (|e1| |e2| / |e1 x e2| + 1); for an origin on the triangle |v0 - o|
+    //   is at most its longest edge L. |e1| |e2| / |e1 x e2| = 1 / sin of the angle at v0,
+    //   so the term matters only for slivers and needles, where it dominates. Bounded
+    //   without square roots: |x|_2 <= |x|_1 above and |x|_2 >= |x|_inf below the line.
+    const auto l1 = [](const vec3<T>& x) { return std::abs(x.x) + std::abs(x.y) + std::abs(x.z); };
+    const vec3<T> e1 = tri.v1 - tri.v0;
+    const vec3<T> e2 = tri.v2 - tri.v0;
+    const vec3<T> c = glm::abs(glm::cross(e1, e2));
+    const T e1_l1 = l1(e1), e2_l1 = l1(e2);
+    const T longest = glm::max(glm::max(e1_l1, e2_l1), l1(tri.v2 - tri.v1));
+    const T plane_error =
+        detail::gamma<T>(6) * longest * (e1_l1 * e2_l1 / glm::max(c.x, glm::max(c.y, c.z)) + T(1));
+    vec3<T> p_error = detail::gamma<T>(7) * (glm::abs(b.x * tri.v0) + glm::abs(b.y * tri.v1) + glm::abs(b.z * tri.v2)) +
+                      vec3<T>(plane_error);
+    if (!is_finite(p) || !is_finite(p_error)) {
         for (int k = 0; k < 3; ++k) {
             const T lo = glm::min(tri.v0[k], glm::min(tri.v1[k], tri.v2[k]));
             const T hi = glm::max(tri.v0[k], glm::max(tri.v1[k], tri.v2[k]));
             p[k] = glm::min(glm::max(p[k], lo), hi); // an infinite p[k] becomes lo or hi
+            // p is somewhere in the triangle's box; its width is then the bound (largest
+            // finite value where the width itself overflows).
+            p_error[k] = std::isfinite(hi - lo) ? hi - lo : std::numeric_limits<T>::max();
         }
     }
     triangle_hit<T> h;
     h.t = x.t;
     h.p = p;
+    h.p_error = p_error;
     h.n = tri.normal();
     h.front_face = x.front_face;
     h.barycentric = b;
