@@ -141,7 +141,7 @@ template <std::floating_point T>
     //   is at most its longest edge L. |e1| |e2| / |e1 x e2| = 1 / sin of the angle at v0,
     //   so the term matters only for slivers and needles, where it dominates. Bounded
     //   without square roots: |x|_2 <= |x|_1 above and |x|_2 >= |x|_inf below the line.
-    const auto l1 = [](const vec3<T>& x) { return std::abs(x.x) + std::abs(x.y) + std::abs(x.z); };
+    const auto l1 = [](const vec3<T>& w) { return std::abs(w.x) + std::abs(w.y) + std::abs(w.z); };
     const vec3<T> e1 = tri.v1 - tri.v0;
     const vec3<T> e2 = tri.v2 - tri.v0;
     const vec3<T> c = glm::abs(glm::cross(e1, e2));
