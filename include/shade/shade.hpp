@@ -10,6 +10,7 @@
 
 #include <shade/core/alias_table.hpp>
 #include <shade/core/config.hpp>
+#include <shade/core/distribution.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/frame.hpp>
 #include <shade/core/math.hpp>
