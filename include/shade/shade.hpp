@@ -50,6 +50,7 @@
 
 #include <shade/bsdf/bsdf.hpp>
 #include <shade/bsdf/refract.hpp>
+#include <shade/bsdf/rough_dielectric.hpp>
 #include <shade/bsdf/smooth_conductor.hpp>
 #include <shade/bsdf/smooth_dielectric.hpp>
 #include <shade/bsdf/thin_dielectric.hpp>

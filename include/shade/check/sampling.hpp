@@ -3,7 +3,9 @@
 // the density pdf() reports (chi-square goodness of fit), that the sample it returns agrees
 // with f and pdf at its direction, that pdf integrates to at most 1 over the sphere, and
 // that pdf covers f (no direction where f > 0 has pdf = 0). Each works on any type
-// satisfying shade::sampled_brdf, and each returns a shade::check::result.
+// satisfying shade::sampled_brdf, and each returns a shade::check::result. The chi-square
+// test and the pdf integral also take a BSDF with its own sampler (shade::bsdf_sampler),
+// over the whole sphere with v on either side.
 
 #include <algorithm>
 #include <cmath>
@@ -248,11 +250,20 @@ void require_view_above(const vec3<T>& v, const surface_point<T>& at) {
         throw invalid_parameter("v", "must be above the surface (n.v > 0)", shade::detail::to_text(v));
 }
 
+/// For a two-sided model (a BSDF's own sampler, model_ref::two_sided) v may be on either
+/// side but not on the surface; otherwise it must be above (require_view_above).
+template <std::floating_point T>
+void require_view_for(const model_ref<T>& model, const vec3<T>& v, const surface_point<T>& at) {
+    if (!model.two_sided()) return require_view_above(v, at);
+    if (!(glm::dot(v, at.n()) != T(0)))
+        throw invalid_parameter("v", "must not lie on the surface (n.v != 0)", shade::detail::to_text(v));
+}
+
 /// The body of chi2_goodness_of_fit (see there), on the type-erased model.
 template <std::floating_point T>
 chi2_result<T> run_chi2_goodness_of_fit(const model_ref<T>& model, const vec3<T>& v, const surface_point<T>& at,
                                         const chi2_options& options) {
-    detail::require_view_above(v, at);
+    detail::require_view_for(model, v, at);
     if (options.samples < 100)
         throw invalid_parameter("samples", "must be >= 100", shade::detail::to_text(double(options.samples)));
     if (options.rings < 1 || options.sectors < 1)
@@ -348,9 +359,12 @@ chi2_result<T> run_chi2_goodness_of_fit(const model_ref<T>& model, const vec3<T>
 /// for the mass pdf does not account for. Pearson's statistic over the pooled bins
 /// (pearson_chi2) gives the p-value; the test fails when p < sidak_significance(alpha,
 /// tests), when a draw has a non-finite direction or pdf, and is inconclusive when pooling
-/// leaves fewer than two bins. pdf must be 0 below the surface (sample never returns such
-/// directions), or the bins there show it.
-template <sampled_brdf B>
+/// leaves fewer than two bins. For a BRDF, v must be above the surface and pdf must be 0
+/// below it (sample never returns such directions), or the bins there show it. For a BSDF
+/// with its own sampler (shade::bsdf_sampler, radiance mode), v may be on either side and
+/// the bins cover the whole sphere, transmission included; a model whose lobes are all
+/// delta lobes has no density to test (pdf = 0) and fails.
+template <sampled_bsdf B>
 chi2_result<scalar_of<B>> chi2_goodness_of_fit(const B& model, const vec3<scalar_of<B>>& v,
                                                const surface_point<scalar_of<B>>& at,
                                                const chi2_options& options = {}) {
@@ -363,7 +377,7 @@ namespace detail {
 template <std::floating_point T>
 result<T> run_pdf_normalization(const model_ref<T>& model, const vec3<T>& v, const surface_point<T>& at,
                                 const chi2_options& options) {
-    detail::require_view_above(v, at);
+    detail::require_view_for(model, v, at);
     result<T> r;
     r.property = "pdf normalization";
     r.model = options.model;
@@ -401,13 +415,13 @@ result<T> run_pdf_normalization(const model_ref<T>& model, const vec3<T>& v, con
 } // namespace detail
 
 /// Checks ∫ pdf(l, v) dl <= 1 over the sphere for the view v (world space, above the
-/// surface) at `at`: a density may lose mass (a sampler may return nullopt) but never
+/// surface; for a shade::bsdf_sampler on either side) at `at`: a density may lose mass (a sampler may return nullopt) but never
 /// create it. The integral is computed by adaptive quadrature over the bins of
 /// chi2_goodness_of_fit (options.rings, options.sectors, pilot from options.seed, tolerance
 /// options.quadrature_tolerance). result::worst is the integral and result::error the
 /// quadrature's error estimate; the verdict is decide_at_most(integral, error,
 /// 1 + options.normalization_tolerance, 1).
-template <sampled_brdf B>
+template <sampled_bsdf B>
 result<scalar_of<B>> pdf_normalization(const B& model, const vec3<scalar_of<B>>& v,
                                        const surface_point<scalar_of<B>>& at, const chi2_options& options = {}) {
     return detail::run_pdf_normalization(detail::model_ref<scalar_of<B>>(model), v, at, options);

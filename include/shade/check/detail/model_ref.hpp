@@ -11,13 +11,16 @@
 #include <optional>
 
 #include <shade/brdf/brdf.hpp>
+#include <shade/bsdf/bsdf.hpp>
 #include <shade/core/surface_point.hpp>
 #include <shade/core/types.hpp>
 
 namespace shade::check::detail {
 
-/// A non-owning reference to a BRDF of scalar type T: f, and sample and pdf when the
-/// referenced type is a shade::sampled_brdf (sampled() says which). It refers to the model,
+/// A non-owning reference to a BRDF or BSDF of scalar type T: f, and sample and pdf when
+/// the referenced type is a shade::sampled_brdf or has a BSDF's own sampler
+/// (shade::bsdf_sampler; its radiance-mode samples are seen as brdf_samples, l, f, pdf and
+/// weight kept, and two_sided() is true). sampled() says whether it samples. It refers to the model,
 /// so the model must outlive it; the kit makes one per call and drops it on return.
 /// Calling sample or pdf when sampled() is false is a precondition violation (the public
 /// checks that sample require shade::sampled_brdf at compile time).
@@ -32,6 +35,10 @@ public:
         if constexpr (sampled_brdf<B>) {
             sample_ = &call_sample<B>;
             pdf_ = &call_pdf<B>;
+        } else if constexpr (bsdf_sampler<B>) {
+            sample_ = &call_bsdf_sample<B>;
+            pdf_ = &call_pdf<B>;
+            two_sided_ = true;
         }
     }
 
@@ -51,8 +58,12 @@ public:
         return pdf_(model_, l, v, at);
     }
 
-    /// True when the referenced model is a shade::sampled_brdf.
+    /// True when the referenced model is a shade::sampled_brdf or a shade::bsdf_sampler.
     [[nodiscard]] bool sampled() const noexcept { return sample_ != nullptr; }
+
+    /// True when the referenced model is a shade::bsdf_sampler: v may be on either side,
+    /// and sample draws over the whole sphere.
+    [[nodiscard]] bool two_sided() const noexcept { return two_sided_; }
 
 private:
     template <class B>
@@ -65,6 +76,14 @@ private:
         return static_cast<const B*>(model)->sample(v, uc, u, at);
     }
     template <class B>
+    static std::optional<brdf_sample<T>> call_bsdf_sample(const void* model, const vec3<T>& v, T uc,
+                                                          const vec2<T>& u, const surface_point<T>& at) {
+        const std::optional<bsdf_sample<T>> s =
+            static_cast<const B*>(model)->sample(v, uc, u, at, transport_mode::radiance);
+        if (!s) return std::nullopt;
+        return brdf_sample<T>{s->l, s->f, s->pdf, s->weight};
+    }
+    template <class B>
     static T call_pdf(const void* model, const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) {
         return static_cast<const B*>(model)->pdf(l, v, at);
     }
@@ -74,6 +93,7 @@ private:
     std::optional<brdf_sample<T>> (*sample_)(const void*, const vec3<T>&, T, const vec2<T>&,
                                              const surface_point<T>&) = nullptr;
     T (*pdf_)(const void*, const vec3<T>&, const vec3<T>&, const surface_point<T>&) = nullptr;
+    bool two_sided_ = false;
 };
 
 } // namespace shade::check::detail
