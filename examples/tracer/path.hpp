@@ -87,8 +87,8 @@ rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_option
             break;
         }
         const object& o = s.objects[h->object];
-        if (o.emitter >= 0) {
-            const auto i = std::size_t(o.emitter);
+        if (const int emitter = o.light_at(h->triangle); emitter >= 0) {
+            const auto i = std::size_t(emitter);
             radiance += beta * emission_weight(i) * s.lights[i].incident_radiance(r.origin, r.direction);
         }
         if (!o.brdf || bounce >= options.max_bounces) break;

@@ -106,6 +106,16 @@ struct object {
     material surface;
     std::optional<shade::any_brdf<real>> brdf; ///< physical material (path integrator); none: black
     int emitter = -1; ///< index into scene::lights of the light this object is the geometry of
+    /// For a mesh: each triangle k is a light of its own, scene::lights[emitter + k]
+    /// (add_emissive_mesh); otherwise the whole object is scene::lights[emitter].
+    bool emitter_per_triangle = false;
+
+    /// The index into scene::lights of the light at this object's triangle `triangle` (any value
+    /// for objects that are not meshes), or -1 when the object does not emit.
+    [[nodiscard]] int light_at(std::uint32_t triangle) const noexcept {
+        if (emitter < 0) return -1;
+        return emitter_per_triangle ? emitter + int(triangle) : emitter;
+    }
 };
 
 /// Settings of the direct-lighting integrator.
@@ -157,6 +167,35 @@ struct scene {
         add_sphere(light.shape(), make_material(b ? *b : shade::any_brdf<real>(shade::lambert<real>(rgb(0)))));
         objects.back().brdf = b;
         objects.back().emitter = int(lights.size()) - 1;
+    }
+    /// A quad light that is also visible geometry (two triangles; the whole quad is the
+    /// one light), with an optional material for the light it reflects (none: it absorbs).
+    void add_emitting_quad(const shade::area_light<real>& light, const std::optional<shade::any_brdf<real>>& b) {
+        lights.emplace_back(light);
+        tracer::mesh m;
+        const vec3 c = light.corner(), u = light.edge_u(), v = light.edge_v();
+        m.positions = {c, c + u, c + u + v, c + v}; // wound so that the normal is the light's
+        m.normals.assign(4, light.normal());
+        m.indices = {0, 1, 2, 0, 2, 3};
+        add_mesh(std::move(m), mesh_shading::flat,
+                 make_material(b ? *b : shade::any_brdf<real>(shade::lambert<real>(rgb(0)))));
+        objects.back().brdf = b;
+        objects.back().emitter = int(lights.size()) - 1;
+    }
+    /// A mesh whose every triangle emits radiance `e` toward the side its winding faces
+    /// (one shade::triangle_light per triangle), with an optional material (none: black).
+    void add_emissive_mesh(tracer::mesh m, const shade::emission<real>& e,
+                           const std::optional<shade::any_brdf<real>>& b) {
+        const int first = int(lights.size());
+        for (std::size_t k = 0; k < m.triangle_count(); ++k) {
+            const auto t = m.triangle(k);
+            lights.emplace_back(shade::triangle_light<real>(t.v0, t.v1, t.v2, e));
+        }
+        add_mesh(std::move(m), mesh_shading::flat,
+                 make_material(b ? *b : shade::any_brdf<real>(shade::lambert<real>(rgb(0)))));
+        objects.back().brdf = b;
+        objects.back().emitter = first;
+        objects.back().emitter_per_triangle = true;
     }
     void add_mesh(tracer::mesh m, mesh_shading shading, material mat) {
         object o;

@@ -3,16 +3,16 @@
 // This umbrella header includes every public header except shade/check/doctest.hpp (which
 // needs doctest), shade/geometry/triangle_batch.hpp (platform-specific SIMD code and
 // run-time CPU detection), the hierarchies shade/geometry/bvh.hpp and triangle_bvh.hpp
-// (SIMD box tests, and the batch), and shade/light/environment_map.hpp (it would take this
-// header past its preprocessed-line budget, tests/headers/budget.cmake): include them where
-// you use them.
+// (SIMD box tests, and the batch), and shade/light/environment_map.hpp with the
+// distributions it samples by, shade/core/distribution.hpp (they would take this header
+// past its preprocessed-line budget, tests/headers/budget.cmake): include them where you
+// use them.
 // Conventions: shade/core/frame.hpp and docs/conventions.md.
 
 #include <shade/version.hpp>
 
 #include <shade/core/alias_table.hpp>
 #include <shade/core/config.hpp>
-#include <shade/core/distribution.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/frame.hpp>
 #include <shade/core/math.hpp>
@@ -71,6 +71,7 @@
 #include <shade/light/point.hpp>
 #include <shade/light/sphere.hpp>
 #include <shade/light/spot.hpp>
+#include <shade/light/triangle.hpp>
 
 #include <shade/shading/checker.hpp>
 #include <shade/shading/gooch.hpp>

@@ -21,6 +21,7 @@ namespace {
 
 using tracer::real;
 using tracer::rgb;
+using tracer::vec3;
 
 // Per-pixel mean and standard error of the mean, from spp independent samples of each
 // pixel (the same generators and jitter as tracer::render).
@@ -362,5 +363,64 @@ TEST_CASE("path: Owen-scrambled Sobol samples cut the direct-lighting error of t
         CAPTURE(k);
         const double spread = std::sqrt(std::max(mean2[k] - mean[k] * mean[k], 0.0) / (renders - 1));
         CHECK(std::abs(mean[k] - image_mean(reference)) <= 4 * spread + 1e-3 * image_mean(reference));
+    }
+}
+
+TEST_CASE("path: an emissive quad that is part of a mesh lights the room as the equivalent rectangle light") {
+    // The same 0.5 x 0.5 light of radiance 20 under the ceiling of a white room with a red
+    // and a green wall, once as one shade::area_light (drawn as a two-triangle quad) and
+    // once as a mesh whose two triangles are shade::triangle_lights (half the area each,
+    // chosen by the light sampler one at a time). Both estimators are unbiased, so their
+    // images agree in expectation: the image mean within 3 standard errors (of the
+    // difference), and each of the 16 regions of 4 x 4 pixels within 4 (a Bonferroni bound:
+    // 48 region-channel comparisons at 4 SE fail together by chance with probability
+    // 48 x 6.3e-5 = 0.3%).
+    using L = shade::lambert<real>;
+    const auto room = [] {
+        tracer::scene s;
+        s.name = "room";
+        s.camera = tracer::detail::look(vec3(0, 1, 3.6), vec3(0, 1, 0), 38, 1.0);
+        s.background = rgb(0);
+        const rgb white(0.75), red(0.63, 0.065, 0.05), green(0.14, 0.45, 0.091);
+        s.add_physical_mesh(tracer::detail::quad(vec3(-1, 0, -1), vec3(0, 0, 2), vec3(2, 0, 0)), L(white));
+        s.add_physical_mesh(tracer::detail::quad(vec3(-1, 2, -1), vec3(2, 0, 0), vec3(0, 0, 2)), L(white));
+        s.add_physical_mesh(tracer::detail::quad(vec3(-1, 0, -1), vec3(2, 0, 0), vec3(0, 2, 0)), L(white));
+        s.add_physical_mesh(tracer::detail::quad(vec3(-1, 0, -1), vec3(0, 2, 0), vec3(0, 0, 2)), L(red));
+        s.add_physical_mesh(tracer::detail::quad(vec3(1, 0, -1), vec3(0, 0, 2), vec3(0, 2, 0)), L(green));
+        return s;
+    };
+    // Edges u = (0.5, 0, 0), v = (0, 0, 0.5): normal u x v = (0, -1, 0), facing the floor.
+    const vec3 corner(-0.25, 1.98, -0.25), u(0.5, 0, 0), v(0, 0, 0.5);
+    auto rectangle = room();
+    rectangle.add_emitting_quad(shade::area_light<real>(corner, u, v, tracer::detail::radiance(20)), std::nullopt);
+    auto triangles = room();
+    triangles.add_emissive_mesh(tracer::detail::quad(corner, u, v), tracer::detail::radiance(20), std::nullopt);
+    REQUIRE(rectangle.lights.size() == 1);
+    REQUIRE(triangles.lights.size() == 2);
+
+    const int w = 16, h = 16;
+    const auto a = estimate(rectangle, path_options(w, h, 256));
+    const auto b = estimate(triangles, path_options(w, h, 256));
+    for (int k = 0; k < 3; ++k) {
+        CAPTURE(k);
+        const double se = std::sqrt(double(a.standard_error[k] * a.standard_error[k] + b.standard_error[k] * b.standard_error[k]));
+        CHECK(std::abs(double(a.mean[k] - b.mean[k])) <= 3 * se);
+        CHECK(a.mean[k] > 0.05); // the room is lit
+        for (int ry = 0; ry < 4; ++ry)
+            for (int rx = 0; rx < 4; ++rx) {
+                double ma = 0, mb = 0, va = 0, vb = 0;
+                for (int y = 4 * ry; y < 4 * ry + 4; ++y)
+                    for (int x = 4 * rx; x < 4 * rx + 4; ++x) {
+                        const auto& pa = a.pixels[std::size_t(y * w + x)];
+                        const auto& pb = b.pixels[std::size_t(y * w + x)];
+                        ma += double(pa.mean[k]) / 16;
+                        mb += double(pb.mean[k]) / 16;
+                        va += double(pa.standard_error[k] * pa.standard_error[k]) / 256;
+                        vb += double(pb.standard_error[k] * pb.standard_error[k]) / 256;
+                    }
+                CAPTURE(rx);
+                CAPTURE(ry);
+                CHECK(std::abs(ma - mb) <= 4 * std::sqrt(va + vb) + 1e-12);
+            }
     }
 }

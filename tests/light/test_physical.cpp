@@ -70,6 +70,12 @@ std::vector<lit_point<T>> area_cases() {
         {shade::sphere_light<T>(v3<T>(0.1, 0.2, 0), T(1.5), e, shade::sidedness::two_sided), v3<T>(0.3, -0.2, 0.4),
          "two-sided sphere, inside"},
         {shade::environment_light<T>(e), v3<T>(0), "environment"},
+        // Vertices ordered so that the normal, (v1 - v0) x (v2 - v0), points down to p.
+        {shade::triangle_light<T>(v3<T>(-1, -0.5, 1.2), v3<T>(0.2, 1, 1.3), v3<T>(1, -0.3, 1.4), e), v3<T>(0.1, 0, 0),
+         "triangle"},
+        {shade::triangle_light<T>(v3<T>(-1, -0.5, 1.2), v3<T>(1, -0.3, 1.4), v3<T>(0.2, 1, 1.3), e,
+                                  shade::sidedness::two_sided),
+         v3<T>(0.1, 0, 0), "two-sided triangle, seen from its back"},
     };
 }
 
@@ -88,6 +94,7 @@ TEST_CASE_TEMPLATE("every light is a shade::emitter, any_light too", T, float, d
     static_assert(shade::emitter<shade::disk_light<T>>);
     static_assert(shade::emitter<shade::sphere_light<T>>);
     static_assert(shade::emitter<shade::environment_light<T>>);
+    static_assert(shade::emitter<shade::triangle_light<T>>);
     static_assert(shade::emitter<shade::any_light<T>>);
     static_assert(!shade::emitter<int>);
     CHECK(true);

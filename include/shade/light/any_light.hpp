@@ -4,10 +4,14 @@
 
 #include <concepts>
 #include <optional>
+#include <type_traits>
 #include <utility>
 #include <variant>
 
+#include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
+#include <shade/geometry/hit.hpp>
+#include <shade/geometry/ray.hpp>
 #include <shade/light/area.hpp>
 #include <shade/light/directional.hpp>
 #include <shade/light/disk.hpp>
@@ -18,6 +22,7 @@
 #include <shade/light/point.hpp>
 #include <shade/light/sphere.hpp>
 #include <shade/light/spot.hpp>
+#include <shade/light/triangle.hpp>
 
 namespace shade {
 
@@ -32,7 +37,7 @@ public:
     /// The variant of all light types.
     using variant_type =
         std::variant<directional_light<T>, point_light<T>, spot_light<T>, area_light<T>,
-                     disk_light<T>, sphere_light<T>, environment_light<T>>;
+                     disk_light<T>, sphere_light<T>, environment_light<T>, triangle_light<T>>;
 
     any_light(const directional_light<T>& l) : light_(l) {} // NOLINT: implicit by design
     any_light(const point_light<T>& l) : light_(l) {}       // NOLINT
@@ -41,6 +46,7 @@ public:
     any_light(const disk_light<T>& l) : light_(l) {}        // NOLINT
     any_light(const sphere_light<T>& l) : light_(l) {}      // NOLINT
     any_light(const environment_light<T>& l) : light_(l) {} // NOLINT
+    any_light(const triangle_light<T>& l) : light_(l) {}    // NOLINT
 
     /// The held light's sample at p for sample pair u (see shade::light).
     [[nodiscard]] light_sample<T> sample(const vec3<T>& p, const vec2<T>& u) const {
@@ -61,6 +67,68 @@ public:
     /// The radiance arriving at p along w from the held light (see shade::emitter).
     [[nodiscard]] rgb<T> incident_radiance(const vec3<T>& p, const vec3<T>& w) const {
         return std::visit([&](const auto& l) { return l.incident_radiance(p, w); }, light_);
+    }
+
+    /// Where r meets the held light's surface (rectangle, disk, sphere and triangle lights),
+    /// or nothing: point, spot and directional lights have no surface, and the environment
+    /// is met by every ray that leaves the scene, not by intersection. For a path tracer
+    /// whose BSDF-sampled ray may have hit an emitter.
+    [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r) const {
+        return std::visit(
+            [&](const auto& l) -> std::optional<hit<T>> {
+                if constexpr (requires { l.intersect(r); })
+                    return l.intersect(r);
+                else
+                    return std::nullopt;
+            },
+            light_);
+    }
+
+    /// The radiance the held light emits from h, a point of its surface found by
+    /// intersect(), toward the unit direction w (pointing away from the surface); 0 for
+    /// lights without a surface.
+    [[nodiscard]] rgb<T> radiance(const hit<T>& h, const vec3<T>& w) const {
+        return std::visit(
+            [&](const auto& l) -> rgb<T> {
+                if constexpr (requires { l.intersect(ray<T>{}); })
+                    return l.radiance(h, w);
+                else
+                    return rgb<T>(0);
+            },
+            light_);
+    }
+
+    /// pdf_incident(p, l) when the caller already has h = intersect(ray{p, l}) with l unit:
+    /// the same density without a second intersection (0 for lights without a surface).
+    [[nodiscard]] T pdf_incident(const vec3<T>& p, const vec3<T>& l, const hit<T>& h) const {
+        return std::visit(
+            [&](const auto& light) -> T {
+                if constexpr (requires { light.intersect(ray<T>{}); })
+                    return light.pdf_incident(p, l, h);
+                else
+                    return T(0);
+            },
+            light_);
+    }
+
+    /// The radiant power in W. Lights at infinity send their power through the scene:
+    /// `scene_radius` is the radius of a sphere around it, through whose cross-section
+    /// pi r^2 a directional light of irradiance E sends pi r^2 E, and onto which an
+    /// environment of radiance L sends 4 pi r^2 pi L (every point of the sphere receives
+    /// pi L); other lights ignore it. Point: 4 pi I; spot: its cone's share of that; area
+    /// lights: pi L A per emitting side.
+    [[nodiscard]] rgb<T> power(T scene_radius) const {
+        return std::visit(
+            [&](const auto& l) -> rgb<T> {
+                using L = std::decay_t<decltype(l)>;
+                if constexpr (std::is_same_v<L, directional_light<T>>)
+                    return (pi<T> * scene_radius * scene_radius) * l.irradiance();
+                else if constexpr (std::is_same_v<L, environment_light<T>>)
+                    return (T(4) * pi<T> * pi<T> * scene_radius * scene_radius) * l.radiance();
+                else
+                    return l.power();
+            },
+            light_);
     }
 
     /// Whether the held light is a delta light.

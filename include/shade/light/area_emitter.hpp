@@ -58,6 +58,14 @@ public:
         return solid_angle_pdf(h->t, emitting_cosine(h->n, vec3<T>(-l), self().sides()), self().area());
     }
 
+    /// pdf_incident(p, l) for a ray from p along the unit direction l that the caller has
+    /// already intersected with this light: h = intersect(ray{p, l}) (so h.t is the
+    /// distance). The same density, without intersecting again.
+    [[nodiscard]] T pdf_incident(const vec3<T>& p, const vec3<T>& l, const hit<T>& h) const noexcept {
+        (void)p;
+        return solid_angle_pdf(h.t, emitting_cosine(h.n, vec3<T>(-l), self().sides()), self().area());
+    }
+
 private:
     [[nodiscard]] const Light& self() const noexcept { return static_cast<const Light&>(*this); }
 };

@@ -95,6 +95,20 @@ public:
         return power_light_sampler(std::span<const T>(luminance));
     }
 
+    /// A sampler weighting each light by its power, light.power(scene_radius) (RGB, by
+    /// luminance as from_rgb; shade::any_light::power says what the radius is for), for
+    /// any range of lights that have such a power(). The same errors as from_rgb.
+    template <class Light>
+        requires requires(const Light& l, T r) {
+            { l.power(r) } -> std::same_as<rgb<T>>;
+        }
+    [[nodiscard]] static power_light_sampler from_lights(std::span<const Light> lights, T scene_radius) {
+        std::vector<rgb<T>> powers;
+        powers.reserve(lights.size());
+        for (const Light& l : lights) powers.push_back(l.power(scene_radius));
+        return from_rgb(std::span<const rgb<T>>(powers));
+    }
+
     [[nodiscard]] std::size_t size() const noexcept { return count_; }
 
     /// The light of u in [0, 1), with its probability; nothing when there are no lights.

@@ -119,6 +119,16 @@ public:
         return std::isfinite(pdf) ? pdf : T(0);
     }
 
+    /// pdf_incident(p, l) when the caller already has h = intersect(ray{p, l}) (l unit): the
+    /// cone's density from outside (the ray is known to meet the sphere), the area density
+    /// at h from inside; no second intersection.
+    [[nodiscard]] T pdf_incident(const vec3<T>& p, const vec3<T>& l, const hit<T>& h) const noexcept {
+        const cone c = cone_from(p);
+        if (!c.outside) return base::pdf_incident(p, l, h);
+        const T pdf = T(1) / (T(2) * pi<T> * c.one_minus_cos_max);
+        return std::isfinite(pdf) ? pdf : T(0);
+    }
+
     /// The classic light sample of sample_incident(p, u), weighted by 1 / pdf.
     [[nodiscard]] light_sample<T> sample(const vec3<T>& p, const vec2<T>& u) const noexcept {
         return detail::classic_from(emission_, sample_incident(p, u));

@@ -1,0 +1,103 @@
+#pragma once
+// shade::triangle_light: one emitting triangle, sampled uniformly by area. A mesh's
+// emissive triangles become one triangle_light each (in a std::vector<any_light<T>>), so
+// an emissive ceiling can be part of the scene's mesh.
+
+#include <cmath>
+#include <concepts>
+#include <optional>
+
+#include <glm/geometric.hpp>
+
+#include <shade/core/error.hpp>
+#include <shade/core/math.hpp>
+#include <shade/core/types.hpp>
+#include <shade/geometry/hit.hpp>
+#include <shade/geometry/ray.hpp>
+#include <shade/geometry/triangle.hpp>
+#include <shade/light/area_emitter.hpp>
+#include <shade/light/emission.hpp>
+#include <shade/light/incident_sample.hpp>
+#include <shade/light/light_sample.hpp>
+
+namespace shade {
+
+/// A triangle light with vertices v0, v1, v2, emitting toward the side its normal
+/// shade::triangle::normal() = normalize((v1 - v0) x (v2 - v0)) points to (counter-clockwise
+/// seen from that side), or both sides. A Lambertian emitter of radiance
+/// L = emitted().physical() in W/(m^2 sr), area A = |(v1 - v0) x (v2 - v0)| / 2, power
+/// pi L A per emitting side.
+///
+/// sample_incident(p, u) chooses a point uniformly by area, with barycentrics
+/// (1 - sqrt(u_0), sqrt(u_0) (1 - u_1), sqrt(u_0) u_1) (Turk 1990, "Generating Random Points
+/// in Triangles", Graphics Gems; density 1 / A), and reports the solid-angle density
+/// r^2 / (A cos_light). As geometry it is the triangle: intersect(r) is shade::intersect
+/// with Moller-Trumbore, so its hits carry barycentrics' uv and the rounding bound p_error.
+template <std::floating_point T>
+class triangle_light : public detail::area_emitter<triangle_light<T>, T> {
+public:
+    using scalar_type = T;
+    using detail::area_emitter<triangle_light<T>, T>::radiance;
+
+    /// Throws shade::invalid_parameter naming "v0", "v1" or "v2" (non-finite), "v2" when the
+    /// three are collinear or the area is not a finite number > 0, "sides" or the bad
+    /// emission member.
+    triangle_light(const vec3<T>& v0, const vec3<T>& v1, const vec3<T>& v2, const emission<T>& e = {},
+                   sidedness sides = sidedness::one_sided)
+        : triangle_{require_finite("v0", v0), require_finite("v1", v1), require_finite("v2", v2)},
+          emission_(validated(e)), sides_(detail::require_sidedness(sides)) {
+        const vec3<T> c = glm::cross(v1 - v0, v2 - v0);
+        area_ = T(0.5) * glm::length(c);
+        normal_ = triangle_.normal();
+        if (!(area_ > T(0)) || !std::isfinite(area_) || !detail::is_unit_normal(normal_))
+            throw invalid_parameter("v2", "must not be collinear with v0 and v1 (the area must be finite and > 0)",
+                                    detail::to_text(v2));
+    }
+
+    /// The triangle.
+    [[nodiscard]] const triangle<T>& shape() const noexcept { return triangle_; }
+    /// The unit normal: the emitting side if one-sided.
+    [[nodiscard]] const vec3<T>& normal() const noexcept { return normal_; }
+    /// The area |(v1 - v0) x (v2 - v0)| / 2.
+    [[nodiscard]] T area() const noexcept { return area_; }
+    /// The emitted intensity and colours.
+    [[nodiscard]] const emission<T>& emitted() const noexcept { return emission_; }
+    /// Whether one or both sides emit.
+    [[nodiscard]] sidedness sides() const noexcept { return sides_; }
+
+    /// The point of the triangle at sample pair u in [0,1)^2, uniform by area (see above).
+    [[nodiscard]] vec3<T> point_at(const vec2<T>& u) const noexcept {
+        const T su = std::sqrt(u.x);
+        const T b1 = su * (T(1) - u.y);
+        const T b2 = su * u.y;
+        return (T(1) - su) * triangle_.v0 + b1 * triangle_.v1 + b2 * triangle_.v2;
+    }
+
+    /// The physical sample at p toward point_at(u). Nothing for p on the light, the back of
+    /// a one-sided light or an overflowing density.
+    [[nodiscard]] std::optional<incident_sample<T>> sample_incident(const vec3<T>& p,
+                                                                    const vec2<T>& u) const noexcept {
+        return detail::area_incident(p, point_at(u), normal_, area_, this->radiance(), sides_);
+    }
+
+    /// The classic light sample toward point_at(u), weighted by 1 / pdf.
+    [[nodiscard]] light_sample<T> sample(const vec3<T>& p, const vec2<T>& u) const noexcept {
+        return detail::classic_from(emission_, sample_incident(p, u));
+    }
+
+    /// The hit of r with the triangle, either side (shade::intersect, Moller-Trumbore).
+    [[nodiscard]] std::optional<hit<T>> intersect(const ray<T>& r) const noexcept {
+        const auto h = shade::intersect(r, triangle_);
+        if (!h) return std::nullopt;
+        return hit<T>(*h);
+    }
+
+private:
+    triangle<T> triangle_;
+    emission<T> emission_;
+    sidedness sides_;
+    T area_ = T(0);
+    vec3<T> normal_{0, 0, 1};
+};
+
+} // namespace shade
