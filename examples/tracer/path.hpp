@@ -17,6 +17,7 @@
 #include <shade/geometry/ray.hpp>
 #include <shade/geometry/spawn.hpp>
 #include <shade/light/light_sampler.hpp>
+#include <shade/light/sample_context.hpp>
 
 #include "scene.hpp"
 
@@ -69,6 +70,7 @@ rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_option
     rgb beta(1);
     const shade::uniform_light_sampler<real> light_sampler(s.lights.size());
     real previous_brdf_pdf = 0; // 0: the ray came from the camera
+    shade::light_sample_context<real> previous{};   // the vertex the ray left (for light pdfs)
     for (int bounce = 0;; ++bounce) {
         const bool from_camera = previous_brdf_pdf == 0;
         // The weight of emission found by this ray, against light sampling at its origin.
@@ -77,7 +79,7 @@ rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_option
             const real pick = light_sampler.probability(light_index);
             if (from_camera || options.sampling == strategy::brdf) return 1;
             if (options.sampling == strategy::light) return 0;
-            return shade::power_heuristic(previous_brdf_pdf, pick * light.pdf_incident(r.origin, r.direction));
+            return shade::power_heuristic(previous_brdf_pdf, pick * light.pdf_incident(previous, r.direction));
         };
         const auto h = s.intersect(r);
         if (!h) {
@@ -100,13 +102,16 @@ rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_option
         const vec3 origin = shade::offset_ray_origin(h->p, h->p_error, h->geometric_n, h->geometric_n);
 
         // (a) Next-event estimation.
+        // The lights see the surface (shade::light_sample_context): the environment samples
+        // only the hemisphere the path can continue into.
+        const shade::light_sample_context<real> here{origin, h->geometric_n, h->shading_n};
         const real u_light = sampler.next_1d();
         const vec2 u_point = sampler.next_2d();
         const auto choice = light_sampler.sample(u_light);
         if (options.sampling != strategy::brdf && choice) {
             const auto& light = s.lights[choice->index];
             const real pick = choice->probability;
-            const auto ls = light.sample_incident(origin, u_point);
+            const auto ls = light.sample_incident(here, u_point);
             if (ls && glm::dot(ls->l, h->geometric_n) > 0) {
                 const rgb f = o.brdf->f(ls->l, v, at);
                 const real cos_l = std::abs(glm::dot(at.n(), ls->l));
@@ -134,6 +139,7 @@ rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_option
         if (!bs || !(glm::dot(bs->l, h->geometric_n) > 0)) break;
         beta *= bs->weight;
         previous_brdf_pdf = bs->pdf;
+        previous = here;
         r = shade::ray<real>{origin, bs->l};
         if (bounce + 1 >= options.roulette_after) {
             const real q = std::min(real(1), detail::max_channel(beta));

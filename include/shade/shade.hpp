@@ -69,6 +69,7 @@
 #include <shade/light/light_sample.hpp>
 #include <shade/light/light_sampler.hpp>
 #include <shade/light/point.hpp>
+#include <shade/light/sample_context.hpp>
 #include <shade/light/sphere.hpp>
 #include <shade/light/spot.hpp>
 #include <shade/light/triangle.hpp>

@@ -20,6 +20,7 @@
 #include <shade/light/light.hpp>
 #include <shade/light/light_sample.hpp>
 #include <shade/light/point.hpp>
+#include <shade/light/sample_context.hpp>
 #include <shade/light/sphere.hpp>
 #include <shade/light/spot.hpp>
 #include <shade/light/triangle.hpp>
@@ -57,6 +58,33 @@ public:
     [[nodiscard]] std::optional<incident_sample<T>> sample_incident(const vec3<T>& p,
                                                                     const vec2<T>& u) const {
         return std::visit([&](const auto& l) { return l.sample_incident(p, u); }, light_);
+    }
+
+    /// The held light's physical sample for a surface point (shade::light_sample_context):
+    /// lights that use the surface (the constant environment) take it, the others sample
+    /// as for ctx.p.
+    [[nodiscard]] std::optional<incident_sample<T>> sample_incident(const light_sample_context<T>& ctx,
+                                                                    const vec2<T>& u) const {
+        return std::visit(
+            [&](const auto& l) {
+                if constexpr (requires { l.sample_incident(ctx, u); })
+                    return l.sample_incident(ctx, u);
+                else
+                    return l.sample_incident(ctx.p, u);
+            },
+            light_);
+    }
+
+    /// The density of sample_incident(ctx, .) for the unit direction w.
+    [[nodiscard]] T pdf_incident(const light_sample_context<T>& ctx, const vec3<T>& w) const {
+        return std::visit(
+            [&](const auto& l) {
+                if constexpr (requires { l.pdf_incident(ctx, w); })
+                    return l.pdf_incident(ctx, w);
+                else
+                    return l.pdf_incident(ctx.p, w);
+            },
+            light_);
     }
 
     /// The held light's density for direction w at p (see shade::emitter).

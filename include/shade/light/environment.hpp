@@ -4,13 +4,17 @@
 #include <concepts>
 #include <optional>
 
+#include <glm/geometric.hpp>
+
 #include <shade/core/error.hpp>
+#include <shade/core/frame.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/sampling.hpp>
 #include <shade/core/types.hpp>
 #include <shade/light/emission.hpp>
 #include <shade/light/incident_sample.hpp>
 #include <shade/light/light_sample.hpp>
+#include <shade/light/sample_context.hpp>
 
 namespace shade {
 
@@ -19,7 +23,8 @@ namespace shade {
 /// The irradiance it gives an unoccluded surface is pi L. sample_incident(p, u) chooses a
 /// direction uniformly on the sphere (density 1 / (4 pi) per steradian; half the samples
 /// fall below any given surface and are worth zero there). The classic sample(p, u) is
-/// that direction weighted by 1 / pdf = 4 pi.
+/// that direction weighted by 1 / pdf = 4 pi. For a surface point,
+/// sample_incident(light_sample_context, u) samples the hemisphere above its normal instead.
 template <std::floating_point T>
 class environment_light {
 public:
@@ -61,6 +66,33 @@ public:
         (void)p;
         (void)l;
         return radiance();
+    }
+
+    /// The physical sample for a surface point: a direction above ctx.n drawn with density
+    /// cos / pi (cos = n·l; Malley's method, square_to_cosine_hemisphere), radiance L, so
+    /// that L cos / pdf = pi L for every sample: the irradiance with no variance. Without
+    /// a surface (ctx.n zero), sample_incident(ctx.p, u). Nothing when L is zero or the
+    /// direction is exactly on the horizon.
+    [[nodiscard]] std::optional<incident_sample<T>> sample_incident(const light_sample_context<T>& ctx,
+                                                                    const vec2<T>& u) const noexcept {
+        if (ctx.n == vec3<T>(0)) return sample_incident(ctx.p, u);
+        if (radiance() == rgb<T>(0)) return std::nullopt;
+        incident_sample<T> s;
+        s.l = frame<T>::from_normal(ctx.n).to_world(square_to_cosine_hemisphere(u));
+        s.radiance = radiance();
+        // From the world direction, as pdf_incident computes it, so the two agree bit for
+        // bit (what MIS weights need).
+        s.pdf = pdf_incident(ctx, s.l);
+        if (!(s.pdf > T(0))) return std::nullopt;
+        return s;
+    }
+
+    /// The density of sample_incident(ctx, .) for the unit direction l: max(n·l, 0) / pi,
+    /// or 1 / (4 pi) without a surface.
+    [[nodiscard]] T pdf_incident(const light_sample_context<T>& ctx, const vec3<T>& l) const noexcept {
+        if (ctx.n == vec3<T>(0)) return pdf_incident(ctx.p, l);
+        const T c = glm::dot(ctx.n, l);
+        return c > T(0) ? c / pi<T> : T(0);
     }
 
     /// The classic light sample along a uniform direction, weighted by 4 pi.
