@@ -11,10 +11,13 @@
 // roulette); several jittered samples per pixel; for PNG, exposure + Reinhard tone map +
 // sRGB encoding. The same arguments give the same bytes whatever --threads is.
 
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -48,6 +51,11 @@ options:
   --sampler S      path integrator: independent (default) uniform numbers, or sobol:
                    Owen-scrambled Sobol points, less noise at the same spp (use powers
                    of two)
+  --envmap FILE    path integrator only: light the scene with a latitude-longitude
+                   environment map, linear radiance from a PFM or OpenEXR file (row 0
+                   at the zenith, +y up, the image's centre toward -z), importance-sampled
+                   by luminance; it adds to the scene's own lights
+  --envmap-scale X multiplier of the map's values, in [0, 1e6] (default 1)
   --bounces N      path integrator only: scattering events at most, 1 to 100000
                    (default 1024; 1 is direct lighting)
   --width N        image width in pixels, 1 to 16384 (default 640)
@@ -87,6 +95,8 @@ struct arguments {
     double exposure = 1;
     std::filesystem::path out;
     std::string format; ///< ".png", ".pfm" or ".exr", from out's extension
+    std::filesystem::path envmap;  ///< empty: none
+    double envmap_scale = 1;
     bool quiet = false;
     bool help = false;
 };
@@ -125,6 +135,10 @@ arguments parse(int argc, char** argv) {
             if (m == "independent") a.render.sampler = tracer::sampler_kind::independent;
             else if (m == "sobol") a.render.sampler = tracer::sampler_kind::sobol;
             else throw ex::usage_error("option --sampler must be independent or sobol, got '" + m + "'");
+        } else if (args.option("--envmap")) {
+            a.envmap = args.path();
+        } else if (args.option("--envmap-scale")) {
+            a.envmap_scale = args.real(0, 1e6);
         } else if (args.option("--bounces")) a.render.path.max_bounces = args.integer(1, 100000);
         else if (args.option("--area-samples")) a.render.lighting.area_samples_per_side = args.integer(1, max_area_samples);
         else if (args.option("--seed")) a.render.seed = args.integer<std::uint64_t>(0, UINT64_MAX);
@@ -142,7 +156,30 @@ arguments parse(int argc, char** argv) {
                     max_samples);
     if (!out_given) a.out = a.scene + ".png";
     a.format = ex::output_format("--out", a.out, {".png", ".pfm", ".exr"});
+    if (!a.envmap.empty() && a.render.method != tracer::integrator::path)
+        throw ex::usage_error("option --envmap needs --integrator path");
     return a;
+}
+
+// The environment map of --envmap: a PFM or EXR file (told apart by the extension; any
+// other is refused) as an environment_map_light, +y up and the image's centre toward -z
+// (the scenes' cameras look along -z). A file that cannot be read or used is a usage error.
+std::shared_ptr<const shade::environment_map_light<tracer::real>> load_environment(const std::filesystem::path& path,
+                                                                                 double scale) {
+    namespace ex = shade::examples;
+    std::string format = path.extension().string();
+    for (char& c : format) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (format != ".pfm" && format != ".exr")
+        throw ex::usage_error("option --envmap: cannot read '" + path.string() + "': unsupported format '" + format +
+                              "' (supported: .pfm, .exr)");
+    try {
+        const tracer::radiance_image image = format == ".pfm" ? tracer::load_pfm(path) : tracer::load_exr(path);
+        const auto orientation = shade::frame<tracer::real>::from_normal_tangent({0, 1, 0}, {0, 0, -1});
+        return std::make_shared<const shade::environment_map_light<tracer::real>>(
+            image.width, image.height, std::span<const tracer::rgb>(image.pixels), scale, orientation);
+    } catch (const std::exception& e) {
+        throw ex::usage_error(std::string("option --envmap: ") + e.what());
+    }
 }
 
 } // namespace
@@ -158,7 +195,8 @@ int main(int argc, char** argv) {
         shade::examples::output_file out(args.out);
         const auto start = std::chrono::steady_clock::now();
         const double aspect = double(args.render.width) / double(args.render.height);
-        const tracer::scene scene = tracer::make_scene(args.scene, aspect);
+        tracer::scene scene = tracer::make_scene(args.scene, aspect);
+        if (!args.envmap.empty()) scene.environment_map = load_environment(args.envmap, args.envmap_scale);
         tracer::render_options options = args.render;
         options.progress = !args.quiet;
         const auto radiance = tracer::render(scene, options);

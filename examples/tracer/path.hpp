@@ -68,24 +68,34 @@ template <shade::sampler S>
 rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_options& options) {
     rgb radiance(0);
     rgb beta(1);
-    const shade::uniform_light_sampler<real> light_sampler(s.lights.size());
+    // The scene's lights and, when it has one, its environment map (index lights.size()).
+    const std::size_t map_index = s.lights.size();
+    const shade::uniform_light_sampler<real> light_sampler(s.lights.size() + (s.environment_map ? 1 : 0));
     real previous_brdf_pdf = 0; // 0: the ray came from the camera
     shade::light_sample_context<real> previous{};   // the vertex the ray left (for light pdfs)
     for (int bounce = 0;; ++bounce) {
         const bool from_camera = previous_brdf_pdf == 0;
-        // The weight of emission found by this ray, against light sampling at its origin.
-        const auto emission_weight = [&](std::size_t light_index) -> real {
-            const auto& light = s.lights[light_index];
-            const real pick = light_sampler.probability(light_index);
+        // The weight of emission found by this ray, against light sampling at its origin,
+        // for the light of index light_index that would have drawn the ray's direction with
+        // density light_pdf.
+        const auto weight = [&](std::size_t light_index, real light_pdf) -> real {
             if (from_camera || options.sampling == strategy::brdf) return 1;
             if (options.sampling == strategy::light) return 0;
-            return shade::power_heuristic(previous_brdf_pdf, pick * light.pdf_incident(previous, r.direction));
+            return shade::power_heuristic(previous_brdf_pdf, light_sampler.probability(light_index) * light_pdf);
+        };
+        const auto emission_weight = [&](std::size_t light_index) -> real {
+            return weight(light_index, s.lights[light_index].pdf_incident(previous, r.direction));
         };
         const auto h = s.intersect(r);
         if (!h) {
             for (std::size_t i = 0; i < s.lights.size(); ++i)
                 if (std::holds_alternative<shade::environment_light<real>>(s.lights[i].get()))
                     radiance += beta * emission_weight(i) * s.lights[i].incident_radiance(r.origin, r.direction);
+            if (s.environment_map) {
+                const auto& map = *s.environment_map;
+                radiance += beta * weight(map_index, map.pdf_incident(previous.p, r.direction)) *
+                            map.incident_radiance(r.origin, r.direction);
+            }
             break;
         }
         const object& o = s.objects[h->object];
@@ -109,9 +119,9 @@ rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_option
         const vec2 u_point = sampler.next_2d();
         const auto choice = light_sampler.sample(u_light);
         if (options.sampling != strategy::brdf && choice) {
-            const auto& light = s.lights[choice->index];
             const real pick = choice->probability;
-            const auto ls = light.sample_incident(here, u_point);
+            const auto ls = choice->index == map_index ? s.environment_map->sample_incident(origin, u_point)
+                                                       : s.lights[choice->index].sample_incident(here, u_point);
             if (ls && glm::dot(ls->l, h->geometric_n) > 0) {
                 const rgb f = o.brdf->f(ls->l, v, at);
                 const real cos_l = std::abs(glm::dot(at.n(), ls->l));

@@ -27,6 +27,7 @@
 #include <shade/geometry/triangle.hpp>
 #include <shade/geometry/triangle_bvh.hpp>
 #include <shade/light/any_light.hpp>
+#include <shade/light/environment_map.hpp>
 #include <shade/shading/shader.hpp>
 #include <shade/shading/sum_over_lights.hpp>
 
@@ -130,6 +131,9 @@ struct scene {
     std::string name;
     std::vector<object> objects;
     std::vector<shade::any_light<real>> lights;
+    /// An image-based environment (trace --envmap), seen by rays that leave the scene and
+    /// sampled as one more light by the path integrator (the direct integrator ignores it).
+    std::shared_ptr<const shade::environment_map_light<real>> environment_map;
     std::optional<shade::pinhole_camera<real>> camera;
     rgb background{0.02, 0.02, 0.03};
 

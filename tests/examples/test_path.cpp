@@ -6,12 +6,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include <doctest/doctest.h>
 
 #include <shade/check/energy.hpp>
 #include <shade/core/random.hpp>
+#include <shade/light/environment_map.hpp>
 
 #include "tracer/path.hpp"
 #include "tracer/physical_scenes.hpp"
@@ -432,5 +435,41 @@ TEST_CASE("path: an emissive quad that is part of a mesh lights the room as the 
                 CAPTURE(ry);
                 CHECK(std::abs(ma - mb) <= 4 * std::sqrt(va + vb) + 1e-12);
             }
+    }
+}
+
+TEST_CASE("path: a constant environment map lights the furnace like the constant environment (1 in every pixel)") {
+    // The Lambert furnace with its environment light replaced by an 8 x 4 map of radiance
+    // 1 (trace --envmap): the map is sampled by luminance times solid angle, uniform over
+    // the sphere here, as one more light, and seen by rays that leave the scene.
+    auto s = tracer::make_furnace(real(8) / real(6), false);
+    s.lights.clear();
+    const std::vector<rgb> texels(32, rgb(1));
+    s.environment_map = std::make_shared<const shade::environment_map_light<real>>(
+        8, 4, std::span<const rgb>(texels), 1.0, shade::frame<real>::from_normal_tangent({0, 1, 0}, {0, 0, -1}));
+    check_constant_image(estimate(s, path_options(8, 6, 64)), 1);
+    // The image mean over 64 independent renders, for MIS and for the light sampler alone
+    // (no BRDF-sampled emission), within 3 standard errors of 1, the standard error taken
+    // from the renders' spread (which, unlike one render's sample variance, includes all
+    // of the estimator's variance).
+    for (const auto strategy : {tracer::strategy::mis, tracer::strategy::light}) {
+        CAPTURE(int(strategy));
+        auto options = path_options(8, 6, 64);
+        options.path.sampling = strategy;
+        double sum = 0, sum2 = 0;
+        const int renders = 64;
+        for (int seed = 1; seed <= renders; ++seed) {
+            options.seed = std::uint64_t(seed);
+            const auto image = tracer::render(s, options);
+            double m = 0;
+            for (const rgb& c : image.pixels) m += c.y / double(image.pixels.size());
+            sum += m;
+            sum2 += m * m;
+        }
+        const double mean = sum / renders;
+        const double se = std::sqrt(std::max(sum2 / renders - mean * mean, 0.0) / (renders - 1));
+        CAPTURE(mean);
+        CAPTURE(se);
+        CHECK(std::abs(mean - 1) <= 3 * se);
     }
 }
