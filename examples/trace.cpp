@@ -40,11 +40,13 @@ options:
                    lights: hard shadows from point/directional lights, soft from an area light;
                    furnace: a white Lambert sphere in a white environment (path: all 1);
                    furnace-conductor: the same with a rough conductor of F = 1;
+                   glass-furnace: a smooth glass sphere in it, invisible (path: all 1);
                    energy: rough gold spheres in a white environment, single
                    scattering (top) and compensated for multiple scattering (bottom);
                    enclosure: inside a glowing sphere of albedo 0.8 (path: all 5);
                    veach: glossy plates and four sphere lights (compare --strategy);
-                   cornell: a red/green room with an OBJ pyramid and a sphere light (path)
+                   cornell: a red/green room with an OBJ pyramid and a sphere light (path);
+                   glass: that room with a glass sphere and a thin glass pane (path)
   --integrator M   direct (default): classic direct lighting; path: path tracing in
                    physical units with next-event estimation, MIS and Russian roulette
   --strategy S     path integrator only: mis (default), light or brdf sampling alone

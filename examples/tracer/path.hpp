@@ -9,9 +9,11 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <variant>
 
 #include <glm/geometric.hpp>
 
+#include <shade/bsdf/bsdf.hpp>
 #include <shade/core/mis.hpp>
 #include <shade/core/sampler.hpp>
 #include <shade/geometry/ray.hpp>
@@ -56,9 +58,11 @@ inline real max_channel(const rgb& c) { return std::max(c.x, std::max(c.y, c.z))
 /// P_l = pdf_incident / N at the previous vertex. Delta lights are reached by (a) alone,
 /// with weight 1; the camera ray's first hit counts with weight 1. Throughput beta is
 /// multiplied by each BRDF sample's weight f |cos| / pdf; from bounce roulette_after on,
-/// the path continues with probability q = min(1, max channel of beta) and beta is
-/// divided by q (Russian roulette, Arvo, Kirk 1990, "Particle Transport and Image
-/// Synthesis", SIGGRAPH), which keeps the estimate unbiased.
+/// the path continues with probability q = min(1, max channel of beta times eta_scale, the
+/// product of eta^2 over its refractions) and beta is divided by q (Russian roulette, Arvo,
+/// Kirk 1990, "Particle Transport and Image Synthesis", SIGGRAPH), which keeps the estimate
+/// unbiased. Glass (object::glass) scatters by its delta lobes alone: no light sampling
+/// there, and emission found after it counts whole.
 ///
 /// The random numbers come from `sampler`, in the same order at every vertex (the
 /// dimensions of a shade::sampler): the light's index (1D), the point on it (2D), the
@@ -71,7 +75,11 @@ rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_option
     // The scene's lights and, when it has one, its environment map (index lights.size()).
     const std::size_t map_index = s.lights.size();
     const shade::uniform_light_sampler<real> light_sampler(s.lights.size() + (s.environment_map ? 1 : 0));
-    real previous_brdf_pdf = 0; // 0: the ray came from the camera
+    real previous_brdf_pdf = 0; // 0: the ray came from the camera or a specular bounce
+    // The product of eta^2 over the refractions so far: radiance-mode weights scale by
+    // 1 / eta^2 entering a denser medium, which Russian roulette must not mistake for lost
+    // energy (pbrt-v4's etaScale: Pharr, Jakob, Humphreys 2023, sec. 13.4.3).
+    real eta_scale = 1;
     shade::light_sample_context<real> previous{};   // the vertex the ray left (for light pdfs)
     for (int bounce = 0;; ++bounce) {
         const bool from_camera = previous_brdf_pdf == 0;
@@ -102,6 +110,39 @@ rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_option
         if (const int emitter = o.light_at(h->triangle); emitter >= 0) {
             const auto i = std::size_t(emitter);
             radiance += beta * emission_weight(i) * s.lights[i].incident_radiance(r.origin, r.direction);
+        }
+        if (o.glass) {
+            // A delta dielectric (smooth interface or thin pane): delta lobes only, so no light
+            // sampling here (no direction of it has a density), and the emission the next
+            // ray finds counts whole (previous_brdf_pdf = 0, as after the camera). The
+            // sample's weight carries the Fresnel term and, in radiance mode, the (eta_v /
+            // eta_l)^2 of a refraction; the new ray leaves on l's side of the surface,
+            // inside or outside. The light-sampling numbers are drawn and not used, so that
+            // every vertex takes the same dimensions.
+            if (bounce >= options.max_bounces) break;
+            (void)sampler.next_1d();
+            (void)sampler.next_2d();
+            const real uc = sampler.next_1d();
+            const vec2 u = sampler.next_2d();
+            const real u_roulette = sampler.next_1d();
+            const auto outside = surface_point::at(h->p, h->outward_n);
+            const auto bs = std::visit(
+                [&](const auto& glass) {
+                    return shade::sample_bsdf(glass, vec3(-r.direction), uc, u, outside, shade::transport_mode::radiance);
+                },
+                *o.glass);
+            if (!bs) break;
+            beta *= bs->weight;
+            if (shade::is_transmission(bs->flags)) eta_scale *= bs->eta * bs->eta;
+            previous_brdf_pdf = 0;
+            previous = {};
+            r = shade::ray<real>{shade::offset_ray_origin(h->p, h->p_error, h->outward_n, bs->l), bs->l};
+            if (bounce + 1 >= options.roulette_after) {
+                const real q = std::min(real(1), detail::max_channel(beta) * eta_scale);
+                if (!(q > 0) || u_roulette >= q) break;
+                beta /= q;
+            }
+            continue;
         }
         if (!o.brdf || bounce >= options.max_bounces) break;
 
@@ -152,7 +193,7 @@ rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_option
         previous = here;
         r = shade::ray<real>{origin, bs->l};
         if (bounce + 1 >= options.roulette_after) {
-            const real q = std::min(real(1), detail::max_channel(beta));
+            const real q = std::min(real(1), detail::max_channel(beta) * eta_scale);
             if (!(q > 0) || u_roulette >= q) break;
             beta /= q;
         }

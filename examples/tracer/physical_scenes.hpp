@@ -199,4 +199,31 @@ inline scene make_cornell(real aspect) {
     return s;
 }
 
+/// glass-furnace: a sphere of smooth glass (eta 1.5) and a thin glass pane in front of
+/// its left half, in the white furnace. Lossless interfaces neither absorb nor emit, so both
+/// are invisible: every pixel 1 (the (eta_v / eta_l)^2 of radiance through each refraction
+/// cancels between entering and leaving; the pane reflects R' and transmits 1 - R').
+inline scene make_glass_furnace(real aspect) {
+    scene s;
+    s.name = "glass-furnace";
+    s.camera = detail::look(vec3(0, 0, 4), vec3(0), 40, aspect);
+    s.lights.emplace_back(shade::environment_light<real>(detail::radiance(1)));
+    s.background = rgb(1);
+    s.add_glass_sphere(shade::sphere<real>(vec3(0), 1), 1.5);
+    s.add_glass_pane(detail::quad(vec3(-1.6, -0.6, 1.2), vec3(0.8, 0, 0.3), vec3(0, 1.2, 0)), 1.5);
+    return s;
+}
+
+/// glass: the cornell room with its sphere light, a sphere of smooth glass (eta 1.5) on the
+/// floor and a thin glass pane (eta 1.5) standing across the back left; path integrator
+/// only (the caustics under the sphere come from BSDF-sampled paths alone, so they need
+/// many samples). Throws as make_cornell.
+inline scene make_glass(real aspect) {
+    scene s = make_cornell(aspect);
+    s.name = "glass";
+    s.add_glass_sphere(shade::sphere<real>(vec3(0.5, 0.35, 0.35), 0.35), 1.5);
+    s.add_glass_pane(detail::quad(vec3(-0.9, 0, -0.3), vec3(0.6, 0, -0.4), vec3(0, 1.2, 0)), 1.5);
+    return s;
+}
+
 } // namespace tracer

@@ -10,12 +10,15 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/any_brdf.hpp>
 #include <shade/brdf/lambert.hpp>
+#include <shade/bsdf/smooth_dielectric.hpp>
+#include <shade/bsdf/thin_dielectric.hpp>
 #include <shade/core/random.hpp>
 #include <shade/core/surface_point.hpp>
 #include <shade/geometry/aabb.hpp>
@@ -88,6 +91,7 @@ struct scene_hit {
     vec3 p{0};
     vec3 p_error{0};           ///< bound on p's rounding (shade::hit::p_error), for spawned rays
     vec3 geometric_n{0, 0, 1}; ///< unit geometric normal, flipped toward the ray origin
+    vec3 outward_n{0, 0, 1};   ///< the surface's own unit normal (outward for closed shapes), not flipped
     vec3 shading_n{0, 0, 1};   ///< unit shading normal, same side as geometric_n
     std::size_t object = 0;    ///< index into scene::objects
     std::uint32_t triangle = 0;///< triangle index for meshes
@@ -106,6 +110,10 @@ struct object {
     mesh_shading shading = mesh_shading::phong;
     material surface;
     std::optional<shade::any_brdf<real>> brdf; ///< physical material (path integrator); none: black
+    /// A delta dielectric instead (path integrator): a smooth interface, the object then a
+    /// closed shape whose outward normal points to the outside of the medium, or a thin
+    /// slab (a pane: any surface, either side).
+    std::optional<std::variant<shade::smooth_dielectric<real>, shade::thin_dielectric<real>>> glass;
     int emitter = -1; ///< index into scene::lights of the light this object is the geometry of
     /// For a mesh: each triangle k is a light of its own, scene::lights[emitter + k]
     /// (add_emissive_mesh); otherwise the whole object is scene::lights[emitter].
@@ -200,6 +208,17 @@ struct scene {
         objects.back().brdf = b;
         objects.back().emitter = first;
         objects.back().emitter_per_triangle = true;
+    }
+    /// A sphere of glass (a smooth dielectric of relative index eta inside; path
+    /// integrator only, which the classic integrator draws black).
+    void add_glass_sphere(const shade::sphere<real>& sphere, real eta) {
+        add_sphere(sphere, make_material(shade::any_brdf<real>(shade::lambert<real>(rgb(0)))));
+        objects.back().glass = shade::smooth_dielectric<real>(eta);
+    }
+    /// A pane of thin glass (shade::thin_dielectric of index eta) over the mesh's triangles.
+    void add_glass_pane(tracer::mesh m, real eta) {
+        add_mesh(std::move(m), mesh_shading::flat, make_material(shade::any_brdf<real>(shade::lambert<real>(rgb(0)))));
+        objects.back().glass = shade::thin_dielectric<real>(eta);
     }
     void add_mesh(tracer::mesh m, mesh_shading shading, material mat) {
         object o;
@@ -299,6 +318,7 @@ private:
             out.p = h->p;
             out.p_error = h->p_error;
             out.geometric_n = out.shading_n = h->facing_normal();
+            out.outward_n = h->n;
             return out;
         }
         case object::kind::plane: {
@@ -308,6 +328,7 @@ private:
             out.p = h->p;
             out.p_error = h->p_error;
             out.geometric_n = out.shading_n = h->facing_normal();
+            out.outward_n = h->n;
             return out;
         }
         case object::kind::mesh: {
@@ -321,6 +342,7 @@ private:
             out.p_error = h.p_error;
             out.barycentric = h.barycentric;
             out.geometric_n = h.facing_normal();
+            out.outward_n = h.n;
             out.shading_n = out.geometric_n;
             if (o.shading != mesh_shading::flat) {
                 const std::size_t k = 3 * std::size_t(out.triangle);

@@ -25,12 +25,12 @@
 namespace tracer {
 
 /// The names make_scene accepts, comma-separated (for messages).
-inline std::string scene_names() { return "gallery, mesh, lights, furnace, furnace-conductor, energy, enclosure, veach, cornell"; }
+inline std::string scene_names() { return "gallery, mesh, lights, furnace, furnace-conductor, glass-furnace, energy, enclosure, veach, cornell, glass"; }
 
 /// True when make_scene knows `name`.
 inline bool is_scene_name(const std::string& name) {
     return name == "gallery" || name == "mesh" || name == "lights" || name == "furnace" ||
-           name == "furnace-conductor" || name == "energy" || name == "enclosure" || name == "veach" || name == "cornell";
+           name == "furnace-conductor" || name == "glass-furnace" || name == "energy" || name == "enclosure" || name == "veach" || name == "cornell" || name == "glass";
 }
 
 namespace detail {
@@ -143,6 +143,8 @@ inline scene make_scene(const std::string& name, real aspect) {
     if (name == "lights") return make_lights_scene(aspect);
     if (name == "furnace") return make_furnace(aspect, false);
     if (name == "furnace-conductor") return make_furnace(aspect, true);
+    if (name == "glass-furnace") return make_glass_furnace(aspect);
+    if (name == "glass") return make_glass(aspect);
     if (name == "energy") return make_energy(aspect);
     if (name == "enclosure") return make_enclosure(aspect);
     if (name == "veach") return make_veach(aspect);
