@@ -94,6 +94,15 @@ void check_constant_image(const image_estimate& e, real expected) {
     }
 }
 
+// The number of pixels of a width x height image whose centre ray hits the scene's geometry.
+int pixels_seeing_geometry(const tracer::scene& s, int width, int height) {
+    int count = 0;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            count += s.intersect(s.camera->ray_for_raster(real(x) + 0.5, real(y) + 0.5, width, height)).has_value();
+    return count;
+}
+
 } // namespace
 
 TEST_CASE("path: the Lambert furnace (k_d = 1 in radiance 1) is 1 in every pixel") {
@@ -101,10 +110,7 @@ TEST_CASE("path: the Lambert furnace (k_d = 1 in radiance 1) is 1 in every pixel
     const auto e = estimate(s, path_options(8, 6, 64));
     check_constant_image(e, 1);
     // Some pixels see the sphere and some the environment only.
-    int on_sphere = 0;
-    for (int y = 0; y < 6; ++y)
-        for (int x = 0; x < 8; ++x)
-            on_sphere += s.intersect(s.camera->ray_for_raster(real(x) + 0.5, real(y) + 0.5, 8, 6)).has_value();
+    const int on_sphere = pixels_seeing_geometry(s, 8, 6);
     CHECK(on_sphere > 10);
     CHECK(on_sphere < 48);
     // And every sample is exactly 1: the environment is sampled with the light sample
@@ -484,10 +490,7 @@ TEST_CASE("path: a smooth glass sphere in the white furnace is invisible (1 in e
     const auto s = tracer::make_glass_furnace(real(8) / real(6));
     const auto e = estimate(s, path_options(8, 6, 64));
     check_constant_image(e, 1);
-    int on_sphere = 0;
-    for (int y = 0; y < 6; ++y)
-        for (int x = 0; x < 8; ++x)
-            on_sphere += s.intersect(s.camera->ray_for_raster(real(x) + 0.5, real(y) + 0.5, 8, 6)).has_value();
+    const int on_sphere = pixels_seeing_geometry(s, 8, 6);
     CHECK(on_sphere > 10);
     for (const auto& p : e.pixels) CHECK(p.standard_error.x <= 1e-9);
 }
