@@ -137,24 +137,22 @@ struct mirror_cosine {
 };
 
 /// Blinn's cosine n·h with h = normalize(l + v) (detail::half_vector_and_cos), in [0, 1],
-/// computed so that it does not depend on the length of n (scale_free_cosine). Sampled as the Blinn microfacet distribution is in Pharr, Humphreys 2010,
-/// "Physically Based Rendering", 2nd ed., sec. 14.5.1: h is drawn about n with the density
+/// computed so that it does not depend on the length of n (scale_free_cosine). Sampled as
+/// the Blinn microfacet distribution is in Pharr, Humphreys 2010, "Physically Based
+/// Rendering", 2nd ed., sec. 14.5.1: h is drawn about n with the density
 /// (s + 1)/(2 pi) (n·h)^s and l = 2 (v·h) h - v; the half-vector map has
 /// |dh/dl| = 1/(4 v·h) (Torrance, Sparrow 1967, "Theory for Off-Specular Reflection from
 /// Roughened Surfaces", JOSA 57(9)), the jacobian. v·h is floored at
 /// detail::cos_floor there so that a density never overflows.
 struct half_vector_cosine {
-    /// cos(n, h) whatever the lengths of n and h: sqrt(1 - |n x h|^2 / (|n|^2 |h|^2)) where
-    /// n·h > 0, else 0. n·h itself grows with |n|, and a float normal one ulp off unit
-    /// length would scale cos^s by about 1 + s |n| - s at shininess s (1e-3 at s = 10^4);
-    /// the ratio of squares does not depend on the lengths, and near the peak, where the
-    /// lobe is, the cross product is small and keeps its relative precision.
+    /// cos(n, h) whatever the length of n: n·h / |n|, clamped to [0, 1] (h is unit). n·h
+    /// itself grows with |n|, and a float normal one ulp off unit length would scale cos^s
+    /// by about 1 + s (|n| - 1) at shininess s (1e-3 at s = 10^4); dividing by |n| removes
+    /// that systematic error, leaving the rounding of h and of the product, which varies
+    /// in sign from direction to direction.
     template <std::floating_point T>
     [[nodiscard]] static T scale_free_cosine(const vec3<T>& n, const vec3<T>& h) noexcept {
-        if (!(glm::dot(n, h) > T(0))) return T(0);
-        const vec3<T> c = glm::cross(n, h);
-        const T sin2 = glm::dot(c, c) / (glm::dot(n, n) * glm::dot(h, h));
-        return sin2 < T(1) ? std::sqrt(T(1) - sin2) : T(0);
+        return glm::min(clamped_dot(n, h) / std::sqrt(glm::dot(n, n)), T(1));
     }
     template <std::floating_point T>
     [[nodiscard]] static T cosine(const vec3<T>& n, const vec3<T>& l, const vec3<T>& v) noexcept {
