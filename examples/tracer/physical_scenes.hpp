@@ -45,15 +45,22 @@ inline shade::pinhole_camera<real> look(vec3 position, vec3 target, real fov_deg
 
 inline shade::emission<real> radiance(real L) { return shade::emission<real>::from_physical(rgb(L)); }
 
+/// The white furnace without its objects: radiance 1 from every direction (an
+/// environment light and background), the camera 4 units from the origin looking at it.
+inline scene white_furnace(std::string name, real aspect) {
+    scene s;
+    s.name = std::move(name);
+    s.camera = look(vec3(0, 0, 4), vec3(0), 40, aspect);
+    s.lights.emplace_back(shade::environment_light<real>(radiance(1)));
+    s.background = rgb(1);
+    return s;
+}
+
 } // namespace detail
 
 /// furnace (conductor = false) or furnace-conductor (conductor = true).
 inline scene make_furnace(real aspect, bool conductor) {
-    scene s;
-    s.name = conductor ? "furnace-conductor" : "furnace";
-    s.camera = detail::look(vec3(0, 0, 4), vec3(0), 40, aspect);
-    s.lights.emplace_back(shade::environment_light<real>(detail::radiance(1)));
-    s.background = rgb(1);
+    scene s = detail::white_furnace(conductor ? "furnace-conductor" : "furnace", aspect);
     if (conductor)
         s.add_physical_sphere(shade::sphere<real>(vec3(0), 1), shade::make_ggx_conductor(real(0.6), rgb(1)));
     else
@@ -204,11 +211,7 @@ inline scene make_cornell(real aspect) {
 /// are invisible: every pixel 1 (the (eta_v / eta_l)^2 of radiance through each refraction
 /// cancels between entering and leaving; the pane reflects R' and transmits 1 - R').
 inline scene make_glass_furnace(real aspect) {
-    scene s;
-    s.name = "glass-furnace";
-    s.camera = detail::look(vec3(0, 0, 4), vec3(0), 40, aspect);
-    s.lights.emplace_back(shade::environment_light<real>(detail::radiance(1)));
-    s.background = rgb(1);
+    scene s = detail::white_furnace("glass-furnace", aspect);
     s.add_glass_sphere(shade::sphere<real>(vec3(0), 1), 1.5);
     s.add_glass_pane(detail::quad(vec3(-1.6, -0.6, 1.2), vec3(0.8, 0, 0.3), vec3(0, 1.2, 0)), 1.5);
     return s;

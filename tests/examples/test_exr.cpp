@@ -11,6 +11,8 @@
 
 #include <doctest/doctest.h>
 
+#include "examples/errors.hpp"
+
 #include "tracer/exr.hpp"
 
 namespace {
@@ -18,16 +20,7 @@ namespace {
 using tracer::real;
 using tracer::rgb;
 
-// The message f throws as std::runtime_error, or "" when it does not throw.
-template <class F>
-std::string error_of(F f) {
-    try {
-        f();
-    } catch (const std::runtime_error& e) {
-        return e.what();
-    }
-    return "";
-}
+using examples_test::error_of;
 
 } // namespace
 

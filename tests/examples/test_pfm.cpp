@@ -12,6 +12,8 @@
 
 #include <doctest/doctest.h>
 
+#include "examples/errors.hpp"
+
 #include "tracer/pfm.hpp"
 
 namespace {
@@ -20,15 +22,7 @@ using tracer::real;
 using tracer::rgb;
 namespace fs = std::filesystem;
 
-template <class F>
-std::string error_of(F f) {
-    try {
-        f();
-    } catch (const std::runtime_error& e) {
-        return e.what();
-    }
-    return "";
-}
+using examples_test::error_of;
 
 fs::path scratch(const std::string& name) { return fs::temp_directory_path() / ("shade_test_pfm_" + name); }
 
