@@ -46,7 +46,8 @@ options:
                    enclosure: inside a glowing sphere of albedo 0.8 (path: all 5);
                    veach: glossy plates and four sphere lights (compare --strategy);
                    cornell: a red/green room with an OBJ pyramid and a sphere light (path);
-                   glass: that room with a glass sphere and a thin glass pane (path)
+                   glass: that room with a rough glass pyramid, a glass sphere and a thin
+                   glass pane (path)
   --integrator M   direct (default): classic direct lighting; path: path tracing in
                    physical units with next-event estimation, MIS and Russian roulette
   --strategy S     path integrator only: mis (default), light or brdf sampling alone

@@ -1,8 +1,8 @@
 #pragma once
 // The reference tracer's path-tracing integrator: next-event estimation (a light sampled at
-// every vertex) and BRDF sampling, combined by multiple importance sampling with the power
+// every vertex) and BSDF sampling, combined by multiple importance sampling with the power
 // heuristic, Russian roulette, any number of bounces. Physical units throughout (lights
-// through shade::emitter, materials through shade::any_brdf).
+// through shade::emitter, materials through shade::any_brdf, glass through shade's BSDFs).
 
 #include <algorithm>
 #include <cmath>
@@ -27,8 +27,9 @@ namespace tracer {
 
 /// Which strategies estimate the light arriving at each vertex.
 ///   mis:   both, weighted by the power heuristic (the default);
-///   light: light sampling only (emitters that a BRDF-sampled ray hits count nothing);
-///   brdf:  BRDF sampling only (no shadow rays toward lights; delta lights are then
+///   light: light sampling only (emitters that a BSDF-sampled ray hits count nothing,
+///          except after the camera or a delta lobe);
+///   brdf:  BSDF sampling only (no shadow rays toward lights; delta lights are then
 ///          invisible, since no sampled direction can hit them).
 enum class strategy { mis, light, brdf };
 
@@ -47,26 +48,33 @@ inline real max_channel(const rgb& c) { return std::max(c.x, std::max(c.y, c.z))
 } // namespace detail
 
 /// The radiance arriving along camera ray r (W/(m^2 sr)), estimated by one path. Objects
-/// without a physical material (object::brdf) absorb everything.
+/// without a physical material (object::brdf, object::glass or object::rough_glass) absorb
+/// everything.
 ///
-/// At every vertex the direct light is estimated twice and the two combined by MIS
-/// (Veach 1997, ch. 9; shade::power_heuristic): (a) next-event estimation: one light chosen
-/// uniformly (shade::uniform_light_sampler, probability 1/N), sample_incident toward it, a
-/// shadow ray, weight w_l = power_heuristic(P_l, P_f);
-/// (b) the BRDF-sampled continuation ray: when it hits an emitter (or leaves the scene
-/// into an environment light), its radiance counts with weight power_heuristic(P_f, P_l),
-/// P_l = pdf_incident / N at the previous vertex. Delta lights are reached by (a) alone,
-/// with weight 1; the camera ray's first hit counts with weight 1. Throughput beta is
-/// multiplied by each BRDF sample's weight f |cos| / pdf; from bounce roulette_after on,
-/// the path continues with probability q = min(1, max channel of beta times eta_scale, the
-/// product of eta^2 over its refractions) and beta is divided by q (Russian roulette, Arvo,
-/// Kirk 1990, "Particle Transport and Image Synthesis", SIGGRAPH), which keeps the estimate
-/// unbiased. Glass (object::glass) scatters by its delta lobes alone: no light sampling
-/// there, and emission found after it counts whole.
+/// At every vertex with a density (a BRDF, or rough glass) the direct light is estimated
+/// twice and the two combined by MIS (Veach 1997, ch. 9; shade::power_heuristic): (a)
+/// next-event estimation: one light chosen uniformly (shade::uniform_light_sampler,
+/// probability 1/N), sample_incident toward it, a shadow ray, weight
+/// w_l = power_heuristic(P_l, P_f); (b) the BSDF-sampled continuation ray: when it hits an
+/// emitter (or leaves the scene into an environment light), its radiance counts with weight
+/// power_heuristic(P_f, P_l), P_l = pdf_incident / N at the previous vertex. Delta lights
+/// are reached by (a) alone, with weight 1; the camera ray's first hit counts with weight 1.
+/// Above a BRDF, light and continuation stay above the geometric normal. At rough glass
+/// (shade::rough_dielectric, evaluated with the surface's outward normal, so that the side
+/// of v says whether the path is inside the medium) both go to either side: a light behind
+/// the interface contributes f |n·l| with f the transmission in radiance mode, the shadow
+/// ray and the continuation start on l's side, and lights are sampled without a surface
+/// (the whole sphere of directions). Throughput beta is multiplied by each sample's weight
+/// f |cos| / pdf; from bounce roulette_after on, the path continues with probability
+/// q = min(1, max channel of beta times eta_scale, the product of eta^2 over its
+/// refractions) and beta is divided by q (Russian roulette, Arvo, Kirk 1990, "Particle
+/// Transport and Image Synthesis", SIGGRAPH), which keeps the estimate unbiased. Smooth
+/// glass and thin panes (object::glass) scatter by their delta lobes alone: no light
+/// sampling there, and emission found after them counts whole.
 ///
 /// The random numbers come from `sampler`, in the same order at every vertex (the
 /// dimensions of a shade::sampler): the light's index (1D), the point on it (2D), the
-/// BRDF's lobe (1D) and direction (2D), Russian roulette (1D); a strategy that skips a
+/// BSDF's lobe (1D) and direction (2D), Russian roulette (1D); a strategy that skips a
 /// draw still takes its numbers, so each decision keeps its dimension.
 template <shade::sampler S>
 rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_options& options) {
@@ -144,54 +152,76 @@ rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_option
             }
             continue;
         }
-        if (!o.brdf || bounce >= options.max_bounces) break;
+        if ((!o.brdf && !o.rough_glass) || bounce >= options.max_bounces) break;
 
-        const auto at = surface_point::at(h->p, h->shading_n);
+        // A vertex with a density: a BRDF (light arrives and leaves above the geometric
+        // normal) or rough glass (either side of the interface).
+        const bool rough = o.rough_glass.has_value();
         const vec3 v = -r.direction;
-        // Rays leave on the side of the geometric normal (the path ends below it), off the
-        // surface by the hit point's rounding bound (shade/geometry/spawn.hpp).
-        const vec3 origin = shade::offset_ray_origin(h->p, h->p_error, h->geometric_n, h->geometric_n);
+        // Rough glass is evaluated with the surface's own normal, whose side (outside of the
+        // medium) says on which side v and l are, so the path's medium follows from the
+        // hit; a BRDF with the shading normal on the viewer's side.
+        const auto at = surface_point::at(h->p, rough ? h->outward_n : h->shading_n);
+        // Rays leave on the side of their direction, off the surface by the hit point's
+        // rounding bound (shade/geometry/spawn.hpp); after a BRDF always above the geometric
+        // normal (the path ends below it).
+        const vec3 above = shade::offset_ray_origin(h->p, h->p_error, h->geometric_n, h->geometric_n);
+        const auto origin_toward = [&](const vec3& l) {
+            return rough ? shade::offset_ray_origin(h->p, h->p_error, h->outward_n, l) : above;
+        };
+        const auto can_leave = [&](const vec3& l) {
+            return rough ? glm::dot(l, h->outward_n) != 0 : glm::dot(l, h->geometric_n) > 0;
+        };
+        const auto f_at = [&](const vec3& l) { return rough ? o.rough_glass->f(l, v, at) : o.brdf->f(l, v, at); };
+        const auto pdf_at = [&](const vec3& l) { return rough ? o.rough_glass->pdf(l, v, at) : o.brdf->pdf(l, v, at); };
 
         // (a) Next-event estimation.
-        // The lights see the surface (shade::light_sample_context): the environment samples
-        // only the hemisphere the path can continue into.
-        const shade::light_sample_context<real> here{origin, h->geometric_n, h->shading_n};
+        // The lights see the surface (shade::light_sample_context): above a BRDF the
+        // environment samples only the hemisphere the path can continue into; at rough
+        // glass every direction is wanted (zero normals: no surface), since light arriving
+        // from behind the interface is transmitted toward v.
+        const shade::light_sample_context<real> here =
+            rough ? shade::light_sample_context<real>{h->p, vec3(0), vec3(0)}
+                  : shade::light_sample_context<real>{above, h->geometric_n, h->shading_n};
         const real u_light = sampler.next_1d();
         const vec2 u_point = sampler.next_2d();
         const auto choice = light_sampler.sample(u_light);
         if (options.sampling != strategy::brdf && choice) {
             const real pick = choice->probability;
-            const auto ls = choice->index == map_index ? s.environment_map->sample_incident(origin, u_point)
+            const auto ls = choice->index == map_index ? s.environment_map->sample_incident(here.p, u_point)
                                                        : s.lights[choice->index].sample_incident(here, u_point);
-            if (ls && glm::dot(ls->l, h->geometric_n) > 0) {
-                const rgb f = o.brdf->f(ls->l, v, at);
+            if (ls && can_leave(ls->l)) {
+                // In radiance mode: through rough glass f carries the (eta_v / eta_l)^2 of a
+                // refraction (shade/bsdf/bsdf.hpp).
+                const rgb f = f_at(ls->l);
                 const real cos_l = std::abs(glm::dot(at.n(), ls->l));
-                const shade::ray<real> shadow{origin, ls->l, 0,
+                const shade::ray<real> shadow{origin_toward(ls->l), ls->l, 0,
                                               std::isinf(ls->distance) ? ls->distance : ls->distance * (1 - 1e-9)};
                 if (f != rgb(0) && !s.occluded(shadow)) {
                     if (ls->delta) {
                         radiance += beta * f * ls->radiance * (cos_l / pick);
                     } else {
                         const real pdf_l = pick * ls->pdf;
-                        const real w = options.sampling == strategy::mis
-                                           ? shade::power_heuristic(pdf_l, o.brdf->pdf(ls->l, v, at))
-                                           : real(1);
+                        const real w = options.sampling == strategy::mis ? shade::power_heuristic(pdf_l, pdf_at(ls->l))
+                                                                         : real(1);
                         radiance += beta * f * ls->radiance * (cos_l * w / pdf_l);
                     }
                 }
             }
         }
 
-        // (b) BRDF sampling: the continuation, which also finds emitters.
+        // (b) BSDF sampling: the continuation, which also finds emitters.
         const real uc = sampler.next_1d();
         const vec2 u = sampler.next_2d();
         const real u_roulette = sampler.next_1d();
-        const auto bs = o.brdf->sample(v, uc, u, at);
-        if (!bs || !(glm::dot(bs->l, h->geometric_n) > 0)) break;
+        const auto bs = rough ? shade::sample_bsdf(*o.rough_glass, v, uc, u, at, shade::transport_mode::radiance)
+                              : shade::sample_bsdf(*o.brdf, v, uc, u, at, shade::transport_mode::radiance);
+        if (!bs || !can_leave(bs->l)) break;
         beta *= bs->weight;
+        if (shade::is_transmission(bs->flags)) eta_scale *= bs->eta * bs->eta;
         previous_brdf_pdf = bs->pdf;
         previous = here;
-        r = shade::ray<real>{origin, bs->l};
+        r = shade::ray<real>{origin_toward(bs->l), bs->l};
         if (bounce + 1 >= options.roulette_after) {
             const real q = std::min(real(1), detail::max_channel(beta) * eta_scale);
             if (!(q > 0) || u_roulette >= q) break;

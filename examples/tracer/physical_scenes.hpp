@@ -17,7 +17,10 @@
 //   cornell:           a Cornell-box-like room (white floor, ceiling and back wall, red
 //                      left and green right wall, Lambert) holding the square pyramid of
 //                      examples/data/pyramid.obj, lit by a small spherical area light under
-//                      the ceiling.
+//                      the ceiling;
+//   glass-furnace:     a smooth glass sphere and a thin pane in the white furnace (all 1);
+//   glass:             the cornell room with a rough glass pyramid, a smooth glass sphere
+//                      and a thin glass pane.
 
 #include <array>
 #include <cmath>
@@ -175,34 +178,52 @@ inline mesh quad(vec3 corner, vec3 a, vec3 b) {
 /// The OBJ file the cornell scene places in its room.
 inline std::string cornell_mesh_path() { return SHADE_EXAMPLES_DATA_DIR "/pyramid.obj"; }
 
-/// cornell: see the file comment. The room is x in [-1, 1], y in [0, 2], z in [-1, 1],
-/// open toward the camera (+z); every wall's normal points into the room. Throws
-/// std::runtime_error naming the OBJ file when it cannot be loaded.
-inline scene make_cornell(real aspect) {
+namespace detail {
+
+/// The cornell room without its pyramid: floor, ceiling, back wall (white), left (red) and
+/// right (green) wall, Lambert, then the sphere light under the ceiling (see make_cornell).
+inline scene cornell_room(std::string name, real aspect) {
     using L = shade::lambert<real>;
     scene s;
-    s.name = "cornell";
-    s.camera = detail::look(vec3(0, 1, 3.6), vec3(0, 1, 0), 38, aspect);
+    s.name = std::move(name);
+    s.camera = look(vec3(0, 1, 3.6), vec3(0, 1, 0), 38, aspect);
     s.background = rgb(0);
     const rgb white(0.75), red(0.63, 0.065, 0.05), green(0.14, 0.45, 0.091);
-    s.add_physical_mesh(detail::quad(vec3(-1, 0, -1), vec3(0, 0, 2), vec3(2, 0, 0)), L(white)); // floor
-    s.add_physical_mesh(detail::quad(vec3(-1, 2, -1), vec3(2, 0, 0), vec3(0, 0, 2)), L(white)); // ceiling
-    s.add_physical_mesh(detail::quad(vec3(-1, 0, -1), vec3(2, 0, 0), vec3(0, 2, 0)), L(white)); // back
-    s.add_physical_mesh(detail::quad(vec3(-1, 0, -1), vec3(0, 2, 0), vec3(0, 0, 2)), L(red));   // left
-    s.add_physical_mesh(detail::quad(vec3(1, 0, -1), vec3(0, 0, 2), vec3(0, 2, 0)), L(green));  // right
+    s.add_physical_mesh(quad(vec3(-1, 0, -1), vec3(0, 0, 2), vec3(2, 0, 0)), L(white)); // floor
+    s.add_physical_mesh(quad(vec3(-1, 2, -1), vec3(2, 0, 0), vec3(0, 0, 2)), L(white)); // ceiling
+    s.add_physical_mesh(quad(vec3(-1, 0, -1), vec3(2, 0, 0), vec3(0, 2, 0)), L(white)); // back
+    s.add_physical_mesh(quad(vec3(-1, 0, -1), vec3(0, 2, 0), vec3(0, 0, 2)), L(red));   // left
+    s.add_physical_mesh(quad(vec3(1, 0, -1), vec3(0, 0, 2), vec3(0, 2, 0)), L(green));  // right
+    return s;
+}
 
-    // The pyramid (unit base on y = 0, apex at height 1) scaled by 0.9, turned 30 degrees
-    // about y and moved back a little.
+/// The area light of the cornell room: a sphere of radius 0.15 and radiance 50 under the
+/// ceiling, which gives the floor below it an irradiance of about pi 50 (0.15 / 1.75)^2 ~ 1.2.
+inline void add_cornell_light(scene& s) {
+    s.add_emitting_sphere(shade::sphere_light<real>(vec3(0, 1.75, 0), 0.15, radiance(50)), std::nullopt);
+}
+
+/// The pyramid of cornell_mesh_path() (unit base on y = 0, apex at height 1) scaled by 0.9,
+/// turned 30 degrees about y, moved back by 0.2 and up by `lift`. Throws as load_obj.
+inline mesh cornell_pyramid(real lift) {
     mesh pyramid = load_obj(cornell_mesh_path());
     const real angle = shade::pi<real> / 6, c = std::cos(angle), sn = std::sin(angle);
     const auto turn = [&](const vec3& p) { return vec3(c * p.x + sn * p.z, p.y, -sn * p.x + c * p.z); };
-    for (vec3& p : pyramid.positions) p = turn(real(0.9) * p) + vec3(0, 0, -0.2);
+    for (vec3& p : pyramid.positions) p = turn(real(0.9) * p) + vec3(0, lift, -0.2);
     for (vec3& n : pyramid.normals) n = turn(n);
-    s.add_physical_mesh(std::move(pyramid), L(rgb(0.75, 0.7, 0.6)));
+    return pyramid;
+}
 
-    // The area light: a sphere of radius 0.15 and radiance 50 under the ceiling, which
-    // gives the floor below it an irradiance of about pi 50 (0.15 / 1.75)^2 ~ 1.2.
-    s.add_emitting_sphere(shade::sphere_light<real>(vec3(0, 1.75, 0), 0.15, detail::radiance(50)), std::nullopt);
+} // namespace detail
+
+/// cornell: see the file comment. The room is x in [-1, 1], y in [0, 2], z in [-1, 1],
+/// open toward the camera (+z); every wall's normal points into the room. Objects 0-4 are
+/// the walls, 5 the pyramid, 6 the light. Throws std::runtime_error naming the OBJ file
+/// when it cannot be loaded.
+inline scene make_cornell(real aspect) {
+    scene s = detail::cornell_room("cornell", aspect);
+    s.add_physical_mesh(detail::cornell_pyramid(0), shade::lambert<real>(rgb(0.75, 0.7, 0.6)));
+    detail::add_cornell_light(s);
     return s;
 }
 
@@ -217,13 +238,22 @@ inline scene make_glass_furnace(real aspect) {
     return s;
 }
 
-/// glass: the cornell room with its sphere light, a sphere of smooth glass (eta 1.5) on the
-/// floor and a thin glass pane (eta 1.5) standing across the back left; path integrator
-/// only (the caustics under the sphere come from BSDF-sampled paths alone, so they need
-/// many samples). Throws as make_cornell.
+/// The GGX roughness (alpha) of the glass scene's rough pyramid.
+inline constexpr real glass_pyramid_alpha = 0.2;
+
+/// glass: the cornell room with its sphere light, its pyramid made of rough glass
+/// (shade::rough_dielectric over GGX alpha glass_pyramid_alpha, eta 1.5; a closed mesh
+/// whose normals point out), a sphere of smooth glass (eta 1.5) on the floor in front of
+/// it and a thin glass pane (eta 1.5) standing across the back left; path integrator only
+/// (the caustics under the smooth sphere come from BSDF-sampled paths alone, so they need
+/// many samples). The pyramid stands 0.002 above the floor: a base on the floor's plane
+/// would tie with it at every hit, and which surface a ray then meets (glass or floor)
+/// would be decided by rounding. Objects 0-4 are the walls, 5 the pyramid, 6 the light, 7
+/// the sphere, 8 the pane. Throws as make_cornell.
 inline scene make_glass(real aspect) {
-    scene s = make_cornell(aspect);
-    s.name = "glass";
+    scene s = detail::cornell_room("glass", aspect);
+    s.add_rough_glass_mesh(detail::cornell_pyramid(0.002), glass_pyramid_alpha, 1.5);
+    detail::add_cornell_light(s);
     s.add_glass_sphere(shade::sphere<real>(vec3(0.5, 0.35, 0.35), 0.35), 1.5);
     s.add_glass_pane(detail::quad(vec3(-0.9, 0, -0.3), vec3(0.6, 0, -0.4), vec3(0, 1.2, 0)), 1.5);
     return s;

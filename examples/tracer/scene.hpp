@@ -17,6 +17,8 @@
 
 #include <shade/brdf/any_brdf.hpp>
 #include <shade/brdf/lambert.hpp>
+#include <shade/brdf/microfacet/ggx.hpp>
+#include <shade/bsdf/rough_dielectric.hpp>
 #include <shade/bsdf/smooth_dielectric.hpp>
 #include <shade/bsdf/thin_dielectric.hpp>
 #include <shade/core/random.hpp>
@@ -114,6 +116,11 @@ struct object {
     /// closed shape whose outward normal points to the outside of the medium, or a thin
     /// slab (a pane: any surface, either side).
     std::optional<std::variant<shade::smooth_dielectric<real>, shade::thin_dielectric<real>>> glass;
+    /// Rough glass instead (path integrator): a rough dielectric interface over GGX
+    /// microfacets, the object a closed shape whose outward normal points to the outside
+    /// of the medium. Unlike `glass` it has a density over the whole sphere, so the path
+    /// integrator samples lights on both sides of it.
+    std::optional<shade::rough_dielectric<shade::ggx<real>>> rough_glass;
     int emitter = -1; ///< index into scene::lights of the light this object is the geometry of
     /// For a mesh: each triangle k is a light of its own, scene::lights[emitter + k]
     /// (add_emissive_mesh); otherwise the whole object is scene::lights[emitter].
@@ -219,6 +226,22 @@ struct scene {
     void add_glass_pane(tracer::mesh m, real eta) {
         add_mesh(std::move(m), mesh_shading::flat, make_material(shade::any_brdf<real>(shade::lambert<real>(rgb(0)))));
         objects.back().glass = shade::thin_dielectric<real>(eta);
+    }
+    /// A sphere of rough glass: shade::rough_dielectric over shade::ggx(alpha) of relative
+    /// index eta inside (path integrator only; the classic integrator draws it black).
+    /// Throws shade::invalid_parameter as ggx and rough_dielectric do (alpha in [1e-4,
+    /// 1e4]; eta in [1e-4, 1e4], not 1).
+    void add_rough_glass_sphere(const shade::sphere<real>& sphere, real alpha, real eta) {
+        const shade::rough_dielectric<shade::ggx<real>> glass(shade::ggx<real>(alpha), eta);
+        add_sphere(sphere, make_material(shade::any_brdf<real>(shade::lambert<real>(rgb(0)))));
+        objects.back().rough_glass = glass;
+    }
+    /// A closed mesh of rough glass (its triangles wound counter-clockwise seen from
+    /// outside, so that their normals point out of the medium), as add_rough_glass_sphere.
+    void add_rough_glass_mesh(tracer::mesh m, real alpha, real eta) {
+        const shade::rough_dielectric<shade::ggx<real>> glass(shade::ggx<real>(alpha), eta);
+        add_mesh(std::move(m), mesh_shading::flat, make_material(shade::any_brdf<real>(shade::lambert<real>(rgb(0)))));
+        objects.back().rough_glass = glass;
     }
     void add_mesh(tracer::mesh m, mesh_shading shading, material mat) {
         object o;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <span>
 #include <vector>
@@ -496,10 +497,13 @@ TEST_CASE("path: a smooth glass sphere in the white furnace is invisible (1 in e
 }
 
 TEST_CASE("path: the glass scene renders finite, non-negative radiance") {
-    // The cornell room with a glass sphere and a thin pane: refracted and reflected paths
-    // through both, light found by BSDF sampling after them; no NaN, infinity or negative
-    // value anywhere.
+    // The cornell room with a rough glass pyramid, a smooth glass sphere and a thin pane:
+    // refracted and reflected paths through all three, light sampled on both sides of the
+    // rough pyramid and found by BSDF sampling after the delta glass; no NaN, infinity or
+    // negative value anywhere.
     const auto s = tracer::make_glass(1.0);
+    REQUIRE(s.objects.size() == 9);
+    REQUIRE(s.objects[5].rough_glass.has_value());
     auto options = path_options(24, 24, 8);
     options.threads = 0;
     const auto image = tracer::render(s, options);
@@ -507,4 +511,186 @@ TEST_CASE("path: the glass scene renders finite, non-negative radiance") {
     for (const rgb& c : image.pixels)
         bad += !(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) && c.x >= 0 && c.y >= 0 && c.z >= 0);
     CHECK(bad == 0);
+}
+
+TEST_CASE("path: the glass scene's rough pyramid is closed, its normals point out, and it stands clear of the rest") {
+    // The rough interface takes its outside from the triangles' normals, so every one must
+    // point away from the pyramid's interior (whose centroid of vertices is inside, the
+    // pyramid being convex); every edge is shared by exactly two triangles (closed); the
+    // pyramid is above the floor (y > 0) and apart from the smooth sphere.
+    const auto s = tracer::make_glass(1.0);
+    const tracer::mesh& m = *s.objects[5].mesh;
+    vec3 centroid(0);
+    for (const vec3& p : m.positions) centroid += p / real(m.positions.size());
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+    for (std::size_t k = 0; k < m.triangle_count(); ++k) {
+        const auto t = m.triangle(k);
+        const vec3 n = glm::cross(t.v1 - t.v0, t.v2 - t.v0);
+        CHECK(glm::dot(n, (t.v0 + t.v1 + t.v2) / real(3) - centroid) > 0);
+        for (int e = 0; e < 3; ++e) {
+            const std::uint32_t a = m.indices[3 * k + std::size_t(e)], b = m.indices[3 * k + std::size_t((e + 1) % 3)];
+            ++edges[{std::min(a, b), std::max(a, b)}];
+        }
+    }
+    for (const auto& [edge, count] : edges) CHECK(count == 2);
+    const auto& sphere = *s.objects[7].sphere;
+    for (const vec3& p : m.positions) CHECK(p.y > 0);
+    // Each face's plane keeps the sphere's centre farther than its radius, on its outside,
+    // or the sphere's centre lies outside some face by more than the radius: the convex
+    // pyramid and the sphere are disjoint when one face plane separates them.
+    bool separated = false;
+    for (std::size_t k = 0; k < m.triangle_count(); ++k) {
+        const auto t = m.triangle(k);
+        const vec3 n = glm::normalize(glm::cross(t.v1 - t.v0, t.v2 - t.v0));
+        separated = separated || glm::dot(sphere.center() - t.v0, n) > sphere.radius();
+    }
+    CHECK(separated);
+}
+
+namespace {
+
+// A scene for rough glass (shade::rough_dielectric, GGX): the camera on +z looks at a rough
+// interface (alpha 0.3, eta 1.5) filling the view in the plane z = 0, whose outside (+z, its
+// normal) is air and whose inside (z < 0) is glass. Behind it, in the glass, a sphere light
+// and a Lambert wall (albedo 0.5) at z = -2; in front of it, in the air, a second sphere
+// light (also seen directly, and reflected by the interface) and a closed sphere of rough
+// glass (alpha 0.3, eta 1.5). Light reaches the camera through transmission from the inside
+// and from the outside, by reflection, and through the closed sphere.
+tracer::scene rough_glass_scene(real aspect) {
+    tracer::scene s;
+    s.name = "rough-glass";
+    s.camera = tracer::detail::look(vec3(0, 0, 3), vec3(0), 40, aspect);
+    s.background = rgb(0);
+    s.add_rough_glass_mesh(tracer::detail::quad(vec3(-1.5, -1.5, 0), vec3(3, 0, 0), vec3(0, 3, 0)), 0.3, 1.5);
+    s.add_physical_mesh(tracer::detail::quad(vec3(-4, -4, -2), vec3(8, 0, 0), vec3(0, 8, 0)),
+                        shade::lambert<real>(rgb(0.5)));
+    s.add_rough_glass_sphere(shade::sphere<real>(vec3(0.5, 0.45, 1), 0.3), 0.3, 1.5);
+    s.add_emitting_sphere(shade::sphere_light<real>(vec3(0.3, -0.3, -1), 0.3, tracer::detail::radiance(20)),
+                          std::nullopt);
+    s.add_emitting_sphere(shade::sphere_light<real>(vec3(-0.7, 0.6, 1.2), 0.2, tracer::detail::radiance(20)),
+                          std::nullopt);
+    return s;
+}
+
+// True when two estimates of the same image agree: the image means within 3 standard errors
+// of their difference in every channel, and each of the 4 x 3 regions of the image within 4
+// (a Bonferroni bound: 36 region-channel comparisons at 4 standard errors fail together by
+// chance with probability 36 x 6.3e-5 = 0.2%).
+void check_same_image(const image_estimate& a, const image_estimate& b, int w, int h) {
+    for (int k = 0; k < 3; ++k) {
+        CAPTURE(k);
+        const double se = std::sqrt(double(a.standard_error[k] * a.standard_error[k] +
+                                           b.standard_error[k] * b.standard_error[k]));
+        CAPTURE(a.mean[k]);
+        CAPTURE(b.mean[k]);
+        CHECK(std::abs(double(a.mean[k] - b.mean[k])) <= 3 * se);
+        for (int ry = 0; ry < 3; ++ry)
+            for (int rx = 0; rx < 4; ++rx) {
+                double ma = 0, mb = 0, va = 0, vb = 0;
+                const int x0 = rx * w / 4, x1 = (rx + 1) * w / 4, y0 = ry * h / 3, y1 = (ry + 1) * h / 3;
+                const double n = double((x1 - x0) * (y1 - y0));
+                for (int y = y0; y < y1; ++y)
+                    for (int x = x0; x < x1; ++x) {
+                        const auto& pa = a.pixels[std::size_t(y * w + x)];
+                        const auto& pb = b.pixels[std::size_t(y * w + x)];
+                        ma += double(pa.mean[k]) / n;
+                        mb += double(pb.mean[k]) / n;
+                        va += double(pa.standard_error[k] * pa.standard_error[k]) / (n * n);
+                        vb += double(pb.standard_error[k] * pb.standard_error[k]) / (n * n);
+                    }
+                CAPTURE(rx);
+                CAPTURE(ry);
+                CAPTURE(ma);
+                CAPTURE(mb);
+                CHECK(std::abs(ma - mb) <= 4 * std::sqrt(va + vb) + 1e-12);
+            }
+    }
+}
+
+} // namespace
+
+TEST_CASE("path: through rough glass, MIS, light sampling alone and BSDF sampling alone agree") {
+    // The three estimators are unbiased for the same image, and share nothing but the scene:
+    // BSDF sampling alone finds the lights only by rays the rough interface refracts or
+    // reflects (its f and sample); light sampling alone reaches them from every rough vertex
+    // by a shadow ray through or off the interface, weighted f |n.l| / pdf_light with f in
+    // radiance mode on the correct side (a light behind the interface, in the glass, seen
+    // from the air, comes with the factor (eta_v / eta_l)^2 = 1 / 2.25; from inside, 2.25);
+    // MIS needs the BSDF's pdf of the light's direction through the interface as well.
+    // A NEE that used the importance-mode value (no eta^2), took f from the wrong side, or
+    // dropped the transmitted side, would change the light-sampling image by a factor 2.25
+    // or a whole contribution, far beyond these standard errors; a pdf that disagreed with
+    // sample() would bias MIS against BSDF sampling alone.
+    const int w = 16, h = 12;
+    const auto s = rough_glass_scene(real(w) / real(h));
+    auto options = path_options(w, h, 256);
+    options.path.sampling = tracer::strategy::brdf;
+    const auto bsdf_only = estimate(s, options);
+    options.path.sampling = tracer::strategy::light;
+    options.seed = 2;
+    const auto light_only = estimate(s, options);
+    options.path.sampling = tracer::strategy::mis;
+    options.seed = 3;
+    const auto mis = estimate(s, options);
+    MESSAGE("rough glass image mean (green): BSDF sampling ", bsdf_only.mean.y, " +- ", bsdf_only.standard_error.y,
+            ", light sampling ", light_only.mean.y, " +- ", light_only.standard_error.y, ", MIS ", mis.mean.y, " +- ",
+            mis.standard_error.y);
+    CHECK(mis.mean.y > 0.1); // the lights are seen through the glass
+    {
+        INFO("light sampling alone against BSDF sampling alone");
+        check_same_image(light_only, bsdf_only, w, h);
+    }
+    {
+        INFO("MIS against BSDF sampling alone");
+        check_same_image(mis, bsdf_only, w, h);
+    }
+    // MIS does not lose to either strategy alone on the whole image.
+    CHECK(mis.standard_error.y <= 1.1 * std::min(bsdf_only.standard_error.y, light_only.standard_error.y));
+}
+
+TEST_CASE("path: a rough glass sphere in the white furnace: no pixel above 1, the same with every strategy") {
+    // A rough dielectric (GGX alpha 0.5, eta 1.5) emits nothing and, with single-scattering
+    // microfacets, loses the light that would scatter between microfacets, so no path through
+    // it returns more than the radiance 1 it started with, on average: every pixel at most 1
+    // (within 5 of its standard errors), the pixels whose centre misses the sphere exactly 1. The
+    // (eta_v / eta_l)^2 of radiance through each refraction cancels between entering and
+    // leaving; a factor left over would put the sphere's pixels near 2.25 or 1 / 2.25. The
+    // environment light is sampled over the whole sphere at rough vertices, so MIS and light
+    // sampling alone must agree with BSDF sampling alone.
+    const int w = 12, h = 9;
+    auto s = tracer::detail::white_furnace("rough-glass-furnace", real(w) / real(h));
+    s.add_rough_glass_sphere(shade::sphere<real>(vec3(0), 1), 0.5, 1.5);
+    auto options = path_options(w, h, 128);
+    options.jitter = false; // each pixel's samples go through its centre: on the sphere or not
+    options.path.sampling = tracer::strategy::brdf;
+    const auto bsdf_only = estimate(s, options);
+    options.path.sampling = tracer::strategy::light;
+    options.seed = 2;
+    const auto light_only = estimate(s, options);
+    options.path.sampling = tracer::strategy::mis;
+    options.seed = 3;
+    const auto mis = estimate(s, options);
+    int above_one = 0, sphere_pixels = 0, not_one = 0;
+    rgb sphere_sum(0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const auto& p = mis.pixels[std::size_t(y * w + x)];
+            const bool on_sphere =
+                s.intersect(s.camera->ray_for_raster(real(x) + 0.5, real(y) + 0.5, w, h)).has_value();
+            for (int k = 0; k < 3; ++k) {
+                above_one += !(p.mean[k] <= 1 + 5 * p.standard_error[k] + 1e-9);
+                if (!on_sphere) not_one += std::abs(p.mean[k] - 1) > 5 * p.standard_error[k] + 1e-9;
+            }
+            if (on_sphere) {
+                ++sphere_pixels;
+                sphere_sum += p.mean;
+            }
+        }
+    MESSAGE("rough glass furnace: ", sphere_pixels, " sphere pixels, their mean ", sphere_sum.y / sphere_pixels,
+            "; image mean BSDF ", bsdf_only.mean.y, ", light ", light_only.mean.y, ", MIS ", mis.mean.y);
+    CHECK(sphere_pixels > 20);
+    CHECK(above_one == 0);
+    CHECK(not_one == 0);
+    check_same_image(light_only, bsdf_only, w, h);
+    check_same_image(mis, bsdf_only, w, h);
 }
