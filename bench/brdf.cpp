@@ -23,7 +23,6 @@
 // See bench/support.hpp for names, counters and the callgrind mode.
 
 #include <cstddef>
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -222,18 +221,5 @@ const bool registered = [] {
 } // namespace
 
 // Google Benchmark's main with random interleaving switched on unless the command line
-// sets it: every repetition of every benchmark runs as its own instance, in random order.
-int main(int argc, char** argv) {
-    std::vector<char*> args(argv, argv + argc);
-    static char interleave[] = "--benchmark_enable_random_interleaving=true";
-    bool given = false;
-    for (int i = 1; i < argc; ++i)
-        given = given || std::strncmp(argv[i], "--benchmark_enable_random_interleaving", 38) == 0;
-    if (!given) args.insert(args.begin() + 1, interleave);
-    int n = static_cast<int>(args.size());
-    benchmark::Initialize(&n, args.data());
-    if (benchmark::ReportUnrecognizedArguments(n, args.data())) return 1;
-    benchmark::RunSpecifiedBenchmarks();
-    benchmark::Shutdown();
-    return 0;
-}
+// sets it (bench/support.hpp).
+int main(int argc, char** argv) { return shade_bench::main(argc, argv); }

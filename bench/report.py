@@ -24,6 +24,18 @@ BASELINES = {
     "brdf": "lambert",
     "bvh": "embree",
     "brdf_sampling": "f",
+    "bsdf": "ggx_conductor",
+}
+
+# Row (variant) and column (subgroup) order of a family's tables, where the order of first
+# appearance in the JSON (random, with interleaved runs) would not do; others keep it.
+VARIANT_ORDER = {
+    "bsdf": ["ggx_conductor", "ggx_conductor_exact_fresnel", "smooth_conductor", "smooth_dielectric",
+             "thin_dielectric", "rough_dielectric_ggx", "rough_dielectric_beckmann"],
+}
+SUBGROUP_ORDER = {
+    "bsdf": ["f_reflection", "f_transmission", "pdf_reflection", "pdf_transmission", "sample_outside",
+             "sample_inside"],
 }
 
 FAMILY_TITLES = {
@@ -34,6 +46,7 @@ FAMILY_TITLES = {
     "brdf": "BRDF evaluation (f(l, v), 512 direction pairs above the surface)",
     "bvh": "BVH against Embree 3 (ns per ray, or per build)",
     "brdf_sampling": "BRDF sampling per model: sample(v, uc, u) and pdf(l, v) against f(l, v), and f before the sampling redesign (legacy_f, bench/legacy/)",
+    "bsdf": "BSDFs, the dielectrics next to the conductors (bench/bsdf.cpp: 512 random inputs visited in a random order; f and pdf with l above (reflection) or below (transmission) for v above; sample_bsdf from above and from below; ratios to the rough conductor ggx_conductor)",
 }
 
 
@@ -83,7 +96,10 @@ def load_callgrind(directory, runs):
     def dump_order(path):  # callgrind.out.<pid>.<n>: by pid, then dump number
         return [int(x) if x.isdigit() else x for x in os.path.basename(path).split(".")[2:]]
 
-    for path in sorted(glob.glob(os.path.join(directory, "callgrind.out.*")), key=dump_order):
+    # Oldest file first, so that a benchmark dumped again by a later partial run
+    # (script/bench --only) keeps its newest count.
+    for path in sorted(glob.glob(os.path.join(directory, "callgrind.out.*")),
+                       key=lambda p: (os.path.getmtime(p), dump_order(p))):
         desc, total = None, None
         with open(path, errors="replace") as f:
             for line in f:
@@ -122,11 +138,17 @@ def tables(values, unit, hit_rates=None):
     for (family, typ) in sorted(families, key=lambda k: (order.index(k[0]) if k[0] in order else 99, k[1] != "float", k[1])):
         subs = families[(family, typ)]
         sub_names = sorted(subs, key=lambda s: (len(s), s))
+        if family in SUBGROUP_ORDER:
+            known = SUBGROUP_ORDER[family]
+            sub_names = sorted(subs, key=lambda s: (known.index(s) if s in known else len(known), s))
         variants = []
         for s in sub_names:
             for v in subs[s]:
                 if v not in variants:
                     variants.append(v)
+        if family in VARIANT_ORDER:
+            known = VARIANT_ORDER[family]
+            variants.sort(key=lambda v: (known.index(v) if v in known else len(known), v))
         baseline = BASELINES.get(family)
         title = FAMILY_TITLES.get(family, family)
         show_hits = hit_rates is not None and any(
@@ -328,6 +350,19 @@ def bvh_rows(runs):
     return out
 
 
+def runs_apart(dates):
+    """True when the binaries' start dates (ISO 8601) span more than an hour: results of
+    different runs of script/bench (one full run takes minutes)."""
+    import datetime
+    parsed = []
+    for d in dates:
+        try:
+            parsed.append(datetime.datetime.fromisoformat(d))
+        except (TypeError, ValueError):
+            return False
+    return len(parsed) > 1 and (max(parsed) - min(parsed)).total_seconds() > 3600
+
+
 def cpu_model():
     try:
         with open("/proc/cpuinfo") as f:
@@ -364,11 +399,12 @@ def main():
     ap.add_argument("--benchmark-version", default="")
     args = ap.parse_args()
 
-    time_runs, context = {}, {}
+    time_runs, context, run_dates = {}, {}, {}
     for path in sorted(glob.glob(os.path.join(args.time_dir, "*.json"))):
         ctx, runs = load_json(path)
         context = {**ctx, **context}  # keys of every file; the first file's win
         time_runs.update(runs)
+        run_dates[os.path.splitext(os.path.basename(path))[0]] = ctx.get("date", "?")
     if not time_runs:
         sys.exit("report.py: no benchmark results in " + args.time_dir)
 
@@ -384,6 +420,9 @@ def main():
              f"{context.get('triangle_batch_kernel', '?')}",
              f"- Run: {context.get('date', '?')}, load average at start "
              f"{', '.join(f'{x:.2f}' for x in context.get('load_avg', [])) or '?'}",
+             *([f"- Binaries run at different times (`script/bench --only` reruns one): "
+                + ", ".join(f"{b} {d}" for b, d in sorted(run_dates.items()))]
+               if runs_apart(run_dates.values()) else []),
              "",
              "## Method", "",
              "- Every benchmark runs one routine over the same precomputed arrays (ray/shape "

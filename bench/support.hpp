@@ -22,6 +22,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <numeric>
 #include <random>
 #include <string>
@@ -106,5 +107,23 @@ struct outcome {
     T u = T(0);
     T v = T(0);
 };
+
+/// Google Benchmark's main with random interleaving switched on unless the command line
+/// sets it: every repetition of every benchmark runs as its own instance, in random order,
+/// so a variant and its baseline share the machine's slow and fast moments.
+inline int main(int argc, char** argv) {
+    std::vector<char*> args(argv, argv + argc);
+    static char interleave[] = "--benchmark_enable_random_interleaving=true";
+    bool given = false;
+    for (int i = 1; i < argc; ++i)
+        given = given || std::strncmp(argv[i], "--benchmark_enable_random_interleaving", 38) == 0;
+    if (!given) args.insert(args.begin() + 1, interleave);
+    int n = static_cast<int>(args.size());
+    benchmark::Initialize(&n, args.data());
+    if (benchmark::ReportUnrecognizedArguments(n, args.data())) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}
 
 } // namespace shade_bench
