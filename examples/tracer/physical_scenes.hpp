@@ -46,15 +46,13 @@ inline shade::pinhole_camera<real> look(vec3 position, vec3 target, real fov_deg
     return {position, target, vec3(0, 1, 0), fov_degrees * shade::pi<real> / 180, aspect};
 }
 
-inline shade::emission<real> radiance(real L) { return shade::emission<real>::from_physical(rgb(L)); }
-
 /// The white furnace without its objects: radiance 1 from every direction (an
 /// environment light and background), the camera 4 units from the origin looking at it.
 inline scene white_furnace(std::string name, real aspect) {
     scene s;
     s.name = std::move(name);
     s.camera = look(vec3(0, 0, 4), vec3(0), 40, aspect);
-    s.lights.emplace_back(shade::environment_light<real>(radiance(1)));
+    s.lights.emplace_back(shade::environment_light<real>::from_radiance(rgb(1)));
     s.background = rgb(1);
     return s;
 }
@@ -80,7 +78,7 @@ inline scene make_energy(real aspect) {
     scene s;
     s.name = "energy";
     s.camera = detail::look(vec3(0, 0, 12), vec3(0), 16, aspect);
-    s.lights.emplace_back(shade::environment_light<real>(detail::radiance(1)));
+    s.lights.emplace_back(shade::environment_light<real>::from_radiance(rgb(1)));
     s.background = rgb(1);
     const rgb gold(1.0, 0.71, 0.29);
     for (std::size_t k = 0; k < energy_alphas.size(); ++k) {
@@ -97,7 +95,7 @@ inline scene make_enclosure(real aspect) {
     scene s;
     s.name = "enclosure";
     s.camera = detail::look(vec3(0.5, 0.3, 1), vec3(0, 0, -3), 60, aspect);
-    s.add_emitting_sphere(shade::sphere_light<real>(vec3(0), 4, detail::radiance(1), shade::sidedness::two_sided),
+    s.add_emitting_sphere(shade::sphere_light<real>::from_radiance(vec3(0), 4, rgb(1), shade::sidedness::two_sided),
                           shade::lambert<real>(rgb(0.8)));
     return s;
 }
@@ -155,7 +153,7 @@ inline scene make_veach(real aspect) {
     for (std::size_t i = 0; i < 4; ++i) {
         const real R = veach_light_radii[i];
         const vec3 centre(-3.75 + 2.5 * real(i), 0, 0);
-        s.add_emitting_sphere(shade::sphere_light<real>(centre, R, detail::radiance(1 / (R * R))), std::nullopt);
+        s.add_emitting_sphere(shade::sphere_light<real>::from_radiance(centre, R, rgb(1 / (R * R))), std::nullopt);
     }
     return s;
 }
@@ -200,7 +198,7 @@ inline scene cornell_room(std::string name, real aspect) {
 /// The area light of the cornell room: a sphere of radius 0.15 and radiance 50 under the
 /// ceiling, which gives the floor below it an irradiance of about pi 50 (0.15 / 1.75)^2 ~ 1.2.
 inline void add_cornell_light(scene& s) {
-    s.add_emitting_sphere(shade::sphere_light<real>(vec3(0, 1.75, 0), 0.15, radiance(50)), std::nullopt);
+    s.add_emitting_sphere(shade::sphere_light<real>::from_radiance(vec3(0, 1.75, 0), 0.15, rgb(50)), std::nullopt);
 }
 
 /// The pyramid of cornell_mesh_path() (unit base on y = 0, apex at height 1) scaled by 0.9,

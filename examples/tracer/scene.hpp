@@ -201,14 +201,14 @@ struct scene {
         objects.back().brdf = b;
         objects.back().emitter = int(lights.size()) - 1;
     }
-    /// A mesh whose every triangle emits radiance `e` toward the side its winding faces
-    /// (one shade::triangle_light per triangle), with an optional material (none: black).
-    void add_emissive_mesh(tracer::mesh m, const shade::emission<real>& e,
-                           const std::optional<shade::any_brdf<real>>& b) {
+    /// A mesh whose every triangle emits `radiance` in W/(m^2 sr) toward the side its
+    /// winding faces (one shade::triangle_light per triangle), with an optional material
+    /// (none: black).
+    void add_emissive_mesh(tracer::mesh m, const rgb& radiance, const std::optional<shade::any_brdf<real>>& b) {
         const int first = int(lights.size());
         for (std::size_t k = 0; k < m.triangle_count(); ++k) {
             const auto t = m.triangle(k);
-            lights.emplace_back(shade::triangle_light<real>(t.v0, t.v1, t.v2, e));
+            lights.emplace_back(shade::triangle_light<real>::from_radiance(t.v0, t.v1, t.v2, radiance));
         }
         add_mesh(std::move(m), mesh_shading::flat,
                  make_material(b ? *b : shade::any_brdf<real>(shade::lambert<real>(rgb(0)))));

@@ -5,13 +5,15 @@
 // run-time CPU detection), the hierarchies shade/geometry/bvh.hpp and triangle_bvh.hpp
 // (SIMD box tests, and the batch), and shade/light/environment_map.hpp with the
 // distributions it samples by, shade/core/distribution.hpp (they would take this header
-// past its preprocessed-line budget, tests/headers/budget.cmake): include them where you
-// use them.
+// past its preprocessed-line budget, tests/headers/budget.cmake), the path tracer's light
+// selection (shade/light/light_sampler.hpp with shade/core/alias_table.hpp, and
+// bvh_light_sampler.hpp with light_bounds.hpp and light_bounds_of.hpp), and
+// shade/light/classic_light.hpp (the classic mode of an emitter of yours): include them
+// where you use them.
 // Conventions: shade/core/frame.hpp and docs/conventions.md.
 
 #include <shade/version.hpp>
 
-#include <shade/core/alias_table.hpp>
 #include <shade/core/config.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/frame.hpp>
@@ -67,7 +69,6 @@
 #include <shade/light/incident_sample.hpp>
 #include <shade/light/light.hpp>
 #include <shade/light/light_sample.hpp>
-#include <shade/light/light_sampler.hpp>
 #include <shade/light/point.hpp>
 #include <shade/light/sample_context.hpp>
 #include <shade/light/sphere.hpp>

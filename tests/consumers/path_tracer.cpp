@@ -18,6 +18,7 @@
 
 #include <shade/shade.hpp>
 #include <shade/geometry/triangle_bvh.hpp>
+#include <shade/light/light_sampler.hpp>
 
 namespace {
 
@@ -49,7 +50,7 @@ int main() {
     const shade::triangle_bvh<T> scene(walls);
     std::vector<shade::any_light<T>> lights;
     for (const auto& w : walls)
-        lights.emplace_back(shade::triangle_light<T>(w.v0, w.v1, w.v2, shade::emission<T>::from_physical(rgb(1))));
+        lights.emplace_back(shade::triangle_light<T>::from_radiance(w.v0, w.v1, w.v2, rgb(1)));
     const auto choose = shade::power_light_sampler<T>::from_lights(std::span<const shade::any_light<T>>(lights), T(2));
     const shade::lambert<T> wall(rgb(0.8));
     shade::sobol_sampler<T> sampler(2024);

@@ -194,7 +194,7 @@ TEST_CASE("path: a rough conductor of F = 1 compensated for multiple scattering 
     tracer::scene s;
     s.name = "furnace-compensated";
     s.camera = shade::pinhole_camera<real>({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, 40 * shade::pi<real> / 180, real(8) / real(6));
-    s.lights.emplace_back(shade::environment_light<real>(shade::emission<real>::from_physical(rgb(1))));
+    s.lights.emplace_back(shade::environment_light<real>::from_radiance(rgb(1)));
     s.background = rgb(1);
     s.add_physical_sphere(shade::sphere<real>({0, 0, 0}, 1), shade::make_compensated_ggx_conductor(real(0.6), rgb(1)));
     const auto e = estimate(s, path_options(8, 6, 64));
@@ -412,9 +412,9 @@ TEST_CASE("path: an emissive quad that is part of a mesh lights the room as the 
     // Edges u = (0.5, 0, 0), v = (0, 0, 0.5): normal u x v = (0, -1, 0), facing the floor.
     const vec3 corner(-0.25, 1.98, -0.25), u(0.5, 0, 0), v(0, 0, 0.5);
     auto rectangle = room();
-    rectangle.add_emitting_quad(shade::area_light<real>(corner, u, v, tracer::detail::radiance(20)), std::nullopt);
+    rectangle.add_emitting_quad(shade::area_light<real>::from_radiance(corner, u, v, rgb(20)), std::nullopt);
     auto triangles = room();
-    triangles.add_emissive_mesh(tracer::detail::quad(corner, u, v), tracer::detail::radiance(20), std::nullopt);
+    triangles.add_emissive_mesh(tracer::detail::quad(corner, u, v), rgb(20), std::nullopt);
     REQUIRE(rectangle.lights.size() == 1);
     REQUIRE(triangles.lights.size() == 2);
 
@@ -565,9 +565,9 @@ tracer::scene rough_glass_scene(real aspect) {
     s.add_physical_mesh(tracer::detail::quad(vec3(-4, -4, -2), vec3(8, 0, 0), vec3(0, 8, 0)),
                         shade::lambert<real>(rgb(0.5)));
     s.add_rough_glass_sphere(shade::sphere<real>(vec3(0.5, 0.45, 1), 0.3), 0.3, 1.5);
-    s.add_emitting_sphere(shade::sphere_light<real>(vec3(0.3, -0.3, -1), 0.3, tracer::detail::radiance(20)),
+    s.add_emitting_sphere(shade::sphere_light<real>::from_radiance(vec3(0.3, -0.3, -1), 0.3, rgb(20)),
                           std::nullopt);
-    s.add_emitting_sphere(shade::sphere_light<real>(vec3(-0.7, 0.6, 1.2), 0.2, tracer::detail::radiance(20)),
+    s.add_emitting_sphere(shade::sphere_light<real>::from_radiance(vec3(-0.7, 0.6, 1.2), 0.2, rgb(20)),
                           std::nullopt);
     return s;
 }

@@ -4,7 +4,6 @@
 
 #include <concepts>
 #include <optional>
-#include <type_traits>
 #include <utility>
 #include <variant>
 
@@ -62,29 +61,15 @@ public:
 
     /// The held light's physical sample for a surface point (shade::light_sample_context):
     /// lights that use the surface (the constant environment) take it, the others sample
-    /// as for ctx.p.
+    /// as for ctx.p (see shade::emitter).
     [[nodiscard]] std::optional<incident_sample<T>> sample_incident(const light_sample_context<T>& ctx,
                                                                     const vec2<T>& u) const {
-        return std::visit(
-            [&](const auto& l) {
-                if constexpr (requires { l.sample_incident(ctx, u); })
-                    return l.sample_incident(ctx, u);
-                else
-                    return l.sample_incident(ctx.p, u);
-            },
-            light_);
+        return std::visit([&](const auto& l) { return l.sample_incident(ctx, u); }, light_);
     }
 
     /// The density of sample_incident(ctx, .) for the unit direction w.
     [[nodiscard]] T pdf_incident(const light_sample_context<T>& ctx, const vec3<T>& w) const {
-        return std::visit(
-            [&](const auto& l) {
-                if constexpr (requires { l.pdf_incident(ctx, w); })
-                    return l.pdf_incident(ctx, w);
-                else
-                    return l.pdf_incident(ctx.p, w);
-            },
-            light_);
+        return std::visit([&](const auto& l) { return l.pdf_incident(ctx, w); }, light_);
     }
 
     /// The held light's density for direction w at p (see shade::emitter).
@@ -144,19 +129,10 @@ public:
     /// pi r^2 a directional light of irradiance E sends pi r^2 E, and onto which an
     /// environment of radiance L sends 4 pi r^2 pi L (every point of the sphere receives
     /// pi L); other lights ignore it. Point: 4 pi I; spot: its cone's share of that; area
-    /// lights: pi L A per emitting side.
+    /// lights: pi L A per emitting side. Throws shade::invalid_parameter naming
+    /// "scene_radius" unless it is finite and >= 0.
     [[nodiscard]] rgb<T> power(T scene_radius) const {
-        return std::visit(
-            [&](const auto& l) -> rgb<T> {
-                using L = std::decay_t<decltype(l)>;
-                if constexpr (std::is_same_v<L, directional_light<T>>)
-                    return (pi<T> * scene_radius * scene_radius) * l.irradiance();
-                else if constexpr (std::is_same_v<L, environment_light<T>>)
-                    return (T(4) * pi<T> * pi<T> * scene_radius * scene_radius) * l.radiance();
-                else
-                    return l.power();
-            },
-            light_);
+        return std::visit([&](const auto& l) { return l.power(scene_radius); }, light_);
     }
 
     /// Whether the held light is a delta light.

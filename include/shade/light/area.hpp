@@ -58,8 +58,12 @@ class area_light : public detail::area_emitter<area_light<T>, T> {
 public:
     using scalar_type = T;
     using detail::area_emitter<area_light<T>, T>::radiance;
+    using detail::area_emitter<area_light<T>, T>::sample_incident;
+    using detail::area_emitter<area_light<T>, T>::pdf_incident;
 
-    /// A parallelogram light with the given corner and edges. Throws
+    /// A parallelogram light with the given corner and edges (the default emission is the
+    /// classic model's light, radiance pi W/(m^2 sr); from_radiance and from_power say
+    /// their units). Throws
     /// shade::invalid_parameter naming "corner" (non-finite), "edge_u" / "edge_v" (zero or
     /// non-finite), "edge_v" (parallel to edge_u), "sides" or the bad emission member.
     area_light(const vec3<T>& corner, const vec3<T>& edge_u, const vec3<T>& edge_v,
@@ -86,6 +90,22 @@ public:
             throw invalid_parameter("edge_u", "and edge_v must span a finite, non-zero area",
                                     detail::to_text(area_));
         (void)detail::require_sidedness(sides);
+    }
+
+    /// The light (geometry and sides as for the constructor) of radiance L in W/(m^2 sr)
+    /// (from_radiance), or of power Phi in W, all emitting sides together (from_power:
+    /// L = Phi / (pi A) one-sided, Phi / (2 pi A) two-sided, so power() == Phi); no
+    /// ambient. Throw shade::invalid_parameter naming what the constructor names,
+    /// "radiance" or "power" (negative or not finite in a channel, or an L that overflows).
+    [[nodiscard]] static area_light from_radiance(const vec3<T>& corner, const vec3<T>& edge_u, const vec3<T>& edge_v,
+                                                  const rgb<T>& radiance, sidedness sides = sidedness::one_sided) {
+        return area_light(corner, edge_u, edge_v, detail::physical_emission("radiance", radiance), sides);
+    }
+    [[nodiscard]] static area_light from_power(const vec3<T>& corner, const vec3<T>& edge_u, const vec3<T>& edge_v,
+                                               const rgb<T>& power, sidedness sides = sidedness::one_sided) {
+        area_light out(corner, edge_u, edge_v, emission<T>{}, sides);
+        out.emission_ = out.emission_of_power(power);
+        return out;
     }
 
     /// The corner the edges start from.

@@ -2,18 +2,25 @@
 // shade::detail::area_emitter: what the area lights (rectangle, disk, sphere) answer the
 // same way, written once: they are visible, uniformly emitting surfaces.
 
+#include <cmath>
 #include <concepts>
+#include <optional>
 
+#include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
 #include <shade/geometry/hit.hpp>
 #include <shade/geometry/ray.hpp>
+#include <shade/light/emission.hpp>
 #include <shade/light/incident_sample.hpp>
+#include <shade/light/sample_context.hpp>
 
 namespace shade::detail {
 
 /// Base of the area lights (CRTP). Light provides intersect(ray) -> std::optional<hit<T>>
-/// (the light as geometry), area(), sides() and emitted(). Each point of the surface
+/// (the light as geometry), area(), sides(), emitted() and sample_incident(p, u), and
+/// brings the base's sample_incident and pdf_incident into scope with using-declarations
+/// (the forms that take a shade::light_sample_context). Each point of the surface
 /// emits the same radiance L = emitted().physical() (W/(m^2 sr)) into every direction on
 /// its emitting side(s): a diffuse (Lambertian) emitter.
 template <class Light, std::floating_point T>
@@ -29,9 +36,24 @@ public:
 
     /// The radiant power in W: a Lambertian emitter of radiance L and area A sends
     /// pi L A from each emitting side (integrating L cos over the hemisphere gives pi L).
-    [[nodiscard]] rgb<T> power() const noexcept {
-        const T sides = self().sides() == sidedness::two_sided ? T(2) : T(1);
-        return (pi<T> * self().area() * sides) * radiance();
+    [[nodiscard]] rgb<T> power() const noexcept { return emitting_area_factor() * radiance(); }
+
+    /// power(), the same for every scene_radius (shade::emitter's uniform form). Throws
+    /// shade::invalid_parameter naming "scene_radius" unless it is finite and >= 0.
+    [[nodiscard]] rgb<T> power(T scene_radius) const {
+        (void)require_scene_radius(scene_radius);
+        return power();
+    }
+
+    /// sample_incident(ctx.p, u): the surface at ctx.p does not change the sampling.
+    [[nodiscard]] std::optional<incident_sample<T>> sample_incident(const light_sample_context<T>& ctx,
+                                                                    const vec2<T>& u) const noexcept {
+        return self().sample_incident(ctx.p, u);
+    }
+
+    /// pdf_incident(ctx.p, l), the density of sample_incident(ctx, .).
+    [[nodiscard]] T pdf_incident(const light_sample_context<T>& ctx, const vec3<T>& l) const noexcept {
+        return self().pdf_incident(ctx.p, l);
     }
 
     /// The radiance the light emits from its surface point h (a hit on it) toward the
@@ -64,6 +86,21 @@ public:
     [[nodiscard]] T pdf_incident(const vec3<T>& p, const vec3<T>& l, const hit<T>& h) const noexcept {
         (void)p;
         return solid_angle_pdf(h.t, emitting_cosine(h.n, vec3<T>(-l), self().sides()), self().area());
+    }
+
+protected:
+    /// pi A per emitting side: power() / radiance() (integrating L cos over the hemisphere
+    /// gives pi L).
+    [[nodiscard]] T emitting_area_factor() const noexcept {
+        return pi<T> * self().area() * (self().sides() == sidedness::two_sided ? T(2) : T(1));
+    }
+
+    /// The emission of radiance Phi / emitting_area_factor(), for from_power; throws
+    /// invalid_parameter naming "power" (detail::physical_emission, or a factor that overflows).
+    [[nodiscard]] emission<T> emission_of_power(const rgb<T>& power) const {
+        if (!std::isfinite(emitting_area_factor()))
+            throw invalid_parameter("power", "needs a finite pi x area per side", to_text(self().area()));
+        return physical_emission("power", power, emitting_area_factor());
     }
 
 private:

@@ -28,11 +28,19 @@ public:
     using detail::delta_light<directional_light<T>, T>::sample_incident;
 
     /// A light shining from `direction` (pointing from the scene TOWARD the light; any
-    /// finite non-zero length, normalised here) with emission e. Throws
+    /// finite non-zero length, normalised here) with emission e (the classic model's
+    /// light: the default gives E = pi W/m^2; from_irradiance says its unit). Throws
     /// shade::invalid_parameter naming "direction" (zero or non-finite) or the bad
     /// emission member (see shade::validated).
     explicit directional_light(const vec3<T>& direction, const emission<T>& e = {})
         : direction_(require_direction("direction", direction)), emission_(validated(e)) {}
+
+    /// The light shining from `direction` (as for the constructor) of irradiance E in W/m^2
+    /// at normal incidence; no ambient. Throws shade::invalid_parameter naming "direction"
+    /// or "irradiance" (negative or not finite in a channel).
+    [[nodiscard]] static directional_light from_irradiance(const vec3<T>& direction, const rgb<T>& irradiance) {
+        return directional_light(direction, detail::physical_emission("irradiance", irradiance));
+    }
 
     /// The unit direction toward the light.
     [[nodiscard]] const vec3<T>& direction() const noexcept { return direction_; }
@@ -41,6 +49,14 @@ public:
 
     /// The irradiance E at normal incidence in W/m^2 (physical mode).
     [[nodiscard]] rgb<T> irradiance() const noexcept { return emission_.physical(); }
+
+    /// The power in W sent through a scene within a sphere of radius scene_radius: pi r^2 E
+    /// (the light itself, covering all space, has no finite power). Throws
+    /// shade::invalid_parameter naming "scene_radius" unless it is finite and >= 0.
+    [[nodiscard]] rgb<T> power(T scene_radius) const {
+        const T r = detail::require_scene_radius(scene_radius);
+        return (pi<T> * r * r) * irradiance();
+    }
 
     /// The light's classic sample at point p (p is not used: the light is the same everywhere).
     [[nodiscard]] light_sample<T> sample(const vec3<T>& p) const noexcept {

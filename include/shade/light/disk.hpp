@@ -37,9 +37,13 @@ class disk_light : public detail::area_emitter<disk_light<T>, T> {
 public:
     using scalar_type = T;
     using detail::area_emitter<disk_light<T>, T>::radiance;
+    using detail::area_emitter<disk_light<T>, T>::sample_incident;
+    using detail::area_emitter<disk_light<T>, T>::pdf_incident;
 
-    /// Throws shade::invalid_parameter naming "center" (non-finite), "normal" (zero or
-    /// non-finite), "radius" (not finite and > 0), "sides" or the bad emission member.
+    /// The default emission is the classic model's light (radiance pi W/(m^2 sr));
+    /// from_radiance and from_power say their units. Throws shade::invalid_parameter
+    /// naming "center" (non-finite), "normal" (zero or non-finite), "radius" (not finite
+    /// and > 0), "sides" or the bad emission member.
     disk_light(const vec3<T>& center, const vec3<T>& normal, T radius, const emission<T>& e = {},
                sidedness sides = sidedness::one_sided)
         : center_(require_finite("center", center)),
@@ -49,6 +53,22 @@ public:
         area_ = pi<T> * radius_ * radius_;
         if (!std::isfinite(area_))
             throw invalid_parameter("radius", "must give a finite area", detail::to_text(radius));
+    }
+
+    /// The disk (geometry and sides as for the constructor) of radiance L in W/(m^2 sr)
+    /// (from_radiance), or of power Phi in W, all emitting sides together (from_power:
+    /// L = Phi / (pi A) one-sided, Phi / (2 pi A) two-sided, A = pi R^2); no ambient.
+    /// Throw shade::invalid_parameter naming what the constructor names, "radiance" or
+    /// "power" (as shade::area_light's).
+    [[nodiscard]] static disk_light from_radiance(const vec3<T>& center, const vec3<T>& normal, T radius,
+                                                  const rgb<T>& radiance, sidedness sides = sidedness::one_sided) {
+        return disk_light(center, normal, radius, detail::physical_emission("radiance", radiance), sides);
+    }
+    [[nodiscard]] static disk_light from_power(const vec3<T>& center, const vec3<T>& normal, T radius,
+                                               const rgb<T>& power, sidedness sides = sidedness::one_sided) {
+        disk_light out(center, normal, radius, emission<T>{}, sides);
+        out.emission_ = out.emission_of_power(power);
+        return out;
     }
 
     /// The centre.

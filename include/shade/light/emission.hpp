@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <concepts>
+#include <string_view>
 
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
@@ -24,7 +25,8 @@ namespace shade {
 /// of a directional light, and the radiance in W/(m^2 sr) of an area or environment
 /// light. The factor pi makes both modes agree on a Lambertian surface: the classic
 /// diffuse colour is the radiance a white Lambertian surface facing the light reflects,
-/// E / pi. The ambient and specular colours belong to the classic mode only.
+/// E / pi. The ambient and specular colours belong to the classic mode only. The lights'
+/// factories that name a unit (from_power, from_radiance, ...) build it with from_physical.
 template <std::floating_point T>
 struct emission {
     using scalar_type = T;
@@ -70,6 +72,27 @@ template <std::floating_point T>
 }
 
 namespace detail {
+
+/// emission::from_physical(q / divisor), for the lights' unit-naming factories: q is what
+/// the caller gave (a power, intensity, irradiance or radiance) and divisor what turns it
+/// into the light's physical quantity (1, 4 pi, pi A, ...). Throws invalid_parameter
+/// naming `name` if q is negative or not finite in a channel or q / divisor overflows.
+/// Precondition: divisor finite and > 0.
+template <std::floating_point T>
+[[nodiscard]] emission<T> physical_emission(std::string_view name, const rgb<T>& q, T divisor = T(1)) {
+    (void)require_non_negative(name, q);
+    const emission<T> e = emission<T>::from_physical(q / divisor);
+    if (!is_finite(e.diffuse) || !is_finite(e.physical()))
+        throw invalid_parameter(name, "must give a light quantity that is finite in this scalar type",
+                                to_text(q));
+    return e;
+}
+
+/// Returns r; throws invalid_parameter naming "scene_radius" unless finite and >= 0.
+template <std::floating_point T>
+T require_scene_radius(T r) {
+    return require_non_negative("scene_radius", r);
+}
 
 /// A sample that brings no directional light: only the ambient colour (which no falloff,
 /// cone or occluder affects), l = +z as a placeholder unit vector, distance +inf.

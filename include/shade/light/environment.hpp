@@ -30,13 +30,29 @@ class environment_light {
 public:
     using scalar_type = T;
 
-    /// Throws shade::invalid_parameter naming the bad emission member.
+    /// The environment of emission e (the default is the classic model's light,
+    /// radiance pi W/(m^2 sr); from_radiance says its unit). Throws
+    /// shade::invalid_parameter naming the bad emission member.
     explicit environment_light(const emission<T>& e = {}) : emission_(validated(e)) {}
+
+    /// The environment of radiance L in W/(m^2 sr) from every direction; no ambient. Throws
+    /// shade::invalid_parameter naming "radiance" (negative or not finite in a channel).
+    [[nodiscard]] static environment_light from_radiance(const rgb<T>& radiance) {
+        return environment_light(detail::physical_emission("radiance", radiance));
+    }
 
     /// The emitted intensity and colours.
     [[nodiscard]] const emission<T>& emitted() const noexcept { return emission_; }
     /// The radiance L in W/(m^2 sr).
     [[nodiscard]] rgb<T> radiance() const noexcept { return emission_.physical(); }
+
+    /// The power in W sent into a scene within a sphere of radius scene_radius: 4 pi r^2 x
+    /// pi L, the sphere's area times the irradiance pi L (the light itself has no finite
+    /// power). Throws shade::invalid_parameter naming "scene_radius" unless finite, >= 0.
+    [[nodiscard]] rgb<T> power(T scene_radius) const {
+        const T r = detail::require_scene_radius(scene_radius);
+        return (T(4) * pi<T> * pi<T> * r * r) * radiance();
+    }
 
     /// Always false: the environment is sampled many times.
     [[nodiscard]] static constexpr bool is_delta() noexcept { return false; }

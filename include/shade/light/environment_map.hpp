@@ -20,8 +20,10 @@
 #include <shade/core/math.hpp>
 #include <shade/core/sampling.hpp>
 #include <shade/core/types.hpp>
+#include <shade/light/classic_light.hpp>
 #include <shade/light/incident_sample.hpp>
 #include <shade/light/light_sample.hpp>
+#include <shade/light/sample_context.hpp>
 
 namespace shade {
 
@@ -105,6 +107,13 @@ public:
         for (std::size_t j = 0; j < height_; ++j)
             texel_solid_angle_.push_back(
                 T(2.0 * pi<double> / double(width_) * (double(edges_[j]) - double(edges_[j + 1]))));
+        // The integral of the radiance over the sphere, sum of L_ij Omega_j, in double.
+        double sum[3] = {0, 0, 0};
+        for (std::size_t j = 0; j < height_; ++j)
+            for (std::size_t i = 0; i < width_; ++i)
+                for (int c = 0; c < 3; ++c)
+                    sum[c] += double(radiance_[j * width_ + i][c]) * double(texel_solid_angle_[j]);
+        radiance_integral_ = rgb<T>(T(sum[0]), T(sum[1]), T(sum[2]));
     }
 
     /// The number of columns W.
@@ -136,6 +145,17 @@ public:
         const T phi = std::atan2(w.y, w.x);
         const T theta = std::acos(glm::clamp(w.z, T(-1), T(1)));
         return {T(0.5) - phi / (T(2) * pi<T>), theta / pi<T>};
+    }
+
+    /// The radiant power in W the map sends into a scene that fits in a sphere of radius
+    /// scene_radius: pi r^2 times the integral of the radiance over all directions
+    /// (sum of texel x Omega_j), the flux each direction sends through the sphere's
+    /// cross-section pi r^2; 4 pi r^2 x pi L for a constant map of radiance L, as
+    /// shade::environment_light::power. Throws shade::invalid_parameter naming
+    /// "scene_radius" unless it is finite and >= 0.
+    [[nodiscard]] rgb<T> power(T scene_radius) const {
+        const T r = detail::require_scene_radius(scene_radius);
+        return (pi<T> * r * r) * radiance_integral_;
     }
 
     /// Always false: the environment is sampled many times.
@@ -184,23 +204,25 @@ public:
         return s;
     }
 
+    /// sample_incident(ctx.p, u): the map is sampled by its luminance whatever surface
+    /// ctx.p lies on (shade::emitter).
+    [[nodiscard]] std::optional<incident_sample<T>> sample_incident(const light_sample_context<T>& ctx,
+                                                                    const vec2<T>& u) const noexcept {
+        return sample_incident(ctx.p, u);
+    }
+
+    /// pdf_incident(ctx.p, l), the density of sample_incident(ctx, .).
+    [[nodiscard]] T pdf_incident(const light_sample_context<T>& ctx, const vec3<T>& l) const noexcept {
+        return pdf_incident(ctx.p, l);
+    }
+
     /// The classic light sample along the direction sample_incident draws: diffuse and
     /// specular colours L / (pi pdf), one Monte Carlo sample of the map in the units of
     /// the classic model (a light's colour is the radiance a white Lambertian surface
-    /// facing it reflects, E / pi), no ambient. An empty sample (no colour) where
-    /// sample_incident returns nothing.
+    /// facing it reflects, E / pi), no ambient: shade::classic_sample with the default
+    /// colours. An empty sample (no colour) where sample_incident returns nothing.
     [[nodiscard]] light_sample<T> sample(const vec3<T>& p, const vec2<T>& u) const noexcept {
-        light_sample<T> out;
-        const auto s = sample_incident(p, u);
-        if (!s) return out;
-        const rgb<T> colour = s->radiance / (pi<T> * s->pdf);
-        out.l = s->l;
-        out.distance = infinity<T>;
-        if (is_finite(colour)) {
-            out.diffuse = colour;
-            out.specular = colour;
-        }
-        return out;
+        return classic_sample(*this, classic_colours<T>{}, p, u);
     }
 
 private:
@@ -301,6 +323,7 @@ private:
     std::vector<T> edges_;                ///< cos theta at the row edges, height + 1, decreasing
     piecewise_constant_2d<T> distribution_;
     std::vector<T> texel_solid_angle_;    ///< Omega_j per row, sr
+    rgb<T> radiance_integral_{0, 0, 0};   ///< sum of L_ij Omega_j, W/m^2
     bool black_ = true;
 };
 

@@ -35,13 +35,26 @@ public:
     using detail::delta_light<point_light<T>, T>::sample;
     using detail::delta_light<point_light<T>, T>::sample_incident;
 
-    /// A point light at `position` with emission e and distance law f. Throws
+    /// A point light at `position` with emission e and distance law f (the classic
+    /// model's light: the default emission has I = pi W/sr; from_intensity and from_power
+    /// say their units). Throws
     /// shade::invalid_parameter naming "position" (non-finite), "falloff" or the bad
     /// emission member.
     explicit point_light(const vec3<T>& position, const emission<T>& e = {},
                          falloff f = falloff::inverse_square)
         : position_(require_finite("position", position)), emission_(validated(e)),
           falloff_(detail::require_falloff(f)) {}
+
+    /// The point light at `position` of radiant intensity I in W/sr (from_intensity), or of
+    /// power Phi in W (from_power: I = Phi / (4 pi), an isotropic source over 4 pi sr); no
+    /// ambient, 1/r^2. Throw shade::invalid_parameter naming "position", "intensity" or
+    /// "power" (negative or not finite in a channel).
+    [[nodiscard]] static point_light from_intensity(const vec3<T>& position, const rgb<T>& intensity) {
+        return point_light(position, detail::physical_emission("intensity", intensity));
+    }
+    [[nodiscard]] static point_light from_power(const vec3<T>& position, const rgb<T>& power) {
+        return point_light(position, detail::physical_emission("power", power, T(4) * pi<T>));
+    }
 
     /// The light's position.
     [[nodiscard]] const vec3<T>& position() const noexcept { return position_; }
@@ -54,6 +67,7 @@ public:
     [[nodiscard]] rgb<T> intensity() const noexcept { return emission_.physical(); }
     /// The radiant power 4 pi I in W (physical mode).
     [[nodiscard]] rgb<T> power() const noexcept { return (T(4) * pi<T>) * intensity(); }
+    using detail::delta_light<point_light<T>, T>::power;
 
     /// The light's classic sample at point p (see the class comment).
     [[nodiscard]] light_sample<T> sample(const vec3<T>& p) const noexcept {

@@ -43,15 +43,35 @@ class sphere_light : public detail::area_emitter<sphere_light<T>, T> {
 public:
     using scalar_type = T;
     using base::radiance;
+    using base::sample_incident;
+    using base::pdf_incident;
 
-    /// Throws shade::invalid_parameter naming "center" (non-finite), "radius" (not finite
-    /// and > 0), "sides" or the bad emission member.
+    /// The default emission is the classic model's light (radiance pi W/(m^2 sr));
+    /// from_radiance and from_power say their units. Throws shade::invalid_parameter
+    /// naming "center" (non-finite), "radius" (not finite and > 0), "sides" or the bad
+    /// emission member.
     sphere_light(const vec3<T>& center, T radius, const emission<T>& e = {},
                  sidedness sides = sidedness::one_sided)
         : shape_(center, radius), emission_(validated(e)), sides_(detail::require_sidedness(sides)) {
         area_ = T(4) * pi<T> * radius * radius;
         if (!std::isfinite(area_))
             throw invalid_parameter("radius", "must give a finite area", detail::to_text(radius));
+    }
+
+    /// The sphere (geometry and sides as for the constructor) of radiance L in W/(m^2 sr)
+    /// (from_radiance), or of power Phi in W, all emitting sides together (from_power:
+    /// L = Phi / (pi A) one-sided, Phi / (2 pi A) two-sided, A = 4 pi R^2); no ambient.
+    /// Throw shade::invalid_parameter naming what the constructor names, "radiance" or
+    /// "power" (as shade::area_light's).
+    [[nodiscard]] static sphere_light from_radiance(const vec3<T>& center, T radius, const rgb<T>& radiance,
+                                                    sidedness sides = sidedness::one_sided) {
+        return sphere_light(center, radius, detail::physical_emission("radiance", radiance), sides);
+    }
+    [[nodiscard]] static sphere_light from_power(const vec3<T>& center, T radius, const rgb<T>& power,
+                                                 sidedness sides = sidedness::one_sided) {
+        sphere_light out(center, radius, emission<T>{}, sides);
+        out.emission_ = out.emission_of_power(power);
+        return out;
     }
 
     /// The sphere.

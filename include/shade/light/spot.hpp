@@ -61,8 +61,10 @@ public:
     /// A spotlight at `position` pointing along `axis` (from the light INTO the scene; any
     /// finite non-zero length), with half-angles inner_angle <= outer_angle in radians,
     /// measured from the axis, 0 <= inner_angle <= outer_angle, 0 < outer_angle <= pi.
-    /// Throws shade::invalid_parameter naming "position", "axis", "outer_angle",
-    /// "inner_angle", "falloff" or the bad emission member.
+    /// The default emission is the classic model's light (I = pi W/sr on the axis);
+    /// from_intensity and from_power say their units. Throws shade::invalid_parameter
+    /// naming "position", "axis", "outer_angle", "inner_angle", "falloff" or the bad
+    /// emission member.
     spot_light(const vec3<T>& position, const vec3<T>& axis, T inner_angle, T outer_angle,
                const emission<T>& e = {}, falloff f = falloff::inverse_square)
         : position_(require_finite("position", position)),
@@ -81,6 +83,24 @@ public:
         cos_outer_ = std::cos(outer_angle);
     }
 
+    /// The spotlight (geometry as for the constructor) of radiant intensity I in W/sr on its
+    /// axis (from_intensity), or of power Phi in W (from_power: I = Phi / Omega, Omega =
+    /// 2 pi (1 - (cos_inner + cos_outer) / 2) sr, see the class comment); no ambient, 1/r^2.
+    /// Throw shade::invalid_parameter naming what the constructor names, "intensity",
+    /// "power", or "outer_angle" for a cone whose Omega rounds to 0 in T.
+    [[nodiscard]] static spot_light from_intensity(const vec3<T>& position, const vec3<T>& axis, T inner_angle,
+                                                   T outer_angle, const rgb<T>& intensity) {
+        return spot_light(position, axis, inner_angle, outer_angle, detail::physical_emission("intensity", intensity));
+    }
+    [[nodiscard]] static spot_light from_power(const vec3<T>& position, const vec3<T>& axis, T inner_angle,
+                                               T outer_angle, const rgb<T>& power) {
+        spot_light out(position, axis, inner_angle, outer_angle);
+        if (!(out.cone_solid_angle() > T(0)))
+            throw invalid_parameter("outer_angle", "must give a cone of non-zero solid angle", detail::to_text(outer_angle));
+        out.emission_ = detail::physical_emission("power", power, out.cone_solid_angle());
+        return out;
+    }
+
     /// The light's position.
     [[nodiscard]] const vec3<T>& position() const noexcept { return position_; }
     /// The unit axis the spot points along (from the light into the scene).
@@ -97,9 +117,8 @@ public:
     /// The radiant intensity I on the axis in W/sr (physical mode).
     [[nodiscard]] rgb<T> intensity() const noexcept { return emission_.physical(); }
     /// The radiant power in W (physical mode; see the class comment).
-    [[nodiscard]] rgb<T> power() const noexcept {
-        return (T(2) * pi<T> * (T(1) - (cos_inner_ + cos_outer_) / T(2))) * intensity();
-    }
+    [[nodiscard]] rgb<T> power() const noexcept { return cone_solid_angle() * intensity(); }
+    using detail::delta_light<spot_light<T>, T>::power;
 
     /// The light's classic sample at point p (see the class comment).
     [[nodiscard]] light_sample<T> sample(const vec3<T>& p) const noexcept {
@@ -113,6 +132,11 @@ public:
     }
 
 private:
+    /// The cone factor integrated over the sphere, 2 pi (1 - (cos_inner + cos_outer) / 2) sr.
+    [[nodiscard]] T cone_solid_angle() const noexcept {
+        return T(2) * pi<T> * (T(1) - (cos_inner_ + cos_outer_) / T(2));
+    }
+
     /// The cone factor as a function of l, the unit direction from p toward the light:
     /// -l points from the light to p, and its cosine with the axis is cos_s.
     [[nodiscard]] static auto cone_toward(const spot_light* light) noexcept {

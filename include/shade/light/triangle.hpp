@@ -38,6 +38,8 @@ class triangle_light : public detail::area_emitter<triangle_light<T>, T> {
 public:
     using scalar_type = T;
     using detail::area_emitter<triangle_light<T>, T>::radiance;
+    using detail::area_emitter<triangle_light<T>, T>::sample_incident;
+    using detail::area_emitter<triangle_light<T>, T>::pdf_incident;
 
     /// Throws shade::invalid_parameter naming "v0", "v1" or "v2" (non-finite), "v2" when the
     /// three are collinear or the area is not a finite number > 0, "sides" or the bad
@@ -52,6 +54,22 @@ public:
         if (!(area_ > T(0)) || !std::isfinite(area_) || !detail::is_unit_normal(normal_))
             throw invalid_parameter("v2", "must not be collinear with v0 and v1 (the area must be finite and > 0)",
                                     detail::to_text(v2));
+    }
+
+    /// The triangle (vertices and sides as for the constructor, whose default emission is
+    /// the classic model's light, radiance pi) of radiance L in W/(m^2 sr) (from_radiance),
+    /// or of power Phi in W, all emitting sides together (from_power: L = Phi / (pi A)
+    /// one-sided, Phi / (2 pi A) two-sided); no ambient. Throw shade::invalid_parameter
+    /// naming what the constructor names, "radiance" or "power" (as shade::area_light's).
+    [[nodiscard]] static triangle_light from_radiance(const vec3<T>& v0, const vec3<T>& v1, const vec3<T>& v2,
+                                                      const rgb<T>& radiance, sidedness sides = sidedness::one_sided) {
+        return triangle_light(v0, v1, v2, detail::physical_emission("radiance", radiance), sides);
+    }
+    [[nodiscard]] static triangle_light from_power(const vec3<T>& v0, const vec3<T>& v1, const vec3<T>& v2,
+                                                   const rgb<T>& power, sidedness sides = sidedness::one_sided) {
+        triangle_light out(v0, v1, v2, emission<T>{}, sides);
+        out.emission_ = out.emission_of_power(power);
+        return out;
     }
 
     /// The triangle.
