@@ -17,6 +17,14 @@ rgb<double> readme_example() {
     const directional_light<double> sun({1, 1, 1});
     return lit{gold}.shade(at, -r.direction, sun.sample(h->p, {}));   // radiance toward the eye
 }
+// In physical units: a 100 W bulb 2 m above a Lambertian floor of albedo 0.8.
+rgb<double> readme_physical_example() {
+    const auto bulb = point_light<double>::from_power({0, 2, 0}, rgb<double>(100)); // watts
+    const auto at = surface_point<double>::at({0, 0, 0}, {0, 1, 0});
+    const auto s = bulb.sample_incident(vec3<double>(0), {}); // toward the bulb; W/m^2
+    const lambert<double> floor(rgb<double>(0.8));
+    return floor.f(s->l, {0, 1, 0}, at) * s->radiance * glm::dot(at.n(), s->l); // W/(m^2 sr)
+}
 // --- README example ends ---
 
 TEST_CASE("the README example hits the sphere and returns a positive, finite radiance") {
@@ -28,4 +36,14 @@ TEST_CASE("the README example hits the sphere and returns a positive, finite rad
     CHECK(L.r >= L.g);
     CHECK(L.g >= L.b);
     CHECK(std::isfinite(L.r));
+}
+
+TEST_CASE("the README's physical example: 100 W at 2 m on a Lambertian floor") {
+    // I = 100 / (4 pi) W/sr, E = I / 2^2 at normal incidence, and the floor reflects
+    // 0.8 / pi x E = 0.8 x 100 / (16 pi^2) W/(m^2 sr) toward the zenith.
+    const double expected = 0.8 * 100 / (16 * pi<double> * pi<double>);
+    const rgb<double> L = readme_physical_example();
+    CHECK(L.r == doctest::Approx(expected).epsilon(1e-12));
+    CHECK(L.g == doctest::Approx(expected).epsilon(1e-12));
+    CHECK(L.b == doctest::Approx(expected).epsilon(1e-12));
 }
