@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/cook_torrance.hpp>
+#include <shade/brdf/coupled_plastic.hpp>
 #include <shade/brdf/fresnel.hpp>
 #include <shade/brdf/lambert.hpp>
 #include <shade/brdf/microfacet.hpp>
@@ -211,6 +212,24 @@ TEST_CASE_TEMPLATE("layer: sample draws l with the density pdf and agrees with f
     CHECK(expect_consistent_samples(gold, at, {10.0, 70.0}) > 500);
     // Nothing is drawn for a view from below.
     CHECK_FALSE(paint.sample(-at.n(), T(0.5), vec2<T>(T(0.5)), at).has_value());
+}
+
+TEST_CASE_TEMPLATE("layer: over coupled_plastic's coating, E_c agrees with the plastic's tabulated E_s", T, float,
+                   double) {
+    // layer<coating, lambert> with w = 1 and the reciprocal form has coupled_plastic's formula
+    // (both headers); what differs is where the coating's albedo comes from: the plastic's
+    // precomputed tables (E_F + F_ms (1 - E)), the layer's estimate from the coating's own
+    // sampler. Both estimate the same directional albedo, so they agree within the property
+    // kit's albedo tolerance, 0.01, at every cosine, and so do the averages.
+    for (const T alpha : {T(0.05), T(0.3), T(0.7)}) {
+        CAPTURE(alpha);
+        const shade::coupled_plastic<T> plastic(shade::ggx<T>(alpha), rgb<T>(T(0.8), T(0.4), T(0.1)));
+        const shade::layer m(plastic.coating(), shade::lambert<T>(plastic.k_d()));
+        for (int i = 0; i <= 100; ++i) {
+            const T mu = T(0.005) + T(0.995) * T(i) / T(100);
+            CHECK(std::abs(double(m.coat_albedo(mu)) - double(plastic.coating_albedo(mu))) <= 0.01);
+        }
+    }
 }
 
 TEST_CASE("layer: a coat weight outside [0, 1] is refused by name") {
