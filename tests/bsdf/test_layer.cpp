@@ -14,6 +14,7 @@
 #include <shade/brdf/lambert.hpp>
 #include <shade/brdf/microfacet.hpp>
 #include <shade/bsdf/layer.hpp>
+#include <shade/bsdf/rough_dielectric.hpp>
 #include <shade/bsdf/smooth_conductor.hpp>
 #include <shade/check/bsdf_energy.hpp>
 #include <shade/check/bsdf_reciprocity.hpp>
@@ -212,6 +213,30 @@ TEST_CASE_TEMPLATE("layer: sample draws l with the density pdf and agrees with f
     CHECK(expect_consistent_samples(gold, at, {10.0, 70.0}) > 500);
     // Nothing is drawn for a view from below.
     CHECK_FALSE(paint.sample(-at.n(), T(0.5), vec2<T>(T(0.5)), at).has_value());
+}
+
+TEST_CASE_TEMPLATE("layer: the estimated E_c of a rough dielectric coat matches its reflected albedo at the nodes", T,
+                   float, double) {
+    // A rough dielectric coat chooses reflection or refraction with uc and places the
+    // microfacet normal with u, so its estimate needs uc independent of u. At the node
+    // cosines mu_k = ((k + 1/2) / 32)^2 the layer reads its estimate without interpolation;
+    // the reference is the coat's reflected albedo from the property kit (256^2 stratified
+    // importance-mode samples; a reflection's weight is the same in both modes). They agree
+    // within the kit's albedo tolerance 0.01 and 4 standard errors.
+    const auto at = brdf_test::tilted<T>();
+    for (const T alpha : {T(0.2), T(0.5)}) {
+        const shade::rough_dielectric<shade::ggx<T>> coat(shade::ggx<T>(alpha), T(1.5));
+        const shade::layer m(coat, shade::lambert<T>(rgb<T>(T(0.5))));
+        for (const int k : {4, 10, 16, 31}) {
+            CAPTURE(alpha);
+            CAPTURE(k);
+            const double x = (k + 0.5) / 32;
+            const double mu = x * x;
+            const vec3<T> v = brdf_test::direction(at, T(std::acos(mu)), T(0.4));
+            const auto a = shade::check::bsdf_albedo(coat, v, at, 256);
+            CHECK(std::abs(double(m.coat_albedo(T(mu))) - a.reflected.x) <= 0.01 + 4 * a.reflected_error.x);
+        }
+    }
 }
 
 TEST_CASE_TEMPLATE("layer: over coupled_plastic's coating, E_c agrees with the plastic's tabulated E_s", T, float,

@@ -23,6 +23,7 @@
 #include <shade/bsdf/detail/lobe_pair.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
+#include <shade/core/random.hpp>
 #include <shade/core/scalar.hpp>
 #include <shade/core/surface_point.hpp>
 #include <shade/core/types.hpp>
@@ -45,17 +46,6 @@ concept has_directional_albedo = requires(const C& c, scalar_of<C> mu) {
     { c.albedo(mu) } -> std::same_as<scalar_of<C>>;
     { c.average_albedo() } -> std::same_as<scalar_of<C>>;
 };
-
-/// The radical inverse of i in base 2 (van der Corput 1935): the bits of i mirrored about
-/// the binary point, in [0, 1).
-[[nodiscard]] constexpr double radical_inverse_2(std::uint32_t i) noexcept {
-    i = (i << 16u) | (i >> 16u);
-    i = ((i & 0x00ff00ffu) << 8u) | ((i & 0xff00ff00u) >> 8u);
-    i = ((i & 0x0f0f0f0fu) << 4u) | ((i & 0xf0f0f0f0u) >> 4u);
-    i = ((i & 0x33333333u) << 2u) | ((i & 0xccccccccu) >> 2u);
-    i = ((i & 0x55555555u) << 1u) | ((i & 0xaaaaaaaau) >> 1u);
-    return double(i) * 0x1p-32;
-}
 
 } // namespace detail
 
@@ -97,7 +87,10 @@ concept has_directional_albedo = requires(const C& c, scalar_of<C> mu) {
 /// (dimensionless), comes from the coat: its `albedo(mu)` and `average_albedo()` when it
 /// has both (detail::has_directional_albedo), otherwise an estimate made at construction:
 /// the mean weight of the coat's reflected samples (shade::sample_bsdf, largest channel)
-/// over 32 x 32 strata of u (uc the radical inverse of the stratum's index) at each of 32
+/// over 32 x 32 strata of u, uc stratified in 32^2 strata of its own dealt to them in a
+/// fixed random order (Latin hypercube sampling, McKay, Beckman, Conover 1979, "A
+/// Comparison of Three Methods for Selecting Values of Input Variables in the Analysis of
+/// Output from a Computer Code", Technometrics 21(2)), at each of 32
 /// view cosines mu_k = ((k + 1/2) / 32)^2, about 33000 coat samples in all, read by linear
 /// interpolation in sqrt(mu) (flat beyond the end nodes), and E_c,avg = Σ E_k mu_k^(3/2) /
 /// Σ mu_k^(3/2), the midpoint rule of 2 ∫ E mu dmu in x = sqrt(mu), normalised so a
@@ -228,17 +221,29 @@ private:
     // Fills table_ and average_ from the coat's sampler (class comment).
     void estimate_albedo() {
         const surface_point<T> at = surface_point<T>::at(vec3<T>(0), vec3<T>(0, 0, 1));
+        rng random(1);
         double weighted = 0;
         double weights = 0;
         for (std::size_t k = 0; k < nodes; ++k) {
             const double x = (double(k) + 0.5) / double(nodes);
             const double mu = x * x;
             const vec3<T> v = glm::normalize(at.shading.to_world(vec3<T>(T(std::sqrt(1 - mu * mu)), T(0), T(mu))));
+            // uc: the centres of strata * strata strata of [0, 1), dealt to the strata of u in
+            // a random order (Fisher-Yates shuffle), so that uc is stratified on its own and
+            // independent of u.
+            std::array<std::uint32_t, strata * strata> order{};
+            for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+            for (std::uint32_t i = std::uint32_t(order.size()) - 1; i > 0; --i) {
+                const std::uint32_t j = random.next_u32() % (i + 1);
+                const std::uint32_t swapped = order[i];
+                order[i] = order[j];
+                order[j] = swapped;
+            }
             double sum = 0;
             for (std::size_t i = 0; i < strata * strata; ++i) {
                 const vec2<T> u(T((double(i % strata) + 0.5) / double(strata)),
                                 T((double(i / strata) + 0.5) / double(strata)));
-                const T uc = T(detail::radical_inverse_2(static_cast<std::uint32_t>(i)));
+                const T uc = T((double(order[i]) + 0.5) / double(strata * strata));
                 const auto s = sample_bsdf(coat_, v, uc, u, at, transport_mode::radiance);
                 if (s && is_reflection(s->flags)) sum += double(detail::max_channel(s->weight));
             }
