@@ -11,6 +11,13 @@
 // at the centres of a sub-grid of cells and compares the interpolated table there: the
 // largest difference, and the largest standard error, are written into the header as the
 // table's stated accuracy.
+//
+//   albedo_tables --anisotropic --out include/shade/brdf/microfacet/detail/anisotropic_albedo_data.hpp
+//
+// writes instead the anisotropic corrections of shade/brdf/microfacet/anisotropic_albedo_table.hpp:
+// at each node, Delta = E(w) - E_iso(mu, sqrt(alpha_x alpha_y)), E(w) estimated the same
+// way for the anisotropic lobe and E_iso read from the committed isotropic table, and per
+// (r, y) node the exact cosine-weighted average of the slice's interpolant.
 
 #include <algorithm>
 #include <atomic>
@@ -28,6 +35,8 @@
 #include <vector>
 
 #include <shade/brdf/microfacet/albedo_table.hpp>
+#include <shade/brdf/microfacet/anisotropic_albedo_table.hpp>
+#include <shade/brdf/microfacet/detail/albedo_data.hpp>
 #include <shade/check/energy.hpp>
 #include <shade/shade.hpp>
 
@@ -41,12 +50,18 @@ namespace {
 using T = double;
 
 constexpr std::string_view usage = R"(usage: albedo_tables [--out FILE.hpp] [--nodes N] [--strata S] [--threads K] [--quiet]
+       albedo_tables --anisotropic [--out FILE.hpp] [--strata S] [--threads K] [--quiet]
 
 Computes E(mu, alpha) and E_avg(alpha) of the single-scattering GGX and Beckmann lobes
 with F = 1 and of the GGX lobe with the dielectric Fresnel of eta = 1.5, on an N x N grid
 uniform in (c, sqrt(alpha)) (see albedo_table.hpp), each node from S^2 samples of the model's own
 sampler, and writes the header of constants.
 
+With --anisotropic, computes instead the corrections Delta = E(w) - E_iso(mu, sqrt(alpha_x
+alpha_y)) of the anisotropic GGX and Beckmann lobes with F = 1 on the fixed grid of
+anisotropic_albedo_table.hpp (S^2 samples per node) and their averages.
+
+  --anisotropic   write the anisotropic corrections (default output anisotropic_albedo_data.hpp)
   --out FILE.hpp  output, a C++ header (.hpp or .h; default albedo_data.hpp)
   --nodes N       nodes per axis, 4 to 512 (default 128)
   --strata S      S^2 samples per node, 16 to 2048 (default 256)
@@ -61,6 +76,7 @@ struct settings {
     std::size_t strata = 256;
     unsigned threads = 2;
     bool quiet = false;
+    bool anisotropic = false;
 };
 
 // E(mu, alpha) estimated for one model family: make(alpha) builds the lobe.
@@ -160,11 +176,11 @@ table compute(const std::string& name, const std::string& what, const albedo_fun
     return out;
 }
 
-// Floats with 7 significant digits as C++ float literals ("1" becomes "1.f").
-void write_numbers(std::FILE* f, const float* x, std::size_t count) {
+// Floats with `digits` significant digits as C++ float literals ("1" becomes "1.f").
+void write_numbers(std::FILE* f, const float* x, std::size_t count, int digits = 7) {
     for (std::size_t i = 0; i < count; ++i) {
         char text[32];
-        std::snprintf(text, sizeof text, "%.7g", double(x[i]));
+        std::snprintf(text, sizeof text, "%.*g", digits, double(x[i]));
         const bool has_point = std::string_view(text).find_first_of(".e") != std::string_view::npos;
         std::fprintf(f, "%s%s%sf", i ? ", " : "", text, has_point ? "" : ".");
     }
@@ -203,6 +219,131 @@ void write(std::FILE* f, const std::vector<table>& tables, const settings& s) {
     std::fprintf(f, "\n} // namespace shade::detail\n");
 }
 
+// The anisotropic correction of one distribution family: make(alpha_x, alpha_y) builds the
+// single-scattering lobe, iso is the committed isotropic table it is corrected from.
+struct anisotropic_table {
+    std::string name;
+    std::string what;
+    std::vector<float> delta;   // anisotropic_albedo_size values
+    std::vector<float> average; // ratio_nodes x roughness_nodes
+    double max_error = 0;       // largest standard error of a node
+    double max_delta = 0;       // largest |Delta|
+};
+
+using anisotropic_albedo =
+    std::function<shade::check::albedo_sample<T>(const shade::vec3<T>& v, double alpha_x, double alpha_y, std::uint64_t seed)>;
+
+template <class Make>
+anisotropic_albedo anisotropic_family(Make make, std::size_t strata) {
+    return [make, strata](const shade::vec3<T>& v, double alpha_x, double alpha_y, std::uint64_t seed) {
+        shade::surface_point<T> at;
+        at.shading = shade::frame<T>::from_normal_tangent({0, 0, 1}, {1, 0, 0});
+        return shade::check::sampled_albedo(make(alpha_x, alpha_y), v, at, strata, seed);
+    };
+}
+
+anisotropic_table compute_anisotropic(const std::string& name, const std::string& what, const float* iso,
+                                      const anisotropic_albedo& albedo, const settings& s, ex::progress& bar) {
+    namespace d = shade::detail;
+    constexpr std::size_t nx = d::anisotropic_albedo_mu_nodes, ns = d::anisotropic_albedo_azimuth_nodes;
+    constexpr std::size_t ny = d::anisotropic_albedo_roughness_nodes, nr = d::anisotropic_albedo_ratio_nodes;
+    anisotropic_table out{name, what, std::vector<float>(d::anisotropic_albedo_size, 0.0f), std::vector<float>(d::anisotropic_albedo_rows, 0.0f), 0, 0};
+    std::vector<double> errors(d::anisotropic_albedo_size, 0.0);
+    parallel_for(d::anisotropic_albedo_size, s.threads, [&](std::size_t index) {
+        const std::size_t i = index % nx, si = (index / nx) % ns, j = (index / d::anisotropic_albedo_slice) % ny,
+                          k = index / (d::anisotropic_albedo_slice * ny);
+        // r = 0 (isotropic) and y = 0 (a mirror) hold 0 by definition.
+        if (k > 0 && j > 0) {
+            const double y = double(j) / double(ny - 1);
+            const double alpha = y * y;
+            const double ratio = std::pow(d::anisotropic_albedo_ratio_max, double(k) / double(nr - 1));
+            const double x = double(i) / double(nx - 1);
+            const double mu = std::min(std::max(x * x, d::albedo_grid_mu_min), 1.0);
+            // s = sin^2(phi) of the node's u: u = ln(1 + (q^2 - 1) s) / ln(q^2).
+            const double u = double(si) / double(ns - 1);
+            const double sin2 = std::min(std::expm1(u * 2 * std::log(ratio)) / ((ratio - 1) * (ratio + 1)), 1.0);
+            const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
+            const shade::vec3<T> v(sin_theta * std::sqrt(1 - sin2), sin_theta * std::sqrt(sin2), mu);
+            // The seed depends on (k, j, i) only: the pole column (mu = 1) is then the same
+            // estimate for every s, as Delta there is.
+            const auto a = albedo(v, alpha / std::sqrt(ratio), alpha * std::sqrt(ratio), 1 + (k * ny + j) * nx + i);
+            const double e = std::min(a.albedo.x, 1.0);
+            out.delta[index] = float(e - d::albedo_lookup(iso, d::albedo_grid_nodes, mu, alpha));
+            errors[index] = a.standard_error.x;
+        }
+        bar.advance();
+    });
+    out.max_error = *std::max_element(errors.begin(), errors.end());
+    for (const float x : out.delta) out.max_delta = std::max(out.max_delta, double(std::abs(x)));
+    for (std::size_t n = 0; n < d::anisotropic_albedo_rows; ++n)
+        out.average[n] = float(d::anisotropic_albedo_row_average(out.delta.data() + n * nx));
+    return out;
+}
+
+void write_anisotropic(std::FILE* f, const std::vector<anisotropic_table>& tables, const settings& s) {
+    namespace d = shade::detail;
+    std::fprintf(f, "#pragma once\n");
+    std::fprintf(f, "// Generated by examples/albedo_tables.cpp (--anisotropic --strata %zu); do not edit by hand.\n", s.strata);
+    std::fprintf(f, "// The anisotropic corrections of shade/brdf/microfacet/anisotropic_albedo_table.hpp (grid,\n");
+    std::fprintf(f, "// interpolation, meaning): %zu (r) x %zu (y) slices of %zu (s) x %zu (x) nodes, one s row per\n",
+                 d::anisotropic_albedo_ratio_nodes, d::anisotropic_albedo_roughness_nodes, d::anisotropic_albedo_azimuth_nodes,
+                 d::anisotropic_albedo_mu_nodes);
+    std::fprintf(f, "// line; each node E(w), the mean weight of %zu jittered samples of the lobe's own sampler,\n",
+                 s.strata * s.strata);
+    std::fprintf(f, "// minus the isotropic table (albedo_data.hpp) at the geometric-mean roughness, written with 5\n");
+    std::fprintf(f, "// significant digits (|Delta| < 1, so within 1e-5, far below the node noise).\n\n");
+    std::fprintf(f, "#include <shade/brdf/microfacet/anisotropic_albedo_table.hpp>\n\n");
+    std::fprintf(f, "namespace shade::detail {\n");
+    for (const auto& t : tables) {
+        std::fprintf(f, "\n/// Delta(w) of %s.\n", t.what.c_str());
+        std::fprintf(f, "/// Node standard error <= %.1e; |Delta| <= %.3f.\n", t.max_error, t.max_delta);
+        std::fprintf(f, "inline constexpr float %s[anisotropic_albedo_size] = {\n", t.name.c_str());
+        for (std::size_t row = 0; row < t.delta.size() / d::anisotropic_albedo_mu_nodes; ++row) {
+            write_numbers(f, t.delta.data() + row * d::anisotropic_albedo_mu_nodes, d::anisotropic_albedo_mu_nodes, 5);
+            std::fprintf(f, ",\n");
+        }
+        std::fprintf(f, "};\n\n/// The cosine averages of the rows of %s (anisotropic_albedo_row_average), one slice per line.\n",
+                     t.name.c_str());
+        std::fprintf(f, "inline constexpr float %s_average[anisotropic_albedo_rows] = {\n", t.name.c_str());
+        for (std::size_t k = 0; k < d::anisotropic_albedo_rows / d::anisotropic_albedo_azimuth_nodes; ++k) {
+            write_numbers(f, t.average.data() + k * d::anisotropic_albedo_azimuth_nodes, d::anisotropic_albedo_azimuth_nodes);
+            std::fprintf(f, ",\n");
+        }
+        std::fprintf(f, "};\n");
+    }
+    std::fprintf(f, "\n} // namespace shade::detail\n");
+}
+
+// --anisotropic: the GGX and Beckmann corrections, written to `header`.
+int run_anisotropic(const settings& s, ex::output_file& header) {
+    using namespace shade;
+    const rgb<T> one(1);
+    std::optional<ex::progress> bar(std::in_place, "albedo_tables", 2 * detail::anisotropic_albedo_size, !s.quiet);
+    std::vector<anisotropic_table> tables;
+    tables.push_back(compute_anisotropic(
+        "ggx_anisotropic_albedo_delta", "the anisotropic GGX lobe with F = 1 (cook_torrance<ggx, schlick(1), smith_height_correlated>)",
+        detail::ggx_albedo, anisotropic_family([one](double ax, double ay) {
+            return cook_torrance<ggx<T>, schlick<T>, smith_height_correlated<T>>(ggx<T>(ax, ay), schlick<T>(one));
+        }, s.strata), s, *bar));
+    tables.push_back(compute_anisotropic(
+        "beckmann_anisotropic_albedo_delta",
+        "the anisotropic Beckmann lobe with F = 1 (cook_torrance<beckmann, schlick(1), smith_height_correlated>)",
+        detail::beckmann_albedo, anisotropic_family([one](double mx, double my) {
+            return cook_torrance<beckmann<T>, schlick<T>, smith_height_correlated<T>>(beckmann<T>(mx, my), schlick<T>(one));
+        }, s.strata), s, *bar));
+    bar.reset();
+    for (const auto& t : tables)
+        std::fprintf(stderr, "albedo_tables: %s: largest node standard error %.2e, largest |Delta| %.4f\n", t.name.c_str(),
+                     t.max_error, t.max_delta);
+    std::FILE* f = std::fopen(header.temporary().c_str(), "w");
+    if (!f) throw std::runtime_error("cannot write " + header.temporary().string());
+    write_anisotropic(f, tables, s);
+    if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + header.temporary().string());
+    header.commit();
+    std::fprintf(stderr, "albedo_tables: wrote %s\n", s.out.string().c_str());
+    return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -219,10 +360,13 @@ int main(int argc, char** argv) {
             else if (args.option("--strata")) s.strata = args.integer<std::size_t>(16, 2048);
             else if (args.option("--threads")) s.threads = args.integer<unsigned>(1, 64);
             else if (args.flag("--quiet")) s.quiet = true;
+            else if (args.flag("--anisotropic")) s.anisotropic = true;
             else args.unknown();
         }
+        if (s.anisotropic && s.out == "albedo_data.hpp") s.out = "anisotropic_albedo_data.hpp";
         (void)ex::output_format("--out", s.out, {".hpp", ".h"});
         ex::output_file header(s.out);
+        if (s.anisotropic) return run_anisotropic(s, header);
         constexpr std::size_t table_count = 3;
         std::optional<ex::progress> bar(std::in_place, "albedo_tables",
                                         table_count * (s.nodes * s.nodes + check_cells(s.nodes).size()), !s.quiet);

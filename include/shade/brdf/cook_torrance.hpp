@@ -108,11 +108,12 @@ concept kulla_conty_compensable =
     std::same_as<Form, cook_torrance_form::walter>;
 
 /// S is a Scattering policy of shade::cook_torrance for this distribution, masking and
-/// form: single_scattering always, kulla_conty when kulla_conty_compensable.
+/// form: single_scattering always, kulla_conty (or kulla_conty_anisotropic, derived from
+/// it) when kulla_conty_compensable.
 template <class S, class Distribution, class Masking, class Form>
 concept scattering_policy_for =
     std::same_as<S, single_scattering> ||
-    (std::same_as<S, kulla_conty> && kulla_conty_compensable<Distribution, Masking, Form>);
+    (std::derived_from<S, kulla_conty> && kulla_conty_compensable<Distribution, Masking, Form>);
 
 /// Cook-Torrance reflection: a Lambertian base plus a microfacet specular lobe.
 ///
@@ -192,7 +193,7 @@ public:
 
 private:
     using T = scalar_type;
-    static constexpr bool compensated = std::same_as<Scattering, kulla_conty>;
+    static constexpr bool compensated = std::derived_from<Scattering, kulla_conty>;
 
 public:
     /// Validating constructor (the distribution and Fresnel term validated their own
@@ -205,7 +206,7 @@ public:
                   const rgb<T>& k_s = rgb<T>(1), const rgb<T>& k_d = rgb<T>(0))
         : distribution_(distribution), fresnel_(fresnel),
           k_s_(require_non_negative("k_s", k_s)), k_d_(require_non_negative("k_d", k_d)) {
-        if constexpr (compensated) ms_ = {detail::make_kulla_conty_state(distribution_, fresnel_)};
+        if constexpr (compensated) ms_ = detail::scattering_state<Scattering, T>(distribution_, fresnel_);
         // D <= peak, F <= 1, G <= 1, 1/((n·l)(n·v)) <= 1/cos_floor^2; with kulla_conty,
         // f_ms <= its scale (each 1 - E factor is <= 1).
         const T floor2 = detail::cos_floor<T> * detail::cos_floor<T>;
@@ -222,7 +223,7 @@ public:
     cook_torrance(unchecked_t, const Distribution& distribution, const Fresnel& fresnel,
                   const rgb<T>& k_s = rgb<T>(1), const rgb<T>& k_d = rgb<T>(0)) noexcept
         : distribution_(distribution), fresnel_(fresnel), k_s_(k_s), k_d_(k_d) {
-        if constexpr (compensated) ms_ = {detail::make_kulla_conty_state(distribution_, fresnel_)};
+        if constexpr (compensated) ms_ = detail::scattering_state<Scattering, T>(distribution_, fresnel_);
     }
 
     [[nodiscard]] constexpr const Distribution& distribution() const noexcept { return distribution_; } ///< D term
@@ -246,18 +247,27 @@ public:
         if (!(l_local.z > T(0)) || !(v_local.z > T(0))) return rgb<T>(0);
         const auto [h, v_dot_h] = detail::half_vector_and_cos(l_local, v_local);
         if constexpr (compensated)
-            return specular(l_local, v_local, h, v_dot_h, D_of(h)) + multiple_scattering(l_local.z, v_local.z);
+            return specular(l_local, v_local, h, v_dot_h, D_of(h)) + multiple_scattering(l_local, v_local);
         else
             return specular(l_local, v_local, h, v_dot_h, D_of(h));
     }
 
     /// With kulla_conty: the albedo E(mu) of the single-scattering lobe with F = 1 at
-    /// the view cosine mu, read from the table at the model's roughness (in [0, 1]).
+    /// the view cosine mu, read from the table at the model's roughness (in [0, 1]); for
+    /// an anisotropic distribution, the isotropic table at sqrt(alpha_x alpha_y).
     [[nodiscard]] T single_scattering_albedo(T mu) const noexcept
         requires compensated
     {
         return detail::albedo_lookup(detail::albedo_tables_of<Distribution>::e, detail::albedo_grid_nodes, mu,
                                      ms_.alpha);
+    }
+
+    /// With kulla_conty: the E(w) f_ms uses for the unit local direction w (n = +z): the
+    /// above at w.z, plus with kulla_conty_anisotropic its correction for w's azimuth.
+    [[nodiscard]] T single_scattering_albedo(const vec3<T>& w_local) const noexcept
+        requires compensated
+    {
+        return ms_.template albedo<Distribution>(w_local);
     }
 
     /// With kulla_conty: E_avg, the cosine-weighted average of single_scattering_albedo.
@@ -378,7 +388,7 @@ private:
         const T d = D_of(h);
         if constexpr (with_f) {
             out.f = k_d_ * inv_pi<T> + specular(l_local, v_local, h, v_dot_h, d);
-            if constexpr (compensated) out.f += multiple_scattering(l_local.z, v_local.z);
+            if constexpr (compensated) out.f += multiple_scattering(l_local, v_local);
         }
         if constexpr (with_pdf) {
             const T p_s = choice.p_s;
@@ -415,14 +425,14 @@ private:
         return k_s_ * fresnel_.F(v_dot_h) * lobe;
     }
 
-    // k_s f_ms = k_s F_ms (1 - E(n·l)) (1 - E(n·v)) / (pi (1 - E_avg)) for cosines > 0
-    // (kulla_conty only). Each factor is computed the same way for l and v, so the
-    // product is the same number with l and v exchanged.
-    [[nodiscard]] rgb<T> multiple_scattering(T n_dot_l, T n_dot_v) const noexcept
+    // k_s f_ms = k_s F_ms (1 - E(l)) (1 - E(v)) / (pi (1 - E_avg)) for local l, v above
+    // the surface (kulla_conty only). Each factor is computed the same way for l and v, so
+    // the product is the same number with l and v exchanged.
+    [[nodiscard]] rgb<T> multiple_scattering(const vec3<T>& l_local, const vec3<T>& v_local) const noexcept
         requires compensated
     {
-        const T loss_l = T(1) - single_scattering_albedo(n_dot_l);
-        const T loss_v = T(1) - single_scattering_albedo(n_dot_v);
+        const T loss_l = T(1) - single_scattering_albedo(l_local);
+        const T loss_v = T(1) - single_scattering_albedo(v_local);
         return k_s_ * ms_.scale * (loss_l * loss_v);
     }
 

@@ -59,9 +59,10 @@ struct single_scattering {};
 /// Applies to ggx and beckmann with smith_height_correlated masking and the walter form
 /// (the masking and form the tables were computed with). Anisotropic distributions read
 /// the tables at the geometric mean roughness sqrt(alpha_x alpha_y) (for beckmann
-/// sqrt(m_x m_y)), the usual approximation: it holds for mild anisotropy, while a strongly
-/// anisotropic lobe loses more energy seen across its rough axis than along its smooth one,
-/// so with F = 1 its albedo then departs from 1 both ways (docs/properties.md measures it).
+/// sqrt(m_x m_y)), whatever the azimuth: an anisotropic lobe's albedo depends on the
+/// azimuth, so with F = 1 the albedo then departs from 1 both ways, already at 2:1
+/// (docs/properties.md measures it); kulla_conty_anisotropic
+/// (shade/brdf/anisotropic_multiple_scattering.hpp) reads it at each direction's azimuth.
 /// Roughness above 1 reads the alpha = 1 row, so there the compensation is partial and the
 /// albedo stays below 1.
 struct kulla_conty {};
@@ -140,14 +141,12 @@ struct kulla_conty_state {
     T f_ms_max = 0;      ///< largest channel of F_ms
 };
 
-/// The state of the compensation for a distribution and a Fresnel term.
-template <class Distribution, class Fresnel, std::floating_point T = scalar_of<Distribution>>
-[[nodiscard]] kulla_conty_state<T> make_kulla_conty_state(const Distribution& distribution,
-                                                          const Fresnel& fresnel) noexcept {
-    using tables = albedo_tables_of<Distribution>;
+/// The state for the table roughness alpha and the average albedo e_avg in [0, 1].
+template <std::floating_point T, class Fresnel>
+[[nodiscard]] kulla_conty_state<T> make_kulla_conty_state(T alpha, T e_avg, const Fresnel& fresnel) noexcept {
     kulla_conty_state<T> s;
-    s.alpha = tables::roughness(distribution);
-    s.e_avg = albedo_average_lookup(tables::e_avg, albedo_grid_nodes, s.alpha);
+    s.alpha = alpha;
+    s.e_avg = e_avg;
     const rgb<T> f_avg = fresnel_average<T>(fresnel);
     const rgb<T> f_ms = multiple_scattering_fresnel(f_avg, s.e_avg);
     const T loss = T(1) - s.e_avg;
@@ -157,13 +156,31 @@ template <class Distribution, class Fresnel, std::floating_point T = scalar_of<D
     return s;
 }
 
+/// The state of the compensation for a distribution and a Fresnel term.
+template <class Distribution, class Fresnel, std::floating_point T = scalar_of<Distribution>>
+[[nodiscard]] kulla_conty_state<T> make_kulla_conty_state(const Distribution& distribution,
+                                                          const Fresnel& fresnel) noexcept {
+    using tables = albedo_tables_of<Distribution>;
+    const T alpha = tables::roughness(distribution);
+    return make_kulla_conty_state(alpha, albedo_average_lookup(tables::e_avg, albedo_grid_nodes, alpha), fresnel);
+}
+
 /// The per-model state of a Scattering policy: kulla_conty_state for kulla_conty, empty for
-/// single_scattering.
+/// single_scattering; albedo<Distribution>(w) is the E(w) of f_ms for a local direction w.
 template <class Scattering, std::floating_point T>
 struct scattering_state {};
 
 template <std::floating_point T>
-struct scattering_state<kulla_conty, T> : kulla_conty_state<T> {};
+struct scattering_state<kulla_conty, T> : kulla_conty_state<T> {
+    scattering_state() = default;
+    template <class Distribution, class Fresnel>
+    scattering_state(const Distribution& distribution, const Fresnel& fresnel) noexcept
+        : kulla_conty_state<T>(make_kulla_conty_state(distribution, fresnel)) {}
+    template <class Distribution>
+    [[nodiscard]] T albedo(const vec3<T>& w) const noexcept {
+        return albedo_lookup(albedo_tables_of<Distribution>::e, albedo_grid_nodes, w.z, this->alpha);
+    }
+};
 
 } // namespace detail
 
