@@ -24,6 +24,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -176,6 +177,14 @@ table compute(const std::string& name, const std::string& what, const albedo_fun
     return out;
 }
 
+// x rounded to `digits` significant digits, as write_numbers writes it and the compiler
+// reads it back: the averages are then computed from the values the header holds.
+float as_written(double x, int digits) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.*g", digits, double(float(x)));
+    return std::strtof(text, nullptr);
+}
+
 // Floats with `digits` significant digits as C++ float literals ("1" becomes "1.f").
 void write_numbers(std::FILE* f, const float* x, std::size_t count, int digits = 7) {
     for (std::size_t i = 0; i < count; ++i) {
@@ -268,7 +277,7 @@ anisotropic_table compute_anisotropic(const std::string& name, const std::string
             // estimate for every s, as Delta there is.
             const auto a = albedo(v, alpha / std::sqrt(ratio), alpha * std::sqrt(ratio), 1 + (k * ny + j) * nx + i);
             const double e = std::min(a.albedo.x, 1.0);
-            out.delta[index] = float(e - d::albedo_lookup(iso, d::albedo_grid_nodes, mu, alpha));
+            out.delta[index] = as_written(e - d::albedo_lookup(iso, d::albedo_grid_nodes, mu, alpha), 5);
             errors[index] = a.standard_error.x;
         }
         bar.advance();
@@ -349,6 +358,7 @@ int run_anisotropic(const settings& s, ex::output_file& header) {
 int main(int argc, char** argv) {
     return ex::run_cli("albedo_tables", [&] {
         settings s;
+        bool nodes_given = false;
         ex::command_line args(argc, argv);
         while (args.next()) {
             if (args.flag("--help") || args.flag("-h")) {
@@ -356,13 +366,15 @@ int main(int argc, char** argv) {
                 return 0;
             }
             if (args.option("--out")) s.out = args.path();
-            else if (args.option("--nodes")) s.nodes = args.integer<std::size_t>(4, 512);
+            else if (args.option("--nodes")) s.nodes = args.integer<std::size_t>(4, 512), nodes_given = true;
             else if (args.option("--strata")) s.strata = args.integer<std::size_t>(16, 2048);
             else if (args.option("--threads")) s.threads = args.integer<unsigned>(1, 64);
             else if (args.flag("--quiet")) s.quiet = true;
             else if (args.flag("--anisotropic")) s.anisotropic = true;
             else args.unknown();
         }
+        if (s.anisotropic && nodes_given)
+            throw ex::usage_error("option --nodes does not apply with --anisotropic (its grid is fixed by anisotropic_albedo_table.hpp)");
         if (s.anisotropic && s.out == "albedo_data.hpp") s.out = "anisotropic_albedo_data.hpp";
         (void)ex::output_format("--out", s.out, {".hpp", ".h"});
         ex::output_file header(s.out);

@@ -14,8 +14,10 @@
 // midpoint rule in (sqrt(n·l), azimuth) on 64 x 64 cells, f_ms being smooth in l. The sum
 // is the albedo with F = 1.
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include <doctest/doctest.h>
 #include <glm/geometric.hpp>
@@ -109,7 +111,8 @@ std::pair<double, double> expect_white_furnace(const D& d) {
 
 TEST_CASE_TEMPLATE("kulla_conty_anisotropic: GGX at 2:1 and 10:1 with F = 1 reflects 0.99 to 1.001 at every azimuth", T,
                    float, double) {
-    for (const auto& [a_x, a_y] : {std::pair{0.2, 0.4}, std::pair{0.4, 0.2}, std::pair{0.05, 0.5}}) {
+    for (const auto& roughness : {std::pair{0.2, 0.4}, std::pair{0.4, 0.2}, std::pair{0.05, 0.5}}) {
+        const double a_x = roughness.first, a_y = roughness.second;
         CAPTURE(a_x);
         CAPTURE(a_y);
         const auto [lowest, highest] = expect_white_furnace(shade::ggx<T>(T(a_x), T(a_y)));
@@ -123,7 +126,8 @@ TEST_CASE_TEMPLATE("kulla_conty_anisotropic: GGX at 2:1 and 10:1 with F = 1 refl
 
 TEST_CASE_TEMPLATE("kulla_conty_anisotropic: Beckmann at 2:1 and 10:1 with F = 1 reflects 0.99 to 1.001 at every azimuth",
                    T, float, double) {
-    for (const auto& [m_x, m_y] : {std::pair{0.2, 0.4}, std::pair{0.5, 0.05}}) {
+    for (const auto& roughness : {std::pair{0.2, 0.4}, std::pair{0.5, 0.05}}) {
+        const double m_x = roughness.first, m_y = roughness.second;
         CAPTURE(m_x);
         CAPTURE(m_y);
         const auto [lowest, highest] = expect_white_furnace(shade::beckmann<T>(T(m_x), T(m_y)));
@@ -156,7 +160,8 @@ TEST_CASE_TEMPLATE("kulla_conty_anisotropic: f is exactly reciprocal, E_avg is t
                    double) {
     const rgb<T> one(1);
     const auto at = tilted<T>();
-    for (const auto& [a_x, a_y] : {std::pair{0.05, 0.5}, std::pair{0.6, 0.15}, std::pair{0.3, 0.9}}) {
+    for (const auto& roughness : {std::pair{0.05, 0.5}, std::pair{0.6, 0.15}, std::pair{0.3, 0.9}}) {
+        const double a_x = roughness.first, a_y = roughness.second;
         CAPTURE(a_x);
         const compensated<shade::ggx<T>> model{shade::ggx<T>(T(a_x), T(a_y)), shade::schlick<T>(one)};
         for (int i = 0; i < 100; ++i) {

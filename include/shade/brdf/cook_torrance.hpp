@@ -173,7 +173,7 @@ concept scattering_policy_for =
 /// Masking: v_groove<T>, smith_beckmann<T> (with beckmann), smith_ggx<T> (with ggx),
 ///          smith_separable<T>, smith_height_correlated<T> (with either);
 ///          default-constructed (the masking terms are stateless).
-/// Scattering: single_scattering (default) or kulla_conty (with ggx or beckmann,
+/// Scattering: single_scattering (default), kulla_conty or kulla_conty_anisotropic (with ggx or beckmann,
 ///          smith_height_correlated and the walter form).
 template <class Distribution, class Fresnel, class Masking,
           class Form = cook_torrance_form::walter, class Scattering = single_scattering>

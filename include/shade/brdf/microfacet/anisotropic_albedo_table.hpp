@@ -62,13 +62,13 @@
 namespace shade::detail {
 
 /// Nodes along x = sqrt(mu) of the anisotropic correction tables.
-inline constexpr std::size_t anisotropic_albedo_mu_nodes = 20;
+inline constexpr std::size_t anisotropic_albedo_mu_nodes = 24;
 /// Nodes along u, the azimuth coordinate.
 inline constexpr std::size_t anisotropic_albedo_azimuth_nodes = 9;
 /// Nodes along y = sqrt(sqrt(alpha_x alpha_y)).
 inline constexpr std::size_t anisotropic_albedo_roughness_nodes = 16;
 /// Nodes along r = ln(alpha_y / alpha_x) / ln(ratio_max).
-inline constexpr std::size_t anisotropic_albedo_ratio_nodes = 8;
+inline constexpr std::size_t anisotropic_albedo_ratio_nodes = 10;
 /// The largest anisotropy alpha_y / alpha_x the tables cover.
 inline constexpr double anisotropic_albedo_ratio_max = 20;
 /// Values per (r, y) node: one slice over (s, x).
