@@ -1,0 +1,222 @@
+#pragma once
+// The grid and the interpolation of the tabulated albedos of shade::rough_dielectric that
+// its energy compensation (shade/bsdf/compensated_rough_dielectric.hpp) reads. The numbers
+// are generated into shade/bsdf/detail/dielectric_albedo_data.hpp by
+//
+//   examples/dielectric_albedo_tables --out include/shade/bsdf/detail/dielectric_albedo_data.hpp
+//
+// A table holds, for a view cosine mu = |n·v|, a roughness alpha and the relative index
+// eta_s = n_far / n_v of the side v is on, the total albedo of the single-scattering rough
+// dielectric in importance mode (the energy that arrives along v and leaves, reflected
+// plus transmitted; no 1/eta^2 factor),
+//
+//     E(mu, alpha, eta_s) = integral over the sphere of f_importance(l, v) |n·l| dl = R + T,
+//
+// and its cosine-weighted average over mu, E_avg(alpha, eta_s) = 2 integral_0^1 E mu dmu,
+// integrated from the interpolated table when it is read (Kulla, Conty 2017, "Revisiting Physically Based Shading at Imageworks", SIGGRAPH course
+// "Physically Based Shading in Theory and Practice", the dielectric slides: one table for
+// light entering the denser medium, one for light leaving it; unnumbered). A lossless
+// interface loses energy only through masking, so E is smooth in all three variables.
+//
+// Grid: for each side (entering, eta_s > 1; exiting, eta_s < 1), nodes in
+//   * a view coordinate (dielectric_albedo_view), uniform (dielectric_albedo_mu_nodes): on
+//     the entering side the c of shade/brdf/microfacet/albedo_table.hpp, c = (s + sqrt(mu)) / 2
+//     with s = mu / (mu + alpha (1 - mu)); on the exiting side one that puts the critical
+//     angle of total internal reflection on 0.5;
+//   * y = sqrt(alpha), uniform, alpha at least 1e-4 (dielectric_albedo_alpha_nodes);
+//   * x = log(eta_hat - 1), eta_hat = max(eta_s, 1 / eta_s) in [1.05, 3], uniform
+//     (dielectric_albedo_eta_nodes): E changes fastest near eta_hat = 1 (seen from the
+//     denser side, grazing views lose energy fastest as eta_hat falls toward 1), so the
+//     nodes crowd there.
+// E is interpolated by Catmull-Rom splines along the view coordinate and y and linearly
+// along x. Lookups clamp alpha to [1e-4, 1] and eta_hat to [1.05, 3]: outside,
+// the nearest end is read. The accuracy of each table is stated in the generated header.
+// Layout: index ((side * eta_nodes + k) * alpha_nodes + j) * mu_nodes + i; side 0 entering.
+
+#include <cmath>
+#include <concepts>
+#include <cstddef>
+
+#include <glm/common.hpp>
+
+#include <shade/brdf/microfacet/albedo_table.hpp>
+
+namespace shade::detail {
+
+/// Nodes of the dielectric albedo tables along the view coordinate c.
+inline constexpr std::size_t dielectric_albedo_mu_nodes = 25;
+/// Nodes along sqrt(alpha).
+inline constexpr std::size_t dielectric_albedo_alpha_nodes = 16;
+/// Nodes along x = log(eta_hat - 1).
+inline constexpr std::size_t dielectric_albedo_eta_nodes = 12;
+/// The smallest eta_hat = max(eta_s, 1 / eta_s) of the grid.
+inline constexpr double dielectric_albedo_eta_min = 1.05;
+/// The largest eta_hat of the grid.
+inline constexpr double dielectric_albedo_eta_max = 3.0;
+
+/// The sizes of a dielectric albedo table (two sides).
+struct dielectric_albedo_grid {
+    std::size_t mu_nodes = dielectric_albedo_mu_nodes;
+    std::size_t alpha_nodes = dielectric_albedo_alpha_nodes;
+    std::size_t eta_nodes = dielectric_albedo_eta_nodes;
+
+    /// Floats in the E table: 2 sides x eta x alpha x mu nodes.
+    [[nodiscard]] constexpr std::size_t size() const noexcept { return 2 * eta_nodes * alpha_nodes * mu_nodes; }
+    /// The offset of row (side, k, j) (side 0 entering, k the eta node, j the alpha node).
+    [[nodiscard]] constexpr std::size_t row(std::size_t side, std::size_t k, std::size_t j) const noexcept {
+        return ((side * eta_nodes + k) * alpha_nodes + j) * mu_nodes;
+    }
+};
+
+/// The coordinate x = log(eta_hat - 1) of eta_hat at its ends, and its span.
+inline constexpr double dielectric_albedo_x_min = -2.995732273553991; // log(0.05)
+inline constexpr double dielectric_albedo_x_max = 0.6931471805599453; // log(2)
+
+/// eta_hat at node k of an n-node axis: 1 + exp(x_k), x uniform from log(0.05) to log(2).
+[[nodiscard]] inline double dielectric_albedo_eta(std::size_t k, std::size_t n) noexcept {
+    return 1.0 + std::exp(dielectric_albedo_x_min +
+                          double(k) / double(n - 1) * (dielectric_albedo_x_max - dielectric_albedo_x_min));
+}
+
+/// The coordinate in [0, 1] of eta_hat (clamped to [1.05, 3]) on the log(eta_hat - 1) axis.
+template <std::floating_point T>
+[[nodiscard]] inline T dielectric_albedo_eta_coordinate(T eta_hat) noexcept {
+    const double e = glm::clamp(double(eta_hat), dielectric_albedo_eta_min, dielectric_albedo_eta_max);
+    return T((std::log(e - 1.0) - dielectric_albedo_x_min) / (dielectric_albedo_x_max - dielectric_albedo_x_min));
+}
+
+/// The view coordinate of (mu, alpha, eta_hat) on a side's table, in [0, 1], increasing in
+/// mu. On the entering side it is c = albedo_grid_c(mu, alpha) of the conductor tables. On
+/// the exiting side total internal reflection sets in below mu_c = sqrt(1 - 1 / eta_hat^2),
+/// where E has a dip whose place moves with eta; the coordinate puts mu_c on 0.5 at every
+/// eta, so the dip stays in the same column of every eta block (a table with an odd number
+/// of view nodes has a node there):
+///
+///     below mu_c:  (2 s(mu) / s(mu_c) + sqrt(mu / mu_c) + mu / mu_c) / 8,   s = mu / (mu + alpha (1 - mu))
+///     above mu_c:  1/2 + (mu - mu_c) / (2 (1 - mu_c))
+///
+/// s resolves the masking near grazing at small alpha, sqrt(mu / mu_c) the steep fall of E
+/// toward grazing at large alpha, mu / mu_c spreads the rest evenly up to mu_c.
+template <std::floating_point T>
+[[nodiscard]] inline T dielectric_albedo_view(T mu, T alpha, T eta_hat, std::size_t side) noexcept {
+    if (side == 0) return albedo_grid_c(mu, alpha);
+    const T mu_c = std::sqrt(glm::max(T(1) - T(1) / (eta_hat * eta_hat), T(0)));
+    if (mu >= mu_c) return T(0.5) + T(0.5) * (mu - mu_c) / (T(1) - mu_c);
+    const auto s = [alpha](T m) { return m / (m + alpha * (T(1) - m)); };
+    const T x = mu / mu_c;
+    return (T(2) * s(mu) / s(mu_c) + std::sqrt(x) + x) / T(8);
+}
+
+/// The view cosine at coordinate t in [0, 1] (the inverse of dielectric_albedo_view), by
+/// bisection to double precision (for the generator and the tests).
+[[nodiscard]] inline double dielectric_albedo_view_mu(double t, double alpha, double eta_hat, std::size_t side) noexcept {
+    double lo = 0, hi = 1;
+    for (int k = 0; k < 64; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (dielectric_albedo_view(mid, alpha, eta_hat, side) < t ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+/// Where a lookup reads: the side, and the cells and fractions along alpha and eta.
+template <std::floating_point T>
+struct dielectric_albedo_cell {
+    std::size_t side = 0;       ///< 0 entering (eta_s > 1), 1 exiting (eta_s < 1)
+    albedo_grid_cell<T> alpha{}; ///< cell along sqrt(alpha)
+    albedo_grid_cell<T> eta{};   ///< cell along x = log(eta_hat - 1)
+    T alpha_clamped = 1;         ///< alpha clamped to [1e-4, 1] (for the view coordinate)
+    T eta_clamped = 1;           ///< eta_hat clamped to [1.05, 3] (for the view coordinate)
+};
+
+/// The cell of (alpha, eta_s): eta_s > 1 reads the entering table, eta_s < 1 (and NaN)
+/// the exiting one; alpha and eta_hat clamped to the grid.
+template <std::floating_point T>
+[[nodiscard]] inline dielectric_albedo_cell<T> dielectric_albedo_locate(const dielectric_albedo_grid& g, T alpha,
+                                                                         T eta_s) noexcept {
+    dielectric_albedo_cell<T> c;
+    c.side = eta_s > T(1) ? 0 : 1;
+    const T eta_hat = eta_s > T(1) ? eta_s : T(1) / eta_s;
+    c.alpha_clamped = glm::clamp(alpha, T(albedo_grid_alpha_min), T(1));
+    c.alpha = albedo_grid_locate(std::sqrt(c.alpha_clamped), g.alpha_nodes);
+    c.eta_clamped = glm::clamp(eta_hat, T(dielectric_albedo_eta_min), T(dielectric_albedo_eta_max));
+    c.eta = albedo_grid_locate(dielectric_albedo_eta_coordinate(c.eta_clamped), g.eta_nodes);
+    return c;
+}
+
+/// The Catmull-Rom spline through p0..p3 at t in [0, 1] between p1 and p2 (Catmull, Rom
+/// 1974, "A Class of Local Interpolating Splines", in Computer Aided Geometric Design,
+/// Academic Press; the uniform cubic Hermite form with tangents (p2 - p0) / 2 and
+/// (p3 - p1) / 2): exact for cubics, error O(h^4) for smooth data where linear
+/// interpolation has O(h^2).
+template <std::floating_point T>
+[[nodiscard]] constexpr T catmull_rom(T p0, T p1, T p2, T p3, T t) noexcept {
+    return p1 + T(0.5) * t * ((p2 - p0) + t * ((T(2) * p0 - T(5) * p1 + T(4) * p2 - p3) + t * (T(3) * (p1 - p2) + p3 - p0)));
+}
+
+/// catmull_rom in cell i (between nodes i and i + 1) of an axis whose nodes lo..hi form one
+/// smooth piece: node(i - 1 .. i + 2), with a neighbour outside [lo, hi] extrapolated
+/// linearly (2 p_lo - p_lo+1 below, 2 p_hi - p_hi-1 above), so the end cells of the piece
+/// are interpolated by the parabola through their three nodes and no value from across
+/// the piece's ends is used.
+template <std::floating_point T, class Node>
+[[nodiscard]] inline T catmull_rom_axis(const Node& node, std::size_t i, std::size_t lo, std::size_t hi, T t) noexcept {
+    const T p1 = node(i);
+    const T p2 = node(i + 1);
+    const T p0 = i > lo ? node(i - 1) : T(2) * p1 - p2;
+    const T p3 = i + 1 < hi ? node(i + 2) : T(2) * p2 - p1;
+    return catmull_rom(p0, p1, p2, p3, t);
+}
+
+/// E(mu, alpha, eta_s) read from a table of grid g at a located cell: a Catmull-Rom spline
+/// along the view coordinate and along sqrt(alpha), linear along x; mu clamped to [0, 1].
+/// On the exiting side the view axis is two pieces, below and above the critical angle
+/// (the node at 0.5 when the view nodes are odd in number), joined with a kink as E is.
+/// Returns the albedo R + T, dimensionless, clamped to [0, 1] (the spline may overshoot a
+/// node value by a little where E bends sharply).
+template <std::floating_point T>
+[[nodiscard]] inline T dielectric_albedo_lookup(const float* table, const dielectric_albedo_grid& g,
+                                                const dielectric_albedo_cell<T>& cell, T mu) noexcept {
+    const T m = glm::clamp(mu, T(0), T(1));
+    const auto c_mu =
+        albedo_grid_locate(dielectric_albedo_view(m, cell.alpha_clamped, cell.eta_clamped, cell.side), g.mu_nodes);
+    const std::size_t last = g.mu_nodes - 1;
+    const std::size_t middle = cell.side == 1 && last % 2 == 0 ? last / 2 : last;
+    const std::size_t lo = c_mu.i < middle ? 0 : middle;
+    const std::size_t hi = c_mu.i < middle ? middle : last;
+    T e[2];
+    for (std::size_t dk = 0; dk < 2; ++dk) {
+        const auto row_value = [&](std::size_t j) {
+            const float* row = table + g.row(cell.side, cell.eta.i + dk, j);
+            return catmull_rom_axis<T>([row](std::size_t i) { return T(row[i]); }, c_mu.i, lo, hi, c_mu.t);
+        };
+        e[dk] = catmull_rom_axis<T>(row_value, cell.alpha.i, 0, g.alpha_nodes - 1, cell.alpha.t);
+    }
+    return glm::clamp(e[0] + cell.eta.t * (e[1] - e[0]), T(0), T(1));
+}
+
+/// E_avg(alpha, eta_s) = 2 integral_0^1 E(mu) mu dmu of the interpolated table at a located
+/// cell (the E that dielectric_albedo_lookup returns), by 5-point Gauss-Legendre quadrature
+/// on 8 equal intervals of mu (Abramowitz, Stegun 1964, "Handbook of Mathematical
+/// Functions", 25.4.29): the interpolant is smooth between the few places where it crosses
+/// a node or the critical angle, so the quadrature error stays far below the table's own
+/// (the tests bound it).
+/// Returns the average albedo, dimensionless, in [0, 1].
+template <std::floating_point T>
+[[nodiscard]] inline T dielectric_albedo_average(const float* table, const dielectric_albedo_grid& g,
+                                                 const dielectric_albedo_cell<T>& cell) noexcept {
+    constexpr double node[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                                0.9061798459386640};
+    constexpr double weight[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                                  0.4786286704993665, 0.2369268850561891};
+    constexpr int intervals = 8;
+    T sum = 0;
+    for (int i = 0; i < intervals; ++i)
+        for (int k = 0; k < 5; ++k) {
+            const T mu = T((double(i) + 0.5 * (1.0 + node[k])) / intervals);
+            sum += T(weight[k]) * mu * dielectric_albedo_lookup(table, g, cell, mu);
+        }
+    // sum * (half-width 0.5 / intervals) * 2.
+    return glm::clamp(sum / T(intervals), T(0), T(1));
+}
+
+} // namespace shade::detail
