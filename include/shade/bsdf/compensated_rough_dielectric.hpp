@@ -1,0 +1,283 @@
+#pragma once
+// shade::compensated_rough_dielectric: shade::rough_dielectric over GGX with the energy its
+// single-scattering lobes lose to masking given back by a multiple-scattering lobe, so that
+// a lossless interface neither darkens nor creates energy, seen from either side.
+
+#include <cmath>
+#include <concepts>
+#include <cstddef>
+#include <limits>
+#include <optional>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <shade/brdf/brdf.hpp>
+#include <shade/brdf/fresnel.hpp>
+#include <shade/brdf/microfacet/ggx.hpp>
+#include <shade/bsdf/bsdf.hpp>
+#include <shade/bsdf/detail/dielectric_albedo_data.hpp>
+#include <shade/bsdf/dielectric_albedo_table.hpp>
+#include <shade/bsdf/rough_dielectric.hpp>
+#include <shade/core/math.hpp>
+#include <shade/core/sampling.hpp>
+#include <shade/core/scalar.hpp>
+#include <shade/core/surface_point.hpp>
+#include <shade/core/types.hpp>
+
+namespace shade {
+
+namespace detail {
+
+/// Below this 1 - E_avg (on either side) the multiple-scattering lobe is taken as 0: the
+/// interface is then so smooth that it loses almost nothing, and 1 / (1 - E_avg) would
+/// only amplify the float rounding of the table.
+inline constexpr double dielectric_compensation_min_loss = 1e-6;
+
+/// The cosine-weighted hemispherical average of the exact dielectric Fresnel reflectance
+/// seen from the rarer side, 2 integral_0^1 F(mu, eta_hat) mu dmu for eta_hat > 1, by
+/// 5-point Gauss-Legendre quadrature on 8 equal intervals (Abramowitz, Stegun 1964,
+/// "Handbook of Mathematical Functions", 25.4.29; F is smooth there: no total internal
+/// reflection from the rarer side). Dimensionless, in [0, 1].
+template <std::floating_point T>
+[[nodiscard]] inline T dielectric_fresnel_average(T eta_hat) noexcept {
+    constexpr double node[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                                0.9061798459386640};
+    constexpr double weight[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                                  0.4786286704993665, 0.2369268850561891};
+    constexpr int intervals = 8;
+    double sum = 0;
+    for (int i = 0; i < intervals; ++i)
+        for (int k = 0; k < 5; ++k) {
+            const double mu = (double(i) + 0.5 * (1.0 + node[k])) / intervals;
+            sum += weight[k] * mu * F_dielectric(mu, double(eta_hat));
+        }
+    // sum * (half-width 0.5 / intervals) * 2.
+    const double average = sum / intervals;
+    return T(average < 0 ? 0 : (average > 1 ? 1 : average));
+}
+
+} // namespace detail
+
+/// shade::rough_dielectric<ggx<T>> compensated for multiple scattering: the single-scattering
+/// BSDF f_ss of rough_dielectric (unchanged) plus a lobe f_ms that returns the energy f_ss
+/// loses to masking, with Kulla and Conty's reciprocal product form extended to
+/// transmission.
+///
+/// Kulla, Conty 2017, "Revisiting Physically Based Shading at Imageworks", SIGGRAPH 2017
+/// course "Physically Based Shading in Theory and Practice" (the multiple-scattering
+/// slides: the lobe (1 - E(mu_l)) (1 - E(mu_v)) / (pi (1 - E_avg)), after Kelemen,
+/// Szirmay-Kalos 2001, "A Microfacet Based Coupled Specular-Matte BRDF Model with
+/// Importance Sampling", Eurographics short presentation; for dielectrics, separate tables
+/// for light entering and leaving the denser medium and a split of the lobe between
+/// reflection and transmission that keeps reciprocity; the slides number no equations).
+/// Here E_s(mu) is the total single-scattering albedo R + T (importance mode) seen from
+/// medium s at view cosine mu (shade/bsdf/dielectric_albedo_table.hpp), E_s,avg its
+/// cosine-weighted average (integrated from the table when the model is built, 40 lookups
+/// per side), eta_s = n_far / n_s, and tau_s the share of the lost energy
+/// that crosses the interface. In radiance mode, with v in medium s, mu = |n·w|:
+///
+///     reflection:    f_ms = (1 - tau_s) (1 - E_s(mu_l)) (1 - E_s(mu_v)) / (pi (1 - E_s,avg))
+///     transmission:  f_ms = tau_s (1 - E_far(mu_l)) (1 - E_s(mu_v)) / (eta_s^2 pi (1 - E_far,avg))
+///
+/// (importance mode: the transmission times eta_s^2, as for f_ss). Integrating over l,
+/// f_ms returns exactly 1 - E_s(mu_v) in importance mode, (1 - tau_s) of it reflected and
+/// tau_s transmitted, so R + T = E_ss(mu_v) + 1 - E_s(mu_v) = 1 up to the table's error.
+/// Adjoint reciprocity, f(l, v) / eta_v^2 = f(v, l) / eta_l^2, holds for f_ms when
+///
+///     tau_inside (1 - E_inside,avg) eta^2 = tau_outside (1 - E_outside,avg)
+///
+/// (eta = n_inside / n_outside). tau on the rarer side is 1 - F_avg, F_avg the
+/// cosine-weighted hemispherical average of the exact Fresnel reflectance from that side
+/// (what a smooth interface transmits of uniform light), and tau on the denser side follows
+/// from the relation; if it would exceed 1 it is 1 and the rarer side's follows instead.
+///
+/// Properties: energy conserving (R + T = 1 in importance mode for every view, to the
+/// table's accuracy) and adjoint-reciprocal like rough_dielectric; f_ss keeps its values.
+/// Turquin 2019 ("A Practical Energy Compensation for Multiple Scattering in Microfacet
+/// Models", Ubisoft tech report) scales f_ss by a factor of the view alone, which would
+/// give R + T = 1 as well but not the adjoint relation; hence Kulla and Conty's product.
+/// A type of its own rather than a policy of rough_dielectric (as shade::kulla_conty is of
+/// cook_torrance), so that rough_dielectric's users do not compile the tables.
+/// The tables cover alpha in [1e-4, 1] and eta_hat = max(eta, 1 / eta) in [1.05, 3];
+/// outside that range the nearest end is read, so the compensation is approximate there
+/// (and partial for alpha > 1). Anisotropic GGX reads the tables at sqrt(alpha_x alpha_y),
+/// as shade::kulla_conty does.
+///
+/// Sampling: with probability E_s(mu_v) rough_dielectric's own sampler (uc rescaled), else
+/// the multiple-scattering lobe, a cosine-weighted direction on the far side with
+/// probability tau_s and on v's side otherwise; pdf and weight are those of the mixture.
+/// Flags glossy reflection or glossy transmission.
+///
+/// Parameters as rough_dielectric: eta = n_inside / n_outside in [1e-4, 1e4], not 1.
+template <std::floating_point T>
+class compensated_rough_dielectric {
+public:
+    using scalar_type = T;
+    using single_scattering_type = rough_dielectric<ggx<T>>;
+
+    /// A compensated interface. Throws shade::invalid_parameter naming "eta" unless eta
+    /// lies in [1e-4, 1e4] and is not 1 (as rough_dielectric).
+    compensated_rough_dielectric(const ggx<T>& distribution, T eta) : single_(distribution, eta) { prepare(); }
+
+    /// Unchecked: the caller guarantees eta in [1e-4, 1e4], eta != 1.
+    compensated_rough_dielectric(unchecked_t, const ggx<T>& distribution, T eta) noexcept
+        : single_(unchecked, distribution, eta) {
+        prepare();
+    }
+
+    /// The single-scattering model this compensates.
+    [[nodiscard]] constexpr const single_scattering_type& single_scattering() const noexcept { return single_; }
+    /// The distribution of microfacet normals.
+    [[nodiscard]] constexpr const ggx<T>& distribution() const noexcept { return single_.distribution(); }
+    /// The relative index of refraction n_inside / n_outside.
+    [[nodiscard]] constexpr T eta() const noexcept { return single_.eta(); }
+
+    /// E_s(mu) of the table for a view in medium `inside` (false: outside) at cosine mu:
+    /// the single-scattering R + T the compensation assumes, dimensionless, in [0, 1].
+    [[nodiscard]] T single_scattering_albedo(bool inside, T mu) const noexcept { return albedo(inside ? 1 : 0, mu); }
+
+    /// The share tau of the lost energy that the multiple-scattering lobe transmits, for a
+    /// view in medium `inside` (false: outside). In [0, 1].
+    [[nodiscard]] T transmitted_share(bool inside) const noexcept { return side_[inside ? 1 : 0].tau; }
+
+    /// The BSDF value in 1/sr without the cosine, radiance mode, f_ss + f_ms, for l and v
+    /// on either side; 0 when either lies on the surface.
+    [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept {
+        const rgb<T> f_ss = single_.f(l, v, at);
+        return f_ss + rgb<T>(multiple(at.shading.to_local(l), at.shading.to_local(v), transport_mode::radiance));
+    }
+
+    /// The density (1/sr, over the sphere) with which sample() draws l for v.
+    [[nodiscard]] T pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept {
+        const vec3<T> v_local = at.shading.to_local(v);
+        if (!(v_local.z != T(0)) || !std::isfinite(v_local.z)) return T(0);
+        const std::size_t s = v_local.z > T(0) ? 0 : 1;
+        const T p_ss = single_probability(s, std::abs(v_local.z));
+        return p_ss * single_.pdf(l, v, at) + (T(1) - p_ss) * multiple_pdf(s, at.shading.to_local(l), v_local);
+    }
+
+    /// Draws l for v (either side) from the mixture above; f and weight in the given mode,
+    /// eta of the sample eta_l / eta_v. nullopt when v lies on the surface or the drawn l
+    /// does (or rough_dielectric's sampler draws nothing).
+    [[nodiscard]] std::optional<bsdf_sample<T>> sample(const vec3<T>& v, T uc, const vec2<T>& u,
+                                                       const surface_point<T>& at,
+                                                       transport_mode mode = transport_mode::radiance) const noexcept {
+        const vec3<T> v_local = at.shading.to_local(v);
+        if (!(v_local.z != T(0)) || !std::isfinite(v_local.z)) return std::nullopt;
+        const std::size_t s = v_local.z > T(0) ? 0 : 1;
+        const T p_ss = single_probability(s, std::abs(v_local.z));
+        vec3<T> l;
+        if (uc < p_ss) {
+            const T uc_ss = glm::min(uc / p_ss, T(1) - std::numeric_limits<T>::epsilon() / 2);
+            const std::optional<bsdf_sample<T>> drawn = single_.sample(v, uc_ss, u, at, mode);
+            if (!drawn) return std::nullopt;
+            l = drawn->l;
+        } else {
+            const T uc_ms = (uc - p_ss) / (T(1) - p_ss);
+            const bool transmit = uc_ms < side_[s].tau;
+            vec3<T> w = square_to_cosine_hemisphere(u);
+            // Cosine-weighted about v's side (reflection) or the far side (transmission).
+            if ((v_local.z < T(0)) != transmit) w.z = -w.z;
+            l = at.shading.to_world(w);
+        }
+        const vec3<T> l_local = at.shading.to_local(l);
+        if (!(l_local.z != T(0)) || !std::isfinite(l_local.z)) return std::nullopt;
+        const bool transmitted = (l_local.z < T(0)) != (v_local.z < T(0));
+        rgb<T> f = single_.f(l, v, at);
+        if (transmitted && mode == transport_mode::importance) f *= sqr(side_[s].eta_s);
+        f += rgb<T>(multiple(l_local, v_local, mode));
+        const T pdf_l = p_ss * single_.pdf(l, v, at) + (T(1) - p_ss) * multiple_pdf(s, l_local, v_local);
+        const std::optional<brdf_sample<T>> r = detail::make_brdf_sample(l, f, pdf_l, std::abs(l_local.z));
+        if (!r) return std::nullopt;
+        return bsdf_sample<T>{r->l, r->f, r->pdf, r->weight,
+                              transmitted ? bsdf_flags::glossy_transmission : bsdf_flags::glossy_reflection,
+                              transmitted ? side_[s].eta_s : T(1)};
+    }
+
+private:
+    /// What the lobe keeps per medium s (0 outside, 1 inside) of the view.
+    struct side_state {
+        detail::dielectric_albedo_cell<T> cell{}; ///< where E_s is read
+        T eta_s = 1;       ///< n_far / n_s
+        T e_avg = 1;       ///< E_s,avg
+        T tau = 0;         ///< share of the lost energy transmitted from s
+        T reflect = 0;     ///< (1 - tau_s) / (pi (1 - E_s,avg)), 1/sr
+        T transmit = 0;    ///< tau_s / (eta_s^2 pi (1 - E_far,avg)), 1/sr (radiance mode)
+    };
+
+    void prepare() noexcept {
+        const detail::dielectric_albedo_grid grid{};
+        const T eta = single_.eta();
+        const T alpha = std::sqrt(single_.distribution().alpha_x() * single_.distribution().alpha_y());
+        for (std::size_t s = 0; s < 2; ++s) {
+            side_[s].eta_s = s == 0 ? eta : T(1) / eta;
+            side_[s].cell = detail::dielectric_albedo_locate(grid, alpha, side_[s].eta_s);
+            side_[s].e_avg = detail::dielectric_albedo_average(detail::ggx_rough_dielectric_albedo, grid, side_[s].cell);
+        }
+        const T loss[2] = {T(1) - side_[0].e_avg, T(1) - side_[1].e_avg};
+        if (!(loss[0] > T(detail::dielectric_compensation_min_loss)) ||
+            !(loss[1] > T(detail::dielectric_compensation_min_loss))) {
+            enabled_ = false;
+            return;
+        }
+        enabled_ = true;
+        // The rarer side r (eta_s > 1) transmits 1 - F_avg; the denser side d follows from
+        // tau_d (1 - E_d,avg) eta_hat^2 = tau_r (1 - E_r,avg).
+        const std::size_t r = eta > T(1) ? 0 : 1;
+        const std::size_t d = 1 - r;
+        const T eta_hat2 = sqr(side_[r].eta_s);
+        T tau_r = T(1) - detail::dielectric_fresnel_average(side_[r].eta_s);
+        T tau_d = tau_r * loss[r] / (eta_hat2 * loss[d]);
+        if (tau_d > T(1)) {
+            tau_d = T(1);
+            tau_r = eta_hat2 * loss[d] / loss[r];
+        }
+        side_[r].tau = tau_r;
+        side_[d].tau = tau_d;
+        for (std::size_t s = 0; s < 2; ++s) {
+            side_[s].reflect = (T(1) - side_[s].tau) * inv_pi<T> / loss[s];
+            side_[s].transmit = side_[s].tau * inv_pi<T> / (sqr(side_[s].eta_s) * loss[1 - s]);
+        }
+    }
+
+    /// E_s(mu) from the table, clamped to [0, 1].
+    [[nodiscard]] T albedo(std::size_t s, T mu) const noexcept {
+        const T e = detail::dielectric_albedo_lookup(detail::ggx_rough_dielectric_albedo, detail::dielectric_albedo_grid{},
+                                                     side_[s].cell, mu);
+        return glm::clamp(e, T(0), T(1));
+    }
+
+    /// The probability of drawing from rough_dielectric's sampler for a view in medium s at
+    /// cosine mu_v: E_s(mu_v), the share of the energy single scattering carries (1 when
+    /// the lobe is off).
+    [[nodiscard]] T single_probability(std::size_t s, T mu_v) const noexcept {
+        return enabled_ ? albedo(s, mu_v) : T(1);
+    }
+
+    /// f_ms for local l and v, in the given mode (1/sr, no cosine); 0 when either lies on
+    /// the surface.
+    [[nodiscard]] T multiple(const vec3<T>& l, const vec3<T>& v, transport_mode mode) const noexcept {
+        if (!enabled_) return T(0);
+        if (!(l.z != T(0)) || !(v.z != T(0)) || !std::isfinite(l.z) || !std::isfinite(v.z)) return T(0);
+        const std::size_t s = v.z > T(0) ? 0 : 1;
+        const T loss_v = T(1) - albedo(s, std::abs(v.z));
+        if ((l.z > T(0)) == (v.z > T(0))) return side_[s].reflect * (T(1) - albedo(s, std::abs(l.z))) * loss_v;
+        const T f = side_[s].transmit * (T(1) - albedo(1 - s, std::abs(l.z))) * loss_v;
+        return mode == transport_mode::importance ? f * sqr(side_[s].eta_s) : f;
+    }
+
+    /// The density of the multiple-scattering lobe's sampler at local l for a view in
+    /// medium s: (1 - tau_s) |cos| / pi on v's side, tau_s |cos| / pi on the far side.
+    [[nodiscard]] T multiple_pdf(std::size_t s, const vec3<T>& l, const vec3<T>& v) const noexcept {
+        if (!enabled_ || !std::isfinite(l.z)) return T(0);
+        const bool same_side = (l.z > T(0)) == (v.z > T(0));
+        return (same_side ? T(1) - side_[s].tau : side_[s].tau) * std::abs(l.z) * inv_pi<T>;
+    }
+
+    single_scattering_type single_;
+    side_state side_[2]{};
+    bool enabled_ = false;
+};
+
+} // namespace shade

@@ -1,0 +1,284 @@
+// shade::compensated_rough_dielectric: energy (R + T = 1 within the table's accuracy, both
+// sides), the chi-square test of its sampler and the pdf integral, sample/f/pdf/weight
+// consistency, adjoint reciprocity, and the share of the lost energy it transmits.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+
+#include <doctest/doctest.h>
+#include <glm/geometric.hpp>
+
+#include <shade/brdf/microfacet/ggx.hpp>
+#include <shade/bsdf/compensated_rough_dielectric.hpp>
+#include <shade/check/doctest.hpp>
+#include <shade/check/sampling.hpp>
+#include <shade/core/random.hpp>
+
+#include "bsdf/dielectric_albedo.hpp"
+#include "bsdf/support.hpp"
+
+using namespace bsdf_test;
+using brdf_test::close;
+using shade::transport_mode;
+
+static_assert(shade::bsdf_sampler<shade::compensated_rough_dielectric<float>>);
+static_assert(shade::sampled_bsdf<shade::compensated_rough_dielectric<double>>);
+
+namespace {
+
+/// The energy that leaves the compensated interface for a view at cosine mu in medium
+/// `inside` (importance mode, R + T), with its parts: the single-scattering R + T by
+/// rough_dielectric's sampler with the lobe choice integrated out, and the integral of
+/// f_ms = f - f_ss (importance mode) |n·l| over each hemisphere.
+struct energy {
+    double single = 0;   ///< E_ss(mu_v)
+    double reflected = 0; ///< integral of f_ms |cos| over v's side
+    double transmitted = 0; ///< integral of f_ms |cos| over the far side
+    double error = 0;    ///< standard error of the single-scattering estimate
+    [[nodiscard]] double total() const { return single + reflected + transmitted; }
+};
+
+energy energy_of(const shade::compensated_rough_dielectric<double>& model, double mu, bool inside) {
+    using T = double;
+    shade::surface_point<T> at;
+    at.shading = shade::frame<T>::from_normal_tangent({0, 0, 1}, {1, 0, 0});
+    energy e;
+    // The single-scattering part, seen from the medium of v: mirroring the frame turns an
+    // inside view into an outside view of the inverted interface.
+    const shade::rough_dielectric<shade::ggx<T>> mirrored{model.distribution(), inside ? 1 / model.eta() : model.eta()};
+    // 160^2 samples, or 480^2 where those leave a standard error above 3e-4 (narrow lobes
+    // near grazing, where many drawn directions are lost below the horizon).
+    auto ss = single_scattering_albedo(mirrored, mu, 160, 3);
+    if (ss.standard_error.x > 1e-4) ss = single_scattering_albedo(mirrored, mu, 480, 3);
+    e.single = ss.albedo.x;
+    e.error = ss.standard_error.x;
+    const vec3<T> v(std::sqrt((1 - mu) * (1 + mu)), 0, inside ? -mu : mu);
+    // f_ms depends on l only through |n·l| (the tables are isotropic), so each hemisphere's
+    // integral is 2 pi integral_0^1 f_ms(mu_l) mu_l dmu_l: a midpoint rule on 4000 cells
+    // (f_ms is piecewise smooth in mu_l; its error is far below 1e-5).
+    constexpr int cells = 4000;
+    for (const bool far : {false, true}) {
+        double sum = 0;
+        for (int i = 0; i < cells; ++i) {
+            const double mu_l = (i + 0.5) / cells;
+            const vec3<T> l(std::sqrt((1 - mu_l) * (1 + mu_l)), 0, inside != far ? -mu_l : mu_l);
+            const double f_ms = double(shade::bsdf_f(model, l, v, at, transport_mode::importance).x) -
+                                double(shade::bsdf_f(model.single_scattering(), l, v, at, transport_mode::importance).x);
+            sum += f_ms * mu_l;
+        }
+        (far ? e.transmitted : e.reflected) = 2 * shade::pi<double> * sum / cells;
+    }
+    return e;
+}
+
+} // namespace
+
+TEST_CASE("compensated_rough_dielectric: R + T in [0.99, 1.001] for alpha <= 1, mu >= 0.05, eta in [1.05, 3], both sides") {
+    double lowest = 2, highest = 0, largest_error = 0;
+    int views = 0;
+    for (const double eta : {1.05, 1.2, 1.5, 2.4, 3.0}) {
+        for (const double alpha : {0.02, 0.1, 0.3, 0.6, 1.0}) {
+            const shade::compensated_rough_dielectric<double> model{shade::ggx<double>(alpha), eta};
+            for (const bool inside : {false, true}) {
+                for (const double mu : {0.05, 0.2, 0.5, 0.9}) {
+                    CAPTURE(eta);
+                    CAPTURE(alpha);
+                    CAPTURE(inside);
+                    CAPTURE(mu);
+                    const energy e = energy_of(model, mu, inside);
+                    const double total = e.total();
+                    CAPTURE(total);
+                    CAPTURE(e.single);
+                    CAPTURE(e.reflected);
+                    CAPTURE(e.transmitted);
+                    CAPTURE(e.error);
+                    // The estimates' standard error is below 2e-4; 4 of them allowed.
+                    CHECK(e.error < 2e-4);
+                    CHECK(total <= 1.001 + 4 * e.error);
+                    CHECK(total >= 0.99 - 4 * e.error);
+                    // The lobe splits as designed: tau of the lost energy crosses over.
+                    const double lost = 1 - model.single_scattering_albedo(inside, mu);
+                    CHECK(std::abs(e.transmitted - model.transmitted_share(inside) * lost) <= 1e-3 + 4 * e.error);
+                    lowest = std::min(lowest, total);
+                    highest = std::max(highest, total);
+                    largest_error = std::max(largest_error, e.error);
+                    ++views;
+                }
+            }
+        }
+    }
+    MESSAGE("compensated R + T over " << views << " views: from " << lowest << " to " << highest
+                                      << " (largest standard error " << largest_error << ")");
+}
+
+TEST_CASE("compensated_rough_dielectric: the uncompensated model loses energy where the compensated one does not") {
+    // The check above would fail rough_dielectric itself: at alpha = 1, seen from inside
+    // glass near the normal, single scattering keeps well under 0.99.
+    const shade::compensated_rough_dielectric<double> model{shade::ggx<double>(1.0), 1.5};
+    const energy e = energy_of(model, 0.9, true);
+    CHECK(e.single < 0.9);
+    CHECK(e.total() == doctest::Approx(1.0).epsilon(1e-2));
+}
+
+TEST_CASE("compensated_rough_dielectric: the rarer side transmits 1 - F_avg of the lost energy") {
+    // The cosine-weighted hemispherical reflectance of a smooth interface of relative index
+    // 1.5 seen from the rarer side is 0.0918 (e.g. Walter et al. 2007's setting; the
+    // closed form of Stern 1964, "Transmission of Isotropic Radiation Across an Interface
+    // Between Two Dielectrics", Applied Optics 3(1), gives 0.09160... for n = 1.5): the
+    // outside shares 1 - 0.0916 = 0.908 of its lost energy with the inside.
+    const shade::compensated_rough_dielectric<double> model{shade::ggx<double>(0.5), 1.5};
+    CHECK(model.transmitted_share(false) == doctest::Approx(1 - 0.0916).epsilon(1e-3));
+    // Seen from the denser side (eta = 1 / 1.5 puts the glass outside), the roles swap.
+    const shade::compensated_rough_dielectric<double> swapped{shade::ggx<double>(0.5), 1 / 1.5};
+    CHECK(swapped.transmitted_share(true) == doctest::Approx(model.transmitted_share(false)).epsilon(1e-6));
+    CHECK(swapped.transmitted_share(false) == doctest::Approx(model.transmitted_share(true)).epsilon(1e-6));
+    CHECK(model.transmitted_share(true) > 0);
+    CHECK(model.transmitted_share(true) <= 1);
+}
+
+TEST_CASE_TEMPLATE("compensated_rough_dielectric: sample draws l with the density pdf over the whole sphere, both sides", T,
+                   float, double) {
+    // GGX alpha 0.3 and 1 and 0.1 x 0.4, eta 1.5 and 1 / 1.33, six views: 36 chi-square
+    // tests per scalar type at a family-wise level of 1e-3.
+    const std::size_t family = 36;
+    const auto at = brdf_test::tilted<T>();
+    for (const double eta : {1.5, 1 / 1.33}) {
+        struct named {
+            std::string name;
+            shade::ggx<T> distribution;
+        };
+        for (const named& n : {named{"ggx 0.3", shade::ggx<T>(T(0.3))}, named{"ggx 1", shade::ggx<T>(T(1))},
+                               named{"ggx 0.1 x 0.4", shade::ggx<T>(T(0.1), T(0.4))}}) {
+            const std::string name = n.name;
+            const shade::compensated_rough_dielectric<T> model{n.distribution, T(eta)};
+            for (const double deg : {0.0, 60.0, 85.0, 180.0, 120.0, 95.0}) {
+                CAPTURE(eta);
+                CAPTURE(name);
+                CAPTURE(deg);
+                shade::check::chi2_options chi2{.samples = 40000, .alpha = 1e-3, .tests = family};
+                chi2.model = "compensated rough dielectric " + name;
+                const auto v = view_deg(at, deg);
+                shade::check::doctest_expect(shade::check::chi2_goodness_of_fit(model, v, at, chi2));
+                shade::check::doctest_expect(shade::check::pdf_normalization(model, v, at, chi2));
+            }
+        }
+    }
+}
+
+TEST_CASE_TEMPLATE("compensated_rough_dielectric: samples agree with f and pdf; importance-mode throughput is 1", T, float,
+                   double) {
+    const auto at = brdf_test::tilted<T>();
+    const T rel = sizeof(T) <= 4 ? T(2e-3) : T(1e-9);
+    double lowest = 2, highest = 0;
+    for (const double eta : {1.33, 2.4, 1 / 1.5}) {
+        for (const double alpha : {0.1, 0.5, 1.0}) {
+            const shade::compensated_rough_dielectric<T> model{shade::ggx<T>(T(alpha)), T(eta)};
+            for (const double deg : {0.0, 45.0, 75.0, 180.0, 135.0, 105.0}) {
+                CAPTURE(eta);
+                CAPTURE(alpha);
+                CAPTURE(deg);
+                const auto v = view_deg(at, deg);
+                shade::rng random(9);
+                const int n = 8000;
+                double sum = 0, sum2 = 0;
+                for (int i = 0; i < n; ++i) {
+                    const T uc = random.uniform<T>();
+                    const T u0 = random.uniform<T>();
+                    const T u1 = random.uniform<T>();
+                    const auto s = model.sample(v, uc, vec2<T>(u0, u1), at, transport_mode::importance);
+                    if (!s) continue;
+                    check_sample(*s, v, at, rel);
+                    CHECK(!shade::is_specular(s->flags));
+                    CHECK(close(s->f.x, model.f(v, s->l, at).x, T(10) * rel)); // importance: the adjoint
+                    CHECK(close(s->pdf, model.pdf(s->l, v, at), rel));
+                    if (shade::is_transmission(s->flags)) {
+                        const auto r = model.sample(v, uc, vec2<T>(u0, u1), at, transport_mode::radiance);
+                        REQUIRE(r);
+                        CHECK(close(r->f.x, model.f(s->l, v, at).x, rel));
+                        CHECK(close(r->weight.x * s->eta * s->eta, s->weight.x, rel));
+                    }
+                    sum += double(s->weight.x);
+                    sum2 += double(s->weight.x) * double(s->weight.x);
+                }
+                const double mean = sum / n;
+                const double se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+                // The sampler's estimate of R + T: 1 within its noise (and the table's 1e-2).
+                CHECK(mean <= 1.001 + 4 * se);
+                CHECK(mean >= 0.99 - 4 * se);
+                lowest = std::min(lowest, mean);
+                highest = std::max(highest, mean);
+            }
+        }
+    }
+    MESSAGE("importance-mode R + T of the compensated sampler (8000 samples per view): from " << lowest << " to "
+                                                                                               << highest);
+}
+
+TEST_CASE("compensated_rough_dielectric: adjoint reciprocity f(l, v) / eta_v^2 = f(v, l) / eta_l^2 to 1e-6 (double)") {
+    using T = double;
+    const auto at = brdf_test::tilted<T>();
+    shade::rng random(23);
+    double worst = 0;
+    int compared = 0;
+    for (const double eta : {1.33, 1.5, 2.4, 1 / 1.5}) {
+        for (const double alpha : {0.05, 0.3, 1.0}) {
+            const shade::compensated_rough_dielectric<T> model{shade::ggx<T>(alpha, 0.7 * alpha), eta};
+            for (int i = 0; i < 3000; ++i) {
+                vec2<T> u[2];
+                for (auto& ui : u) {
+                    ui.x = random.uniform<T>();
+                    ui.y = random.uniform<T>();
+                }
+                const vec3<T> l = shade::square_to_uniform_sphere(u[0]);
+                const vec3<T> v = shade::square_to_uniform_sphere(u[1]);
+                const double eta_v = glm::dot(at.n(), v) > 0 ? 1.0 : eta;
+                const double eta_l = glm::dot(at.n(), l) > 0 ? 1.0 : eta;
+                const double a = double(model.f(l, v, at).x) / (eta_v * eta_v);
+                const double b = double(model.f(v, l, at).x) / (eta_l * eta_l);
+                CHECK(std::isfinite(a));
+                CHECK(a >= 0);
+                if (std::max(a, b) < 1e-12) continue;
+                ++compared;
+                const double relative = std::abs(a - b) / std::max(a, b);
+                worst = std::max(worst, relative);
+                CHECK(relative <= 1e-6);
+            }
+        }
+    }
+    MESSAGE("compensated adjoint reciprocity: worst relative difference " << worst << " over " << compared << " pairs");
+    // f_ms is nonzero for every pair of directions off the surface.
+    CHECK(compared > 30000);
+}
+
+TEST_CASE_TEMPLATE("compensated_rough_dielectric: single scattering kept; no NaN on degenerate pairs; bad eta throws", T,
+                   float, double) {
+    const auto at = brdf_test::tilted<T>();
+    const shade::compensated_rough_dielectric<T> model{shade::ggx<T>(T(0.3)), T(1.5)};
+    const shade::rough_dielectric<shade::ggx<T>> single{shade::ggx<T>(T(0.3)), T(1.5)};
+    const vec3<T> n = at.n();
+    const vec3<T> t = at.shading.t;
+    for (const vec3<T>& l : {n, -n, t, glm::normalize(t + T(1e-6) * n), glm::normalize(t - T(1e-6) * n)})
+        for (const vec3<T>& v : {n, -n, t, glm::normalize(t + T(1e-6) * n), glm::normalize(t - T(1e-6) * n)}) {
+            CHECK(brdf_test::finite_non_negative(model.f(l, v, at)));
+            const T p = model.pdf(l, v, at);
+            CHECK((std::isfinite(p) && p >= T(0)));
+            // The single-scattering part is rough_dielectric's, value for value.
+            CHECK(model.single_scattering().f(l, v, at) == single.f(l, v, at));
+            CHECK(model.f(l, v, at).x >= single.f(l, v, at).x);
+        }
+    for (const auto& p : brdf_test::degenerate_pairs(at)) {
+        CHECK(brdf_test::finite_non_negative(model.f(p.l, p.v, at)));
+        CHECK(brdf_test::finite_non_negative(model.f(-p.l, p.v, at)));
+        CHECK(brdf_test::finite_non_negative(model.f(p.l, -p.v, at)));
+    }
+    // A nearly smooth interface loses almost nothing: its compensation is off or tiny.
+    const shade::compensated_rough_dielectric<T> smooth{shade::ggx<T>(T(1e-4)), T(1.5)};
+    const auto l = view_deg(at, 150);
+    const auto v = view_deg(at, 20);
+    CHECK(double(smooth.f(l, v, at).x) <= 1e-3);
+    for (const T eta : {T(1), T(0), T(-1.5), T(2e4), std::numeric_limits<T>::quiet_NaN()})
+        brdf_test::check_throws_naming(
+            [&] { (void)shade::compensated_rough_dielectric<T>(shade::ggx<T>(T(0.3)), eta); }, "eta");
+}
