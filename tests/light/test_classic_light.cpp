@@ -127,9 +127,9 @@ TEST_CASE_TEMPLATE("shade::emitter needs the physical members only; shade::light
     static_assert(shade::emitter<shade::environment_light<T>> && shade::light<shade::environment_light<T>>);
     static_assert(shade::emitter<shade::environment_map_light<T>> && shade::light<shade::environment_map_light<T>>);
     static_assert(shade::emitter<shade::any_light<T>> && shade::light<shade::any_light<T>>);
-    // The adapter makes a classic light of an emitter.
-    static_assert(shade::light<shade::classic_light<beacon<T>>>);
-    static_assert(shade::light<shade::classic_light<sky<T>>>);
+    // The adapter makes a classic light of an emitter, which stays an emitter.
+    static_assert(shade::light<shade::classic_light<beacon<T>>> && shade::emitter<shade::classic_light<beacon<T>>>);
+    static_assert(shade::light<shade::classic_light<sky<T>>> && shade::emitter<shade::classic_light<sky<T>>>);
 }
 
 TEST_CASE_TEMPLATE("classic_light gives a user's delta emitter the classic colours E / pi", T, float, double) {
@@ -149,6 +149,10 @@ TEST_CASE_TEMPLATE("classic_light gives a user's delta emitter the classic colou
     CHECK(near(t.diffuse, rgb<T>(0.25, 0, 0.75), 1e-6));
     CHECK(near(t.specular, rgb<T>(0.125, 0.25, 0.375), 1e-6));
     CHECK(t.ambient == rgb<T>(T(0.1)));
+    // Its physical members are the emitter's.
+    CHECK(tinted.sample_incident(v3<T>(0), v2<T>(T(0.5)))->radiance == b.sample_incident(v3<T>(0), v2<T>(T(0.5)))->radiance);
+    CHECK(tinted.power(T(1)) == T(4 * pi) * b.I);
+    CHECK(tinted.pdf_incident(v3<T>(0), v3<T>(0, 0, 1)) == T(0));
     // The same as shade's own point light of that intensity (its classic sample:
     // intensity x colour / r^2 with the emission from_intensity gives, colour I / pi).
     const auto shade_bulb = shade::point_light<T>::from_intensity(v3<T>(0, 0, 2), T(pi) * rgb<T>(1, 2, 3));

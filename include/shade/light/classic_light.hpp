@@ -10,6 +10,7 @@
 #include <shade/core/types.hpp>
 #include <shade/light/light.hpp>
 #include <shade/light/light_sample.hpp>
+#include <shade/light/sample_context.hpp>
 
 namespace shade {
 
@@ -76,7 +77,8 @@ template <emitter E>
 /// A shade::light made of a shade::emitter and the classic colours: sample(p, u) is
 /// shade::classic_sample(emitter(), colours(), p, u) and is_delta() the emitter's. This
 /// is how a light written only in physical units (yours) is used with the classic
-/// shading (shade::lit, shade::sum_over_lights).
+/// shading (shade::lit, shade::sum_over_lights). It is still a shade::emitter: the
+/// physical members forward to the emitter, so one light list serves both modes.
 template <emitter E>
 class classic_light {
 public:
@@ -100,6 +102,28 @@ public:
 
     /// Whether the emitter is a delta light (one sample is exact).
     [[nodiscard]] bool is_delta() const { return emitter_.is_delta(); }
+
+    /// The emitter's physical sample at p, or for a surface point ctx (shade::emitter).
+    [[nodiscard]] auto sample_incident(const vec3<scalar_type>& p, const vec2<scalar_type>& u) const {
+        return emitter_.sample_incident(p, u);
+    }
+    [[nodiscard]] auto sample_incident(const light_sample_context<scalar_type>& ctx, const vec2<scalar_type>& u) const {
+        return emitter_.sample_incident(ctx, u);
+    }
+    /// The emitter's density for the unit direction w, at p or for ctx (shade::emitter).
+    [[nodiscard]] scalar_type pdf_incident(const vec3<scalar_type>& p, const vec3<scalar_type>& w) const {
+        return emitter_.pdf_incident(p, w);
+    }
+    [[nodiscard]] scalar_type pdf_incident(const light_sample_context<scalar_type>& ctx,
+                                           const vec3<scalar_type>& w) const {
+        return emitter_.pdf_incident(ctx, w);
+    }
+    /// The radiance arriving at p along w from the emitter (shade::emitter).
+    [[nodiscard]] rgb<scalar_type> incident_radiance(const vec3<scalar_type>& p, const vec3<scalar_type>& w) const {
+        return emitter_.incident_radiance(p, w);
+    }
+    /// The emitter's radiant power in W (shade::emitter).
+    [[nodiscard]] rgb<scalar_type> power(scalar_type scene_radius) const { return emitter_.power(scene_radius); }
 
 private:
     E emitter_;

@@ -111,10 +111,10 @@ public:
         return c > T(0) ? c / pi<T> : T(0);
     }
 
-    /// The classic light sample along a uniform direction, weighted by 4 pi.
+    /// The classic light sample of sample_incident(p, u) (a uniform direction), weighted by
+    /// 1 / pdf = 4 pi (detail::classic_from); ambient only when L is zero.
     [[nodiscard]] light_sample<T> sample(const vec3<T>& p, const vec2<T>& u) const noexcept {
-        (void)p;
-        return detail::make_sample(emission_, square_to_uniform_sphere(u), infinity<T>, T(4) * pi<T>);
+        return detail::classic_from(emission_, sample_incident(p, u));
     }
 
 private:
