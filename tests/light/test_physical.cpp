@@ -1,11 +1,13 @@
 // The physical mode of the lights (shade::emitter): units, densities that integrate to 1,
 // samples that agree with their densities, and known irradiances.
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <numbers>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <doctest/doctest.h>
@@ -321,4 +323,83 @@ TEST_CASE_TEMPLATE("light constructors reject bad parameters by name", T, float,
                          doctest::Contains("'sides'"), shade::invalid_parameter);
     CHECK_THROWS_WITH_AS((void)shade::environment_light<T>(shade::emission<T>{T(-1)}), doctest::Contains("'intensity'"),
                          shade::invalid_parameter);
+}
+
+namespace {
+
+// The irradiance at p on a surface with unit normal n from a uniformly bright triangle of
+// radiance L entirely above that surface: Lambert's polygon formula (Lambert 1760; Arvo
+// 1994, "The Irradiance Jacobian for Partially Occluded Polyhedral Sources", SIGGRAPH 94,
+// eq. 1): E = L / 2 |sum_i Theta_i (n · gamma_i)|, Theta_i the angle between the unit
+// directions a_i and a_{i+1} to consecutive vertices and gamma_i the unit normal of their plane.
+double lambert_irradiance(double L, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3 (&v)[3]) {
+    double sum = 0;
+    for (int i = 0; i < 3; ++i) {
+        const glm::dvec3 a = glm::normalize(v[i] - p), b = glm::normalize(v[(i + 1) % 3] - p);
+        sum += std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * glm::dot(n, glm::normalize(glm::cross(a, b)));
+    }
+    return L / 2 * std::abs(sum);
+}
+
+} // namespace
+
+TEST_CASE_TEMPLATE("triangle light: solid-angle sampling near a triangle, area sampling far from it", T, float, double) {
+    // A triangle facing down at height h over a receiver at the origin facing up.
+    const T L = T(2);
+    const glm::dvec3 v[3] = {{-1, -1, 0.2}, {1.5, -0.5, 0.2}, {0, 1.2, 0.2}};
+    const shade::triangle_light<T> tri{v3<T>(v[0]), v3<T>(v[2]), v3<T>(v[1]), radiance_of<T>(L)};
+    REQUIRE(tri.normal().z < T(0));
+    const glm::dvec3 n(0, 0, 1);
+    const auto stats = [&](auto&& estimate) {
+        // Mean and variance of one sample's estimate, from independent samples.
+        shade::rng g(17);
+        double sum = 0, sum2 = 0;
+        const int count = 40000;
+        for (int k = 0; k < count; ++k) {
+            const double e = estimate(v2<T>(g.uniform<T>(), g.uniform<T>()));
+            sum += e;
+            sum2 += e * e;
+        }
+        const double mean = sum / count;
+        return std::pair{mean, (sum2 / count - mean * mean)};
+    };
+    const v3<T> p(0);
+    const double exact = lambert_irradiance(double(L), glm::dvec3(p), n, v);
+    // The light's own sampling (by solid angle here: the triangle covers about 2.6 sr).
+    const auto spherical = stats([&](const v2<T>& u) {
+        const auto s = tri.sample_incident(p, u);
+        REQUIRE(s);
+        return double(s->radiance.x) * std::max(0.0, glm::dot(n, glm::dvec3(s->l))) / double(s->pdf);
+    });
+    // Uniform by area, with the density r^2 / (A cos_light) written out here.
+    const auto by_area = stats([&](const v2<T>& u) {
+        const glm::dvec3 x(tri.point_at(u));
+        const glm::dvec3 d = x - glm::dvec3(p);
+        const double r = glm::length(d);
+        const glm::dvec3 l = d / r;
+        const double pdf = r * r / (double(tri.area()) * std::abs(glm::dot(glm::dvec3(tri.normal()), l)));
+        return double(L) * std::max(0.0, glm::dot(n, l)) / pdf;
+    });
+    const auto se = [](const std::pair<double, double>& s) { return std::sqrt(s.second / 40000); };
+    CHECK(spherical.first == doctest::Approx(exact).epsilon(4 * se(spherical) / exact));
+    CHECK(by_area.first == doctest::Approx(exact).epsilon(4 * se(by_area) / exact));
+    // The variance the receiver's cosine leaves (spherical) against that of r^2 and both
+    // cosines (area): 4.5 against 224 (49x) at this point with these seeds; require 10x.
+    CHECK(spherical.second * 10 < by_area.second);
+    // pdf_incident agrees with the samples: 1 / Omega inside the triangle.
+    const auto st = shade::make_spherical_triangle(p, tri.shape().v0, tri.shape().v1, tri.shape().v2);
+    CHECK(tri.samples_solid_angle(st.area));
+    CHECK(double(tri.pdf_incident(p, v3<T>(0, 0, 1))) == doctest::Approx(1 / st.area).epsilon(1e-6));
+    // Far away (1000 below, on its emitting side) the triangle covers about 2e-6 sr: area
+    // sampling, density r^2 / (A cos_light).
+    const v3<T> far(0, 0, T(-1000));
+    const auto sf = shade::make_spherical_triangle(far, tri.shape().v0, tri.shape().v1, tri.shape().v2);
+    CHECK(!tri.samples_solid_angle(sf.area));
+    const auto s = tri.sample_incident(far, v2<T>(T(0.3), T(0.6)));
+    REQUIRE(s);
+    const double r = double(s->distance);
+    CHECK(double(s->pdf) == doctest::Approx(r * r / (double(tri.area()) * std::abs(double(s->l.z)))).epsilon(1e-4));
+    // Above it, the back of a one-sided light: no sample either way.
+    CHECK(!tri.sample_incident(v3<T>(0, 0, T(1000)), v2<T>(T(0.3), T(0.6))));
+    CHECK(!tri.sample_incident(v3<T>(0, 0, T(0.5)), v2<T>(T(0.3), T(0.6))));
 }

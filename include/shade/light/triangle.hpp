@@ -1,5 +1,6 @@
 #pragma once
-// shade::triangle_light: one emitting triangle, sampled uniformly by area. A mesh's
+// shade::triangle_light: one emitting triangle, sampled uniformly by solid angle where it
+// looks large and by area where it looks small. A mesh's
 // emissive triangles become one triangle_light each (in a std::vector<any_light<T>>), so
 // an emissive ceiling can be part of the scene's mesh.
 
@@ -11,6 +12,7 @@
 
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
+#include <shade/core/spherical_triangle.hpp>
 #include <shade/core/types.hpp>
 #include <shade/geometry/hit.hpp>
 #include <shade/geometry/ray.hpp>
@@ -28,10 +30,22 @@ namespace shade {
 /// L = emitted().physical() in W/(m^2 sr), area A = |(v1 - v0) x (v2 - v0)| / 2, power
 /// pi L A per emitting side.
 ///
-/// sample_incident(p, u) chooses a point uniformly by area, with barycentrics
-/// (1 - sqrt(u_0), sqrt(u_0) (1 - u_1), sqrt(u_0) u_1) (Turk 1990, "Generating Random Points
-/// in Triangles", Graphics Gems; density 1 / A), and reports the solid-angle density
-/// r^2 / (A cos_light). As geometry it is the triangle: intersect(r) is shade::intersect
+/// sample_incident(p, u) chooses one of two ways by the solid angle Omega the triangle
+/// subtends at p (shade::make_spherical_triangle):
+///   * Omega in [min_spherical_solid_angle, max_spherical_solid_angle]: a direction uniform
+///     in the spherical triangle (shade::sample_spherical_triangle, Arvo 1995), density
+///     1 / Omega. Seen from close by, area sampling wastes samples: its solid-angle density
+///     r^2 / (A cos_light) varies across the triangle as much as r^2 does, while the
+///     irradiance estimate L cos / pdf of a uniform-by-solid-angle sample varies only with
+///     the receiver's cosine;
+///   * otherwise a point uniform by area, barycentrics (1 - sqrt(u_0), sqrt(u_0) (1 - u_1),
+///     sqrt(u_0) u_1) (Turk 1990, "Generating Random Points in Triangles", Graphics Gems;
+///     density 1 / A), reported with the solid-angle density r^2 / (A cos_light). A small
+///     triangle is nearly uniform in solid angle already, and the spherical construction
+///     costs inverse trigonometric functions in double; past max_spherical_solid_angle (p
+///     almost in the triangle's plane, over it) Arvo's construction loses accuracy.
+/// pdf_incident makes the same choice at p, so it always returns the density
+/// sample_incident used. As geometry it is the triangle: intersect(r) is shade::intersect
 /// with Moller-Trumbore, so its hits carry barycentrics' uv and the rounding bound p_error.
 template <std::floating_point T>
 class triangle_light : public detail::area_emitter<triangle_light<T>, T> {
@@ -40,6 +54,11 @@ public:
     using detail::area_emitter<triangle_light<T>, T>::radiance;
     using detail::area_emitter<triangle_light<T>, T>::sample_incident;
     using detail::area_emitter<triangle_light<T>, T>::pdf_incident;
+
+    /// Below this solid angle (sr) seen from p, sample_incident samples by area.
+    static constexpr double min_spherical_solid_angle = 1e-3;
+    /// Above this solid angle (sr; the largest possible is 2 pi, about 6.283), by area too.
+    static constexpr double max_spherical_solid_angle = 6.2;
 
     /// Throws shade::invalid_parameter naming "v0", "v1" or "v2" (non-finite), "v2" when the
     /// three are collinear or the area is not a finite number > 0, "sides" or the bad
@@ -91,14 +110,55 @@ public:
         return (T(1) - su) * triangle_.v0 + b1 * triangle_.v1 + b2 * triangle_.v2;
     }
 
-    /// The physical sample at p toward point_at(u). Nothing for p on the light, the back of
-    /// a one-sided light or an overflowing density.
-    [[nodiscard]] std::optional<incident_sample<T>> sample_incident(const vec3<T>& p,
-                                                                    const vec2<T>& u) const noexcept {
-        return detail::area_incident(p, point_at(u), normal_, area_, this->radiance(), sides_);
+    /// Whether sample_incident(p, .) samples by solid angle (see the class comment) for a
+    /// triangle that subtends solid_angle (sr) at p.
+    [[nodiscard]] static constexpr bool samples_solid_angle(double solid_angle) noexcept {
+        return solid_angle >= min_spherical_solid_angle && solid_angle <= max_spherical_solid_angle;
     }
 
-    /// The classic light sample toward point_at(u), weighted by 1 / pdf.
+    /// The physical sample at p (see the class comment for how it is drawn). Nothing for p
+    /// on the light's plane or the back of a one-sided light, or an overflowing density.
+    [[nodiscard]] std::optional<incident_sample<T>> sample_incident(const vec3<T>& p,
+                                                                    const vec2<T>& u) const noexcept {
+        const spherical_triangle st = make_spherical_triangle(p, triangle_.v0, triangle_.v1, triangle_.v2);
+        if (!samples_solid_angle(st.area))
+            return detail::area_incident(p, point_at(u), normal_, area_, this->radiance(), sides_);
+        // The direction, and where it meets the triangle's plane, in double.
+        const glm::dvec3 w = detail::sample_spherical_triangle(st, double(u.x), double(u.y));
+        const glm::dvec3 n(normal_);
+        const double t = glm::dot(glm::dvec3(triangle_.v0) - glm::dvec3(p), n) / glm::dot(w, n);
+        const vec3<T> l(w);
+        if (!(t > 0) || !std::isfinite(t) || !(detail::emitting_cosine(normal_, vec3<T>(-l), sides_) > T(0)))
+            return std::nullopt;
+        incident_sample<T> s;
+        s.l = l;
+        s.distance = T(t);
+        s.radiance = this->radiance();
+        s.pdf = T(1 / st.area);
+        if (!(s.pdf > T(0)) || !std::isfinite(s.pdf)) return std::nullopt;
+        return s;
+    }
+
+    /// The solid-angle density (1/sr) sample_incident(p, .) has for the unit direction l:
+    /// 1 / Omega or r^2 / (A cos_light) by the choice at p (class comment) where the ray
+    /// (p, l) meets an emitting side of the triangle, else 0.
+    [[nodiscard]] T pdf_incident(const vec3<T>& p, const vec3<T>& l) const noexcept {
+        const auto h = intersect(ray<T>{p, l});
+        return h ? pdf_incident(p, l, *h) : T(0);
+    }
+
+    /// pdf_incident(p, l) when the caller already has h = intersect(ray{p, l}) (so h.t is
+    /// the distance): the same density without intersecting again.
+    [[nodiscard]] T pdf_incident(const vec3<T>& p, const vec3<T>& l, const hit<T>& h) const noexcept {
+        const T cos_light = detail::emitting_cosine(h.n, vec3<T>(-l), sides_);
+        if (!(cos_light > T(0))) return T(0);
+        const spherical_triangle st = make_spherical_triangle(p, triangle_.v0, triangle_.v1, triangle_.v2);
+        if (!samples_solid_angle(st.area)) return detail::solid_angle_pdf(h.t, cos_light, area_);
+        const T pdf = T(1 / st.area);
+        return std::isfinite(pdf) ? pdf : T(0);
+    }
+
+    /// The classic light sample from sample_incident(p, u), weighted by 1 / pdf.
     [[nodiscard]] light_sample<T> sample(const vec3<T>& p, const vec2<T>& u) const noexcept {
         return detail::classic_from(emission_, sample_incident(p, u));
     }
