@@ -1,7 +1,9 @@
 #pragma once
 // shade: header-only C++20 shading, BRDF and ray-intersection library on GLM.
-// This umbrella header includes every public header except shade/check/doctest.hpp (which
-// needs doctest), shade/geometry/triangle_batch.hpp (platform-specific SIMD code and
+// This umbrella header includes every public header except the property kit,
+// shade/check/*.hpp (for testing models: containers, streams and statistics a renderer does
+// not need; include shade/check/properties.hpp for all of it, shade/check/doctest.hpp with
+// doctest), shade/geometry/triangle_batch.hpp (platform-specific SIMD code and
 // run-time CPU detection), the hierarchies shade/geometry/bvh.hpp and triangle_bvh.hpp
 // (SIMD box tests, and the batch), and shade/light/environment_map.hpp with the
 // distributions it samples by, shade/core/distribution.hpp (they would take this header
@@ -81,8 +83,6 @@
 #include <shade/shading/shader.hpp>
 #include <shade/shading/sum_over_lights.hpp>
 #include <shade/shading/toon.hpp>
-
-#include <shade/check/properties.hpp>
 
 #include <shade/color/convert.hpp>
 #include <shade/color/delta_e.hpp>

@@ -9,9 +9,12 @@
 #include <vector>
 
 #include <doctest/doctest.h>
+#include <glm/geometric.hpp>
 
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
+#include <shade/core/random.hpp>
+#include <shade/geometry/spawn.hpp>
 #include <shade/light/any_light.hpp>
 #include <shade/light/light_sampler.hpp>
 
@@ -132,4 +135,39 @@ TEST_CASE_TEMPLATE("triangle_light: area, normal, uniform points and bad vertice
     const T nan = std::numeric_limits<T>::quiet_NaN();
     CHECK(parameter_of([&] { shade::triangle_light<T> t(v3<T>(nan), v3<T>(1, 0, 0), v3<T>(0, 1, 0)); }) == "v0");
     CHECK(parameter_of([&] { shade::triangle_light<T> t(v3<T>(0), v3<T>(1, 0, 0), v3<T>(2, 0, 0)); }) == "v2");
+}
+
+TEST_CASE_TEMPLATE("rectangle and disk lights: hits carry a rounding bound that spawned rays clear", T, float, double) {
+    // Far from the origin (1e5), where a point's rounding is large, every ray offset off a
+    // hit by its p_error (shade::offset_ray_origin) starts strictly on the side it leaves
+    // toward: the signed distance from the light's plane, computed in long double from the
+    // exact plane, is positive toward the normal's side and negative behind.
+    const T far = T(1e5);
+    const shade::vec3<T> c(far, T(-far), far);
+    const auto e = shade::emission<T>::from_physical(shade::rgb<T>(1));
+    const shade::area_light<T> rect(c, shade::vec3<T>(T(0.3), T(0.9), T(0.1)), shade::vec3<T>(T(-0.8), T(0.2), T(0.5)), e);
+    const shade::disk_light<T> disk(c, glm::normalize(shade::vec3<T>(T(0.2), T(-1), T(0.4))), T(1), e);
+    shade::rng g(9);
+    int hits = 0, wrong = 0;
+    const auto side = [](const shade::vec3<T>& p, const shade::vec3<T>& q, const shade::vec3<T>& n) {
+        return (static_cast<long double>(p.x) - q.x) * n.x + (static_cast<long double>(p.y) - q.y) * n.y +
+               (static_cast<long double>(p.z) - q.z) * n.z;
+    };
+    for (int k = 0; k < 20000; ++k) {
+        const shade::vec3<T> o = c + shade::vec3<T>(T(4) * g.uniform<T>() - T(2), T(4) * g.uniform<T>() - T(2),
+                                                    T(4) * g.uniform<T>() - T(2));
+        const shade::vec3<T> target = c + shade::vec3<T>(g.uniform<T>() - T(0.5), g.uniform<T>() - T(0.5), g.uniform<T>() - T(0.5));
+        const shade::ray<T> r{o, glm::normalize(target - o)};
+        for (const auto& h : {rect.intersect(r), disk.intersect(r)}) {
+            if (!h) continue;
+            ++hits;
+            const shade::vec3<T> n = h->n;
+            const shade::vec3<T> up = shade::offset_ray_origin(h->p, h->p_error, n, n);
+            const shade::vec3<T> down = shade::offset_ray_origin(h->p, h->p_error, n, -n);
+            // c, the rectangle's corner and the disk's centre, lies on both planes.
+            if (!(side(up, c, n) > 0) || !(side(down, c, n) < 0)) ++wrong;
+        }
+    }
+    CHECK(hits > 10000);
+    CHECK(wrong == 0);
 }

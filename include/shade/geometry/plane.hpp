@@ -54,6 +54,27 @@ private:
     frame<T> axes_;
 };
 
+namespace detail {
+
+/// The rounding bound, in every coordinate, of the point p = o + t d where t = n·(q - o) / n·d
+/// is a ray's parameter at a plane with unit normal n through q (shade::intersect with a
+/// plane, and the rectangle and disk lights). The distance of p from the plane,
+/// n·(p - q) = n·(o - q) + t (n·d) + the rounding of o + t d, is the error of n·(q - o)
+/// (gamma_4), of the division (u), of n·d times t (gamma_3) and of the sum (gamma_2),
+/// together below gamma_8 (|o|_1 + |q|_1 + |t d|_1), bounding each |x|_2 by |x|_1 (Higham's
+/// gamma_n = n u / (1 - n u); Pharr, Jakob, Humphreys 2023, "Physically Based Rendering",
+/// 4th ed., sec. 6.8). It is given in every coordinate, so that spawn_ray's offset,
+/// dot(|n|, p_error) = p_error |n|_1 >= p_error, clears it whatever n is. Coordinates near
+/// overflow make the sum infinite: the largest finite bound instead.
+template <std::floating_point T>
+[[nodiscard]] inline vec3<T> plane_hit_error(const vec3<T>& o, const vec3<T>& q, T t, const vec3<T>& d) noexcept {
+    const auto l1 = [](const vec3<T>& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z); };
+    const T e = gamma<T>(8) * (l1(o) + l1(q) + l1(t * d));
+    return vec3<T>(std::isfinite(e) ? e : std::numeric_limits<T>::max());
+}
+
+} // namespace detail
+
 /// The hit of ray r with plane pl, or nothing.
 ///
 /// Ray/plane intersection (Haines 1989, "Essential Ray Tracing Algorithms", in Glassner
@@ -99,15 +120,7 @@ template <std::floating_point T>
     out->p = p;
     out->n = n;
     out->front_face = n_dot_d < T(0);
-    // The distance of p from the plane, n·(p - q) = n·(o - q) + t (n·d) + the rounding of
-    // o + t d, is the error of n·(q - o) (gamma_4), of the division (u), of n·d times t
-    // (gamma_3) and of the sum (gamma_2), together below gamma_8 (|o|_1 + |q|_1 + |t d|_1),
-    // bounding each |x|_2 by |x|_1. It is given in every coordinate, so that spawn_ray's
-    // offset, dot(|n|, p_error) = p_error |n|_1 >= p_error, clears it whatever n is.
-    const auto l1 = [](const vec3<T>& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z); };
-    const T distance_error = detail::gamma<T>(8) * (l1(r.origin) + l1(pl.point()) + l1(t * r.direction));
-    // Coordinates near overflow make the sum infinite: the largest finite bound instead.
-    out->p_error = vec3<T>(std::isfinite(distance_error) ? distance_error : std::numeric_limits<T>::max());
+    out->p_error = detail::plane_hit_error(r.origin, pl.point(), t, r.direction);
     const vec3<T> offset = p - pl.point();
     out->uv = vec2<T>(glm::dot(offset, pl.tangent()), glm::dot(offset, pl.bitangent()));
     out->dpdu = pl.tangent();

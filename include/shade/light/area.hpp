@@ -16,6 +16,7 @@
 #include <shade/core/sampling.hpp>
 #include <shade/core/types.hpp>
 #include <shade/geometry/hit.hpp>
+#include <shade/geometry/plane.hpp>
 #include <shade/geometry/ray.hpp>
 #include <shade/light/area_emitter.hpp>
 #include <shade/light/emission.hpp>
@@ -165,6 +166,7 @@ public:
         out->t = t;
         out->p = x;
         out->n = normal_;
+        out->p_error = detail::plane_hit_error(r.origin, corner_, t, r.direction);
         out->front_face = n_dot_d < T(0);
         out->uv = vec2<T>(s, w);
         out->dpdu = edge_u_;

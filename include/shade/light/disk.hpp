@@ -13,6 +13,7 @@
 #include <shade/core/sampling.hpp>
 #include <shade/core/types.hpp>
 #include <shade/geometry/hit.hpp>
+#include <shade/geometry/plane.hpp>
 #include <shade/geometry/ray.hpp>
 #include <shade/light/area_emitter.hpp>
 #include <shade/light/emission.hpp>
@@ -117,6 +118,7 @@ public:
         out->t = t;
         out->p = p;
         out->n = axes_.n;
+        out->p_error = detail::plane_hit_error(r.origin, center_, t, r.direction);
         out->front_face = n_dot_d < T(0);
         out->uv = vec2<T>((T(1) + x / radius_) / T(2), (T(1) + y / radius_) / T(2));
         out->dpdu = (T(2) * radius_) * axes_.t;
