@@ -54,6 +54,9 @@ options:
   --sampler S      path integrator: independent (default) uniform numbers, or sobol:
                    Owen-scrambled Sobol points, less noise at the same spp (use powers
                    of two)
+  --lights S       path integrator: which light next-event estimation samples: bvh
+                   (default; the light BVH, by power, distance and orientation), power
+                   (by emitted power) or uniform
   --envmap FILE    path integrator only: light the scene with a latitude-longitude
                    environment map, linear radiance from a PFM or OpenEXR file (row 0
                    at the zenith, +y up, the image's centre toward -z), importance-sampled
@@ -138,6 +141,12 @@ arguments parse(int argc, char** argv) {
             if (m == "independent") a.render.sampler = tracer::sampler_kind::independent;
             else if (m == "sobol") a.render.sampler = tracer::sampler_kind::sobol;
             else throw ex::usage_error("option --sampler must be independent or sobol, got '" + m + "'");
+        } else if (args.option("--lights")) {
+            const std::string m(args.text());
+            if (m == "bvh") a.render.path.lights = tracer::light_selection::bvh;
+            else if (m == "power") a.render.path.lights = tracer::light_selection::power;
+            else if (m == "uniform") a.render.path.lights = tracer::light_selection::uniform;
+            else throw ex::usage_error("option --lights must be bvh, power or uniform, got '" + m + "'");
         } else if (args.option("--envmap")) {
             a.envmap = args.path();
         } else if (args.option("--envmap-scale")) {

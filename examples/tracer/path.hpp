@@ -21,6 +21,7 @@
 #include <shade/light/light_sampler.hpp>
 #include <shade/light/sample_context.hpp>
 
+#include "light_choice.hpp"
 #include "scene.hpp"
 
 namespace tracer {
@@ -38,12 +39,35 @@ struct path_options {
     int max_bounces = 1024;     ///< scattering events at most (1: direct lighting only)
     int roulette_after = 3;     ///< Russian roulette from this bounce on
     strategy sampling = strategy::mis;
+    light_selection lights = light_selection::bvh; ///< how next-event estimation picks its light
 };
 
 namespace detail {
 
 /// Largest channel.
 inline real max_channel(const rgb& c) { return std::max(c.x, std::max(c.y, c.z)); }
+
+/// Whether light `index` (scene::lights; the environment map at lights.size()) is
+/// visible from `origin` (already off its surface) along its sample ls, without an epsilon
+/// at the light's end:
+///   * lights at infinity: nothing blocks the ray (origin, l) at any distance;
+///   * lights that are scene geometry (object::emitter): the closest hit along (origin, l)
+///     is that light itself (object::light_at gives its index). A flat or convex emitter
+///     cannot hide its own sampled point, and asking which surface is hit first avoids
+///     comparing the light's distance with another routine's rounding of it;
+///   * other lights (points, spots, lights without geometry): nothing blocks the segment
+///     up to the light's distance (nothing of the scene is at the light to tie with).
+inline bool light_visible(const scene& s, std::size_t index, const vec3& origin, const shade::incident_sample<real>& ls) {
+    if (std::isinf(ls.distance)) return !s.occluded(shade::ray<real>{origin, ls.l, 0, ls.distance});
+    const bool is_geometry = index < s.lights.size() && std::any_of(s.objects.begin(), s.objects.end(), [&](const object& o) {
+        if (o.emitter < 0 || index < std::size_t(o.emitter)) return false;
+        const std::size_t count = o.emitter_per_triangle && o.mesh ? o.mesh->triangle_count() : 1;
+        return index - std::size_t(o.emitter) < count;
+    });
+    if (!is_geometry) return !s.occluded(shade::ray<real>{origin, ls.l, 0, ls.distance});
+    const auto h = s.intersect(shade::ray<real>{origin, ls.l});
+    return h && s.objects[h->object].light_at(h->triangle) == int(index);
+}
 
 } // namespace detail
 
@@ -53,11 +77,13 @@ inline real max_channel(const rgb& c) { return std::max(c.x, std::max(c.y, c.z))
 ///
 /// At every vertex with a density (a BRDF, or rough glass) the direct light is estimated
 /// twice and the two combined by MIS (Veach 1997, ch. 9; shade::power_heuristic): (a)
-/// next-event estimation: one light chosen uniformly (shade::uniform_light_sampler,
-/// probability 1/N), sample_incident toward it, a shadow ray, weight
-/// w_l = power_heuristic(P_l, P_f); (b) the BSDF-sampled continuation ray: when it hits an
-/// emitter (or leaves the scene into an environment light), its radiance counts with weight
-/// power_heuristic(P_f, P_l), P_l = pdf_incident / N at the previous vertex. Delta lights
+/// next-event estimation: one light chosen by `lights` (uniformly, by power or by the light
+/// BVH; probability P(i | vertex)), sample_incident toward it, a shadow ray
+/// (detail::light_visible: for lights that are scene geometry, whether the first surface
+/// along it is the light), weight w_l = power_heuristic(P_l, P_f); (b) the BSDF-sampled
+/// continuation ray: when it hits an emitter (or leaves the scene into an environment
+/// light), its radiance counts with weight power_heuristic(P_f, P_l),
+/// P_l = pdf_incident x P(i | previous vertex). Delta lights
 /// are reached by (a) alone, with weight 1; the camera ray's first hit counts with weight 1.
 /// Above a BRDF, light and continuation stay above the geometric normal. At rough glass
 /// (shade::rough_dielectric, evaluated with the surface's outward normal, so that the side
@@ -77,12 +103,12 @@ inline real max_channel(const rgb& c) { return std::max(c.x, std::max(c.y, c.z))
 /// BSDF's lobe (1D) and direction (2D), Russian roulette (1D); a strategy that skips a
 /// draw still takes its numbers, so each decision keeps its dimension.
 template <shade::sampler S>
-rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_options& options) {
+rgb trace_path(const scene& s, const light_chooser& lights, shade::ray<real> r, S& sampler,
+               const path_options& options) {
     rgb radiance(0);
     rgb beta(1);
     // The scene's lights and, when it has one, its environment map (index lights.size()).
     const std::size_t map_index = s.lights.size();
-    const shade::uniform_light_sampler<real> light_sampler(s.lights.size() + (s.environment_map ? 1 : 0));
     real previous_brdf_pdf = 0; // 0: the ray came from the camera or a specular bounce
     // The product of eta^2 over the refractions so far: radiance-mode weights scale by
     // 1 / eta^2 entering a denser medium, which Russian roulette must not mistake for lost
@@ -97,7 +123,7 @@ rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_option
         const auto weight = [&](std::size_t light_index, real light_pdf) -> real {
             if (from_camera || options.sampling == strategy::brdf) return 1;
             if (options.sampling == strategy::light) return 0;
-            return shade::power_heuristic(previous_brdf_pdf, light_sampler.probability(light_index) * light_pdf);
+            return shade::power_heuristic(previous_brdf_pdf, lights.probability(previous, light_index) * light_pdf);
         };
         const auto emission_weight = [&](std::size_t light_index) -> real {
             return weight(light_index, s.lights[light_index].pdf_incident(previous, r.direction));
@@ -185,7 +211,7 @@ rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_option
                   : shade::light_sample_context<real>{above, h->geometric_n, h->shading_n};
         const real u_light = sampler.next_1d();
         const vec2 u_point = sampler.next_2d();
-        const auto choice = light_sampler.sample(u_light);
+        const auto choice = lights.sample(here, u_light);
         if (options.sampling != strategy::brdf && choice) {
             const real pick = choice->probability;
             const auto ls = choice->index == map_index ? s.environment_map->sample_incident(here.p, u_point)
@@ -195,9 +221,7 @@ rgb trace_path(const scene& s, shade::ray<real> r, S& sampler, const path_option
                 // refraction (shade/bsdf/bsdf.hpp).
                 const rgb f = f_at(ls->l);
                 const real cos_l = std::abs(glm::dot(at.n(), ls->l));
-                const shade::ray<real> shadow{origin_toward(ls->l), ls->l, 0,
-                                              std::isinf(ls->distance) ? ls->distance : ls->distance * (1 - 1e-9)};
-                if (f != rgb(0) && !s.occluded(shadow)) {
+                if (f != rgb(0) && detail::light_visible(s, choice->index, origin_toward(ls->l), *ls)) {
                     if (ls->delta) {
                         radiance += beta * f * ls->radiance * (cos_l / pick);
                     } else {

@@ -79,15 +79,15 @@ inline rgb trace(const scene& s, const shade::ray<real>& r, shade::rng& random, 
 /// the radiance the chosen integrator estimates along it. The path integrator draws its
 /// numbers from `sampler` (started here at (x, y, k)); the classic one from `random`.
 template <shade::sampler S>
-rgb sample_pixel(const scene& s, const render_options& options, int x, int y, int k, S& sampler,
-                 shade::rng& random) {
+rgb sample_pixel(const scene& s, const light_chooser& lights, const render_options& options, int x, int y, int k,
+                 S& sampler, shade::rng& random) {
     sampler.start_pixel_sample(std::uint32_t(x), std::uint32_t(y), std::uint32_t(k));
     const bool centre = options.spp == 1 || !options.jitter;
     const vec2 jitter = sampler.next_2d();
     const real jx = centre ? real(0.5) : jitter.x;
     const real jy = centre ? real(0.5) : jitter.y;
     const auto r = s.camera->ray_for_raster(real(x) + jx, real(y) + jy, options.width, options.height);
-    if (options.method == integrator::path) return trace_path(s, r, sampler, options.path);
+    if (options.method == integrator::path) return trace_path(s, lights, r, sampler, options.path);
     return trace(s, r, random, options.lighting);
 }
 
@@ -119,6 +119,7 @@ inline radiance_image render(const scene& s, const render_options& options) {
 
     const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
     const unsigned threads = options.threads > 0 ? unsigned(options.threads) : hardware;
+    const light_chooser lights(s, options.path.lights);
     std::atomic<int> next_row{0};
     // Rows are the bar's steps; it draws only on a terminal (support/progress.hpp).
     shade::examples::progress bar("trace", std::uint64_t(options.height), options.progress);
@@ -130,7 +131,7 @@ inline radiance_image render(const scene& s, const render_options& options) {
                     const std::uint64_t index = std::uint64_t(y) * std::uint64_t(options.width) + std::uint64_t(x);
                     shade::rng random(options.seed, index);
                     rgb sum(0);
-                    for (int k = 0; k < options.spp; ++k) sum += sample_pixel(s, options, x, y, k, sampler, random);
+                    for (int k = 0; k < options.spp; ++k) sum += sample_pixel(s, lights, options, x, y, k, sampler, random);
                     image.pixels[std::size_t(index)] = sum / real(options.spp);
                 }
                 bar.advance();

@@ -44,6 +44,7 @@ image_estimate estimate(const tracer::scene& s, const tracer::render_options& op
     image_estimate out;
     rgb sum(0), sum2(0);
     const double n_total = double(options.width) * double(options.height) * double(options.spp);
+    const tracer::light_chooser lights(s, options.path.lights);
     for (int y = 0; y < options.height; ++y) {
         for (int x = 0; x < options.width; ++x) {
             const std::uint64_t index = std::uint64_t(y) * std::uint64_t(options.width) + std::uint64_t(x);
@@ -51,7 +52,7 @@ image_estimate estimate(const tracer::scene& s, const tracer::render_options& op
             shade::independent_sampler<real> sampler(options.seed);
             rgb p_sum(0), p_sum2(0);
             for (int k = 0; k < options.spp; ++k) {
-                const rgb c = tracer::sample_pixel(s, options, x, y, k, sampler, random);
+                const rgb c = tracer::sample_pixel(s, lights, options, x, y, k, sampler, random);
                 p_sum += c;
                 p_sum2 += c * c;
             }
@@ -693,4 +694,65 @@ TEST_CASE("path: a rough glass sphere in the white furnace: no pixel above 1, th
     CHECK(not_one == 0);
     check_same_image(light_only, bsdf_only, w, h);
     check_same_image(mis, bsdf_only, w, h);
+}
+
+TEST_CASE("path: uniform, power and light-BVH selection agree, and the BVH is the least noisy among many lights") {
+    // A white room whose ceiling holds 8 x 8 small emissive quads (128 triangle lights) of
+    // radiance 0.05 to 50 (a 1000:1 range, in a shuffled pattern), each quad facing down,
+    // plus 8 more facing up at the ceiling itself (they light only the ceiling). All three
+    // selections are unbiased, so the image means agree within 3 standard errors; the light
+    // BVH, which weighs power, distance and orientation at each point, must have less
+    // variance than both, at least half that of power selection (the summed per-pixel
+    // variance of one-bounce estimates through the pixel centres).
+    using L = shade::lambert<real>;
+    tracer::scene s;
+    s.name = "many lights";
+    s.camera = tracer::detail::look(vec3(0, 1, 3.6), vec3(0, 1, 0), 38, 1.0);
+    s.background = rgb(0);
+    const rgb white(0.75);
+    s.add_physical_mesh(tracer::detail::quad(vec3(-1, 0, -1), vec3(0, 0, 2), vec3(2, 0, 0)), L(white));
+    s.add_physical_mesh(tracer::detail::quad(vec3(-1, 2, -1), vec3(2, 0, 0), vec3(0, 0, 2)), L(white));
+    s.add_physical_mesh(tracer::detail::quad(vec3(-1, 0, -1), vec3(2, 0, 0), vec3(0, 2, 0)), L(white));
+    s.add_physical_mesh(tracer::detail::quad(vec3(-1, 0, -1), vec3(0, 2, 0), vec3(0, 0, 2)), L(white));
+    s.add_physical_mesh(tracer::detail::quad(vec3(1, 0, -1), vec3(0, 0, 2), vec3(0, 2, 0)), L(white));
+    shade::rng g(7);
+    for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 8; ++i) {
+            const real L_e = real(0.05) * std::pow(real(1000), g.uniform<real>());
+            const vec3 corner(real(-0.9) + real(0.225) * real(i), real(1.98), real(-0.9) + real(0.225) * real(j));
+            // Edges u x v = (0, -1, 0): facing the floor.
+            s.add_emissive_mesh(tracer::detail::quad(corner, vec3(0.1, 0, 0), vec3(0, 0, 0.1)),
+                                tracer::detail::radiance(L_e), std::nullopt);
+        }
+    for (int i = 0; i < 8; ++i) {
+        const vec3 corner(real(-0.9) + real(0.225) * real(i), real(1.9), real(0.5));
+        s.add_emissive_mesh(tracer::detail::quad(corner, vec3(0, 0, 0.1), vec3(0.1, 0, 0)), tracer::detail::radiance(20),
+                            std::nullopt);
+    }
+    REQUIRE(s.lights.size() == 144);
+    const int w = 12, h = 12;
+    image_estimate e[3];
+    const tracer::light_selection kinds[3] = {tracer::light_selection::uniform, tracer::light_selection::power,
+                                              tracer::light_selection::bvh};
+    double variance[3] = {};
+    for (int k = 0; k < 3; ++k) {
+        auto options = path_options(w, h, 64);
+        options.path.lights = kinds[k];
+        options.path.max_bounces = 1; // direct light: where selection matters
+        options.jitter = false;       // no variance of the pixel area, alike for all three
+        e[k] = estimate(s, options);
+        for (const auto& p : e[k].pixels)
+            for (int c = 0; c < 3; ++c) variance[k] += double(p.standard_error[c] * p.standard_error[c]);
+    }
+    MESSAGE("summed pixel variance: uniform ", variance[0], ", power ", variance[1], ", bvh ", variance[2]);
+    for (int k = 1; k < 3; ++k)
+        for (int c = 0; c < 3; ++c) {
+            CAPTURE(k);
+            CAPTURE(c);
+            const double se = std::sqrt(double(e[0].standard_error[c] * e[0].standard_error[c] +
+                                               e[k].standard_error[c] * e[k].standard_error[c]));
+            CHECK(std::abs(double(e[0].mean[c] - e[k].mean[c])) <= 3 * se);
+        }
+    CHECK(variance[2] < variance[0]);
+    CHECK(2 * variance[2] < variance[1]);
 }
