@@ -722,11 +722,11 @@ TEST_CASE("path: uniform, power and light-BVH selection agree, and the BVH is th
             const vec3 corner(real(-0.9) + real(0.225) * real(i), real(1.98), real(-0.9) + real(0.225) * real(j));
             // Edges u x v = (0, -1, 0): facing the floor.
             s.add_emissive_mesh(tracer::detail::quad(corner, vec3(0.1, 0, 0), vec3(0, 0, 0.1)),
-                                tracer::detail::radiance(L_e), std::nullopt);
+                                rgb(L_e), std::nullopt);
         }
     for (int i = 0; i < 8; ++i) {
         const vec3 corner(real(-0.9) + real(0.225) * real(i), real(1.9), real(0.5));
-        s.add_emissive_mesh(tracer::detail::quad(corner, vec3(0, 0, 0.1), vec3(0.1, 0, 0)), tracer::detail::radiance(20),
+        s.add_emissive_mesh(tracer::detail::quad(corner, vec3(0, 0, 0.1), vec3(0.1, 0, 0)), rgb(20),
                             std::nullopt);
     }
     REQUIRE(s.lights.size() == 144);
