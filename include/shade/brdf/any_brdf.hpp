@@ -3,6 +3,7 @@
 // whose materials are of several types (a std::vector<any_brdf<double>>).
 
 #include <concepts>
+#include <memory>
 #include <optional>
 #include <type_traits>
 #include <utility>
@@ -15,19 +16,20 @@
 namespace shade {
 
 /// Any BRDF of scalar type T behind one type (type erasure, like shade::any_light for
-/// lights): it owns a copy of the BRDF on the heap (copying an any_brdf copies the BRDF;
-/// <memory> is left out to keep the header cheap). It is a shade::brdf, a
-/// shade::sampled_brdf and a shade::split_brdf:
+/// lights), in the physical interface a path tracer uses: f, sample and pdf. It owns a copy
+/// of the BRDF through std::unique_ptr (copying an any_brdf copies the BRDF; moving moves
+/// the pointer). It is a shade::brdf and a shade::sampled_brdf:
 ///   * f forwards to the held BRDF;
 ///   * sample and pdf forward to the held BRDF's when it is a shade::sampled_brdf; for a
 ///     BRDF with f only they fall back to cosine-weighted sampling about the shading
 ///     normal, density n·l / pi (Malley's method, shade::square_to_cosine_hemisphere),
 ///     with f evaluated at the drawn direction: unbiased for any BRDF (the density is
 ///     positive wherever f can be), exact for Lambert, noisy for sharp lobes;
-///     has_own_sampler() says which;
-///   * f_diffuse and f_specular forward to a shade::split_brdf; for any other BRDF
-///     f_diffuse = f and f_specular = 0, which is how shade::lit lights an unsplit BRDF,
-///     so wrapping never changes what lit computes.
+///     has_own_sampler() says which.
+/// The classic model's split into diffuse and specular parts (shade::split_brdf) is not part
+/// of it: shade::lit lights an any_brdf as an unsplit BRDF, all of f with the light's
+/// diffuse colour. Classic shading with separate specular colours uses the model's own type
+/// (shade::lit<Model>), where the split is known at compile time.
 template <std::floating_point T>
 class any_brdf {
 public:
@@ -37,23 +39,16 @@ public:
     template <brdf B>
         requires(!std::same_as<std::remove_cvref_t<B>, any_brdf> && std::same_as<scalar_of<B>, T>)
     any_brdf(B b) // NOLINT: implicit by design
-        : model_(new model<B>(std::move(b))) {}
+        : model_(std::make_unique<model<B>>(std::move(b))) {}
 
     any_brdf(const any_brdf& other) : model_(other.model_->clone()) {}
-    any_brdf(any_brdf&& other) noexcept : model_(std::exchange(other.model_, nullptr)) {}
+    any_brdf(any_brdf&& other) noexcept = default;
     any_brdf& operator=(const any_brdf& other) {
-        if (this != &other) {
-            interface* copy = other.model_->clone();
-            delete model_;
-            model_ = copy;
-        }
+        if (this != &other) model_ = other.model_->clone();
         return *this;
     }
-    any_brdf& operator=(any_brdf&& other) noexcept {
-        std::swap(model_, other.model_);
-        return *this;
-    }
-    ~any_brdf() { delete model_; }
+    any_brdf& operator=(any_brdf&& other) noexcept = default;
+    ~any_brdf() = default;
 
     /// The held BRDF's value (1/sr, no cosine).
     [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const {
@@ -71,16 +66,6 @@ public:
         return model_->pdf(l, v, at);
     }
 
-    /// The diffuse part (f itself for a BRDF that does not split).
-    [[nodiscard]] rgb<T> f_diffuse(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const {
-        return model_->f_diffuse(l, v, at);
-    }
-
-    /// The specular part (0 for a BRDF that does not split).
-    [[nodiscard]] rgb<T> f_specular(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const {
-        return model_->f_specular(l, v, at);
-    }
-
     /// True when the held BRDF samples itself (a shade::sampled_brdf), false when the
     /// cosine-weighted fallback is used.
     [[nodiscard]] bool has_own_sampler() const noexcept { return model_->has_own_sampler(); }
@@ -92,10 +77,8 @@ private:
         virtual std::optional<brdf_sample<T>> sample(const vec3<T>& v, T uc, const vec2<T>& u,
                                                      const surface_point<T>& at) const = 0;
         virtual T pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const = 0;
-        virtual rgb<T> f_diffuse(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const = 0;
-        virtual rgb<T> f_specular(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const = 0;
         virtual bool has_own_sampler() const noexcept = 0;
-        virtual interface* clone() const = 0;
+        virtual std::unique_ptr<interface> clone() const = 0;
     };
 
     template <class B>
@@ -121,31 +104,14 @@ private:
                 return detail::cosine_brdf_pdf(l, v, at);
             }
         }
-        rgb<T> f_diffuse(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const override {
-            if constexpr (split_brdf<B>) {
-                return held.f_diffuse(l, v, at);
-            } else {
-                return held.f(l, v, at);
-            }
-        }
-        rgb<T> f_specular(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const override {
-            if constexpr (split_brdf<B>) {
-                return held.f_specular(l, v, at);
-            } else {
-                (void)l;
-                (void)v;
-                (void)at;
-                return rgb<T>(0);
-            }
-        }
         bool has_own_sampler() const noexcept override { return sampled_brdf<B>; }
-        interface* clone() const override { return new model(held); }
+        std::unique_ptr<interface> clone() const override { return std::make_unique<model>(held); }
 
         B held;
     };
 
-    interface* model_; // owned; null only in a moved-from any_brdf (which may only be
-                       // assigned to or destroyed)
+    std::unique_ptr<interface> model_; // null only in a moved-from any_brdf (which may only be
+                                       // assigned to or destroyed)
 };
 
 } // namespace shade
