@@ -10,10 +10,9 @@
 #include <variant>
 #include <vector>
 
-#include <shade/core/sampling.hpp>
 #include <shade/geometry/aabb.hpp>
-#include <shade/light/environment_map.hpp>
 #include <shade/light/bvh_light_sampler.hpp>
+#include <shade/light/environment_map.hpp>
 #include <shade/light/light_bounds_of.hpp>
 #include <shade/light/light_sampler.hpp>
 #include <shade/light/sample_context.hpp>
@@ -48,23 +47,6 @@ inline real scene_radius(const scene& s) {
     return std::max(real(1), real(0.5) * glm::length(box.hi - box.lo));
 }
 
-/// The luminance of the power an environment map sends onto a sphere of radius R, by the
-/// reasoning of shade::any_light::power: pi R^2 times the integral of the radiance over
-/// all directions (each direction's parallel beam crosses the sphere's cross-section), the
-/// integral estimated on a 128 x 128 stratified grid of directions.
-inline real environment_map_power(const shade::environment_map_light<real>& map, real radius) {
-    const int n = 128;
-    double sum = 0;
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            const vec3 w = shade::square_to_uniform_sphere(shade::stratified_u<real>(i, j, n, vec2(real(0.5))));
-            const rgb L = map.incident_radiance(vec3(0), w);
-            sum += 0.2126 * double(L.x) + 0.7152 * double(L.y) + 0.0722 * double(L.z);
-        }
-    const double integral = 4 * shade::pi<double> * sum / (double(n) * double(n));
-    return real(shade::pi<double> * double(radius) * double(radius) * integral);
-}
-
 } // namespace detail
 
 /// The scene's lights (scene::lights, then the environment map as index lights.size() when
@@ -82,21 +64,19 @@ public:
         }
         const real radius = detail::scene_radius(s);
         if (strategy == light_selection::power) {
-            std::vector<real> powers;
+            std::vector<rgb> powers;
             powers.reserve(count);
-            for (const auto& l : s.lights) {
-                const rgb p = l.power(radius);
-                powers.push_back(real(0.2126) * p.x + real(0.7152) * p.y + real(0.0722) * p.z);
-            }
-            if (s.environment_map) powers.push_back(detail::environment_map_power(*s.environment_map, radius));
-            sampler_.emplace<shade::power_light_sampler<real>>(std::span<const real>(powers));
+            for (const auto& l : s.lights) powers.push_back(l.power(radius));
+            if (s.environment_map) powers.push_back(s.environment_map->power(radius));
+            sampler_ = shade::power_light_sampler<real>::from_rgb(std::span<const rgb>(powers));
             return;
         }
         std::vector<shade::light_bounds<real>> bounds;
         bounds.reserve(count);
         for (const auto& l : s.lights) bounds.push_back(shade::light_bounds_of(l, radius));
         if (s.environment_map)
-            bounds.push_back(shade::light_bounds<real>::infinite(detail::environment_map_power(*s.environment_map, radius)));
+            bounds.push_back(
+                shade::light_bounds<real>::infinite(shade::detail::power_luminance(s.environment_map->power(radius))));
         sampler_.emplace<shade::bvh_light_sampler<real>>(std::span<const shade::light_bounds<real>>(bounds));
     }
 
