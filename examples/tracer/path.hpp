@@ -47,28 +47,6 @@ namespace detail {
 /// Largest channel.
 inline real max_channel(const rgb& c) { return std::max(c.x, std::max(c.y, c.z)); }
 
-/// Whether light `index` (scene::lights; the environment map at lights.size()) is
-/// visible from `origin` (already off its surface) along its sample ls, without an epsilon
-/// at the light's end:
-///   * lights at infinity: nothing blocks the ray (origin, l) at any distance;
-///   * lights that are scene geometry (object::emitter): the closest hit along (origin, l)
-///     is that light itself (object::light_at gives its index). A flat or convex emitter
-///     cannot hide its own sampled point, and asking which surface is hit first avoids
-///     comparing the light's distance with another routine's rounding of it;
-///   * other lights (points, spots, lights without geometry): nothing blocks the segment
-///     up to the light's distance (nothing of the scene is at the light to tie with).
-inline bool light_visible(const scene& s, std::size_t index, const vec3& origin, const shade::incident_sample<real>& ls) {
-    if (std::isinf(ls.distance)) return !s.occluded(shade::ray<real>{origin, ls.l, 0, ls.distance});
-    const bool is_geometry = index < s.lights.size() && std::any_of(s.objects.begin(), s.objects.end(), [&](const object& o) {
-        if (o.emitter < 0 || index < std::size_t(o.emitter)) return false;
-        const std::size_t count = o.emitter_per_triangle && o.mesh ? o.mesh->triangle_count() : 1;
-        return index - std::size_t(o.emitter) < count;
-    });
-    if (!is_geometry) return !s.occluded(shade::ray<real>{origin, ls.l, 0, ls.distance});
-    const auto h = s.intersect(shade::ray<real>{origin, ls.l});
-    return h && s.objects[h->object].light_at(h->triangle) == int(index);
-}
-
 } // namespace detail
 
 /// The radiance arriving along camera ray r (W/(m^2 sr)), estimated by one path. Objects
@@ -79,7 +57,7 @@ inline bool light_visible(const scene& s, std::size_t index, const vec3& origin,
 /// twice and the two combined by MIS (Veach 1997, ch. 9; shade::power_heuristic): (a)
 /// next-event estimation: one light chosen by `lights` (uniformly, by power or by the light
 /// BVH; probability P(i | vertex)), sample_incident toward it, a shadow ray
-/// (detail::light_visible: for lights that are scene geometry, whether the first surface
+/// (scene::light_visible: for lights that are scene geometry, whether the first surface
 /// along it is the light), weight w_l = power_heuristic(P_l, P_f); (b) the BSDF-sampled
 /// continuation ray: when it hits an emitter (or leaves the scene into an environment
 /// light), its radiance counts with weight power_heuristic(P_f, P_l),
@@ -221,7 +199,7 @@ rgb trace_path(const scene& s, const light_chooser& lights, shade::ray<real> r, 
                 // refraction (shade/bsdf/bsdf.hpp).
                 const rgb f = f_at(ls->l);
                 const real cos_l = std::abs(glm::dot(at.n(), ls->l));
-                if (f != rgb(0) && detail::light_visible(s, choice->index, origin_toward(ls->l), *ls)) {
+                if (f != rgb(0) && s.light_visible(choice->index, origin_toward(ls->l), ls->l, ls->distance)) {
                     if (ls->delta) {
                         radiance += beta * f * ls->radiance * (cos_l / pick);
                     } else {

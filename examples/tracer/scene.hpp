@@ -2,11 +2,13 @@
 // The reference tracer's scene: spheres, planes and triangle meshes, each with a material
 // (any shade::shader, type-erased), lit by any of shade's lights, with shadow rays.
 
+#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -391,8 +393,40 @@ public:
         // The same origin for every sample: off the surface on the side of the geometric
         // normal (shadow rays toward lights below it are never traced).
         const vec3 origin = shade::offset_ray_origin(q.at.p, q.p_error, q.geometric_n, q.geometric_n);
-        const auto unoccluded = [&](const light_sample& ls) { return !q.shadows || visible(origin, q.geometric_n, ls); };
-        return shade::sum_over_lights(s, q.at, q.v, lights, unoccluded, q.options.area_samples_per_side, jitter);
+        // One light at a time, so that each shadow ray knows which light it goes to.
+        rgb sum(0);
+        for (std::size_t i = 0; i < lights.size(); ++i) {
+            const auto unoccluded = [&](const light_sample& ls) {
+                return !q.shadows || (glm::dot(ls.l, q.geometric_n) > 0 && light_visible(i, origin, ls.l, ls.distance));
+            };
+            sum += shade::sum_over_lights(s, q.at, q.v, std::span<const shade::any_light<real>>(&lights[i], 1), unoccluded,
+                                          q.options.area_samples_per_side, jitter);
+        }
+        return sum;
+    }
+
+    /// Whether light `index` (of `lights`) is visible from `origin` (already off its
+    /// surface) in the unit direction l, the light's sample being `distance` away, without
+    /// an epsilon at the light's end:
+    ///   * at infinity: nothing blocks the ray (origin, l);
+    ///   * a light that is scene geometry (object::emitter): the closest hit along
+    ///     (origin, l) is that light itself (object::light_at gives its index). A flat or
+    ///     convex emitter cannot hide its own sampled point, and asking which surface is hit
+    ///     first avoids comparing the light's distance with another routine's rounding of it;
+    ///   * any other light (points, spots, lights without geometry): nothing blocks the
+    ///     segment up to the light's distance (nothing of the scene is at the light to tie with).
+    /// An index past `lights` (the environment map of the path integrator) is at infinity.
+    [[nodiscard]] bool light_visible(std::size_t index, const vec3& origin, const vec3& l, real distance) const {
+        if (std::isinf(distance)) return !occluded(shade::ray<real>{origin, l, 0, distance});
+        const bool is_geometry =
+            index < lights.size() && std::any_of(objects.begin(), objects.end(), [&](const object& o) {
+                if (o.emitter < 0 || index < std::size_t(o.emitter)) return false;
+                const std::size_t count = o.emitter_per_triangle && o.mesh ? o.mesh->triangle_count() : 1;
+                return index - std::size_t(o.emitter) < count;
+            });
+        if (!is_geometry) return !occluded(shade::ray<real>{origin, l, 0, distance});
+        const auto h = intersect(shade::ray<real>{origin, l});
+        return h && objects[h->object].light_at(h->triangle) == int(index);
     }
 
 private:
@@ -401,14 +435,6 @@ private:
                                   const vec3& p_error, const vec3& v, shade::rng& random,
                                   const lighting_options& options, bool shadows) const {
         return o.surface(lighting_query{*this, at, geometric_n, p_error, v, random, options, shadows});
-    }
-
-    /// Shadow ray from `origin` (shade::offset_ray_origin of the shaded point) toward the light
-    /// sample. A light below the geometric surface is always shadowed.
-    [[nodiscard]] bool visible(const vec3& origin, const vec3& geometric_n, const light_sample& s) const {
-        if (!(glm::dot(s.l, geometric_n) > 0)) return false;
-        shade::ray<real> r{origin, s.l, 0, std::isinf(s.distance) ? s.distance : s.distance * (1 - 1e-9)};
-        return !occluded(r);
     }
 };
 
