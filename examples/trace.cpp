@@ -40,7 +40,8 @@ options:
                    lights: hard shadows from point/directional lights, soft from an area light;
                    furnace: a white Lambert sphere in a white environment (path: all 1);
                    furnace-conductor: the same with a rough conductor of F = 1;
-                   glass-furnace: a smooth glass sphere in it, invisible (path: all 1);
+                   glass-furnace: a smooth glass sphere behind a thin pane and a
+                   compensated rough glass sphere in it, invisible (path: all 1);
                    energy: rough gold spheres in a white environment, single
                    scattering (top) and compensated for multiple scattering (bottom);
                    enclosure: inside a glowing sphere of albedo 0.8 (path: all 5);

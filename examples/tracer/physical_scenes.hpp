@@ -18,7 +18,8 @@
 //                      left and green right wall, Lambert) holding the square pyramid of
 //                      examples/data/pyramid.obj, lit by a small spherical area light under
 //                      the ceiling;
-//   glass-furnace:     a smooth glass sphere and a thin pane in the white furnace (all 1);
+//   glass-furnace:     a smooth glass sphere behind a thin pane and a compensated rough
+//                      glass sphere in the white furnace (all 1);
 //   glass:             the cornell room with a rough glass pyramid, a smooth glass sphere
 //                      and a thin glass pane.
 
@@ -225,14 +226,24 @@ inline scene make_cornell(real aspect) {
     return s;
 }
 
-/// glass-furnace: a sphere of smooth glass (eta 1.5) and a thin glass pane in front of
-/// its left half, in the white furnace. Lossless interfaces neither absorb nor emit, so both
-/// are invisible: every pixel 1 (the (eta_v / eta_l)^2 of radiance through each refraction
-/// cancels between entering and leaving; the pane reflects R' and transmits 1 - R').
+/// The GGX roughness (alpha) of the glass-furnace scene's compensated rough sphere.
+inline constexpr real glass_furnace_alpha = 0.5;
+
+/// glass-furnace: in the white furnace, a sphere of smooth glass (eta 1.5, radius 0.7, on
+/// the left) with a thin glass pane (eta 1.5) in front of its left half, and a sphere of
+/// compensated rough glass (shade::compensated_rough_dielectric over GGX alpha
+/// glass_furnace_alpha, eta 1.5, radius 0.7, on the right). Lossless interfaces neither
+/// absorb nor emit, so all three are invisible: every pixel 1 (the (eta_v / eta_l)^2 of
+/// radiance through each refraction cancels between entering and leaving; the pane
+/// reflects R' and transmits 1 - R'; the rough sphere's multiple-scattering lobe returns
+/// what its microfacets lose, up to the error of the compensation's albedo tables).
+/// Objects 0 the smooth sphere, 1 the pane, 2 the rough sphere.
 inline scene make_glass_furnace(real aspect) {
     scene s = detail::white_furnace("glass-furnace", aspect);
-    s.add_glass_sphere(shade::sphere<real>(vec3(0), 1), 1.5);
-    s.add_glass_pane(detail::quad(vec3(-1.6, -0.6, 1.2), vec3(0.8, 0, 0.3), vec3(0, 1.2, 0)), 1.5);
+    s.add_glass_sphere(shade::sphere<real>(vec3(-0.8, 0, 0), 0.7), 1.5);
+    s.add_glass_pane(detail::quad(vec3(-1.1, -0.6, 1.2), vec3(0.55, 0, 0.3), vec3(0, 1.2, 0)), 1.5);
+    s.add_rough_glass_sphere(shade::sphere<real>(vec3(0.8, 0, 0), 0.7), glass_furnace_alpha, 1.5,
+                             rough_glass_model::compensated);
     return s;
 }
 

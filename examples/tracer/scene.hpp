@@ -20,6 +20,8 @@
 #include <shade/brdf/any_brdf.hpp>
 #include <shade/brdf/lambert.hpp>
 #include <shade/brdf/microfacet/ggx.hpp>
+#include <shade/bsdf/bsdf.hpp>
+#include <shade/bsdf/compensated_rough_dielectric.hpp>
 #include <shade/bsdf/rough_dielectric.hpp>
 #include <shade/bsdf/smooth_dielectric.hpp>
 #include <shade/bsdf/thin_dielectric.hpp>
@@ -102,6 +104,64 @@ struct scene_hit {
     vec3 barycentric{1, 0, 0}; ///< for meshes
 };
 
+/// Which BSDF a rough glass object has (both over GGX microfacets).
+enum class rough_glass_model {
+    single_scattering, ///< shade::rough_dielectric: loses the light scattered between microfacets
+    compensated        ///< shade::compensated_rough_dielectric: gives that light back (R + T = 1)
+};
+
+/// The BSDF of a rough glass object: shade::rough_dielectric<shade::ggx<real>> or
+/// shade::compensated_rough_dielectric<real>, chosen at run time. A shade::bsdf_sampler
+/// whose f, pdf and sample forward to the model it holds (same units: f in 1/sr without
+/// the cosine, pdf in 1/sr over the sphere of directions).
+class rough_glass_bsdf {
+public:
+    using scalar_type = real;
+    using single_scattering_type = shade::rough_dielectric<shade::ggx<real>>;
+    using compensated_type = shade::compensated_rough_dielectric<real>;
+
+    /// Holds the single-scattering model (implicit: an object's rough_glass may be assigned one).
+    rough_glass_bsdf(const single_scattering_type& model) : model_(model) {}
+    /// Holds the compensated model (implicit, as above).
+    rough_glass_bsdf(const compensated_type& model) : model_(model) {}
+
+    /// Which model this is.
+    [[nodiscard]] rough_glass_model model() const noexcept {
+        return std::holds_alternative<compensated_type>(model_) ? rough_glass_model::compensated
+                                                                : rough_glass_model::single_scattering;
+    }
+    /// The model's f(l, v, at): 1/sr without the cosine, radiance mode, l and v on either side.
+    [[nodiscard]] rgb f(const vec3& l, const vec3& v, const shade::surface_point<real>& at) const noexcept {
+        if (const auto* c = std::get_if<compensated_type>(&model_)) return c->f(l, v, at);
+        return std::get<single_scattering_type>(model_).f(l, v, at);
+    }
+    /// The model's pdf(l, v, at): the density (1/sr, over the sphere) with which sample draws l.
+    [[nodiscard]] real pdf(const vec3& l, const vec3& v, const shade::surface_point<real>& at) const noexcept {
+        if (const auto* c = std::get_if<compensated_type>(&model_)) return c->pdf(l, v, at);
+        return std::get<single_scattering_type>(model_).pdf(l, v, at);
+    }
+    /// The model's sample(v, uc, u, at, mode).
+    [[nodiscard]] std::optional<shade::bsdf_sample<real>> sample(const vec3& v, real uc, const vec2& u,
+                                                                 const shade::surface_point<real>& at,
+                                                                 shade::transport_mode mode) const noexcept {
+        if (const auto* c = std::get_if<compensated_type>(&model_)) return c->sample(v, uc, u, at, mode);
+        return std::get<single_scattering_type>(model_).sample(v, uc, u, at, mode);
+    }
+
+private:
+    std::variant<single_scattering_type, compensated_type> model_;
+};
+
+static_assert(shade::bsdf_sampler<rough_glass_bsdf>);
+
+/// Rough glass over shade::ggx(alpha) of relative index eta (n_inside / n_outside) in the
+/// given model. Throws shade::invalid_parameter as ggx and rough_dielectric do.
+inline rough_glass_bsdf make_rough_glass(real alpha, real eta, rough_glass_model model) {
+    const shade::ggx<real> distribution(alpha);
+    if (model == rough_glass_model::compensated) return shade::compensated_rough_dielectric<real>(distribution, eta);
+    return shade::rough_dielectric<shade::ggx<real>>(distribution, eta);
+}
+
 /// One object of the scene.
 struct object {
     enum class kind { sphere, plane, mesh } shape = kind::sphere;
@@ -119,10 +179,11 @@ struct object {
     /// slab (a pane: any surface, either side).
     std::optional<std::variant<shade::smooth_dielectric<real>, shade::thin_dielectric<real>>> glass;
     /// Rough glass instead (path integrator): a rough dielectric interface over GGX
-    /// microfacets, the object a closed shape whose outward normal points to the outside
-    /// of the medium. Unlike `glass` it has a density over the whole sphere, so the path
-    /// integrator samples lights on both sides of it.
-    std::optional<shade::rough_dielectric<shade::ggx<real>>> rough_glass;
+    /// microfacets (single scattering or compensated, see rough_glass_bsdf), the object a
+    /// closed shape whose outward normal points to the outside of the medium. Unlike
+    /// `glass` it has a density over the whole sphere, so the path integrator samples
+    /// lights on both sides of it.
+    std::optional<rough_glass_bsdf> rough_glass;
     int emitter = -1; ///< index into scene::lights of the light this object is the geometry of
     /// For a mesh: each triangle k is a light of its own, scene::lights[emitter + k]
     /// (add_emissive_mesh); otherwise the whole object is scene::lights[emitter].
@@ -230,18 +291,21 @@ struct scene {
         objects.back().glass = shade::thin_dielectric<real>(eta);
     }
     /// A sphere of rough glass: shade::rough_dielectric over shade::ggx(alpha) of relative
-    /// index eta inside (path integrator only; the classic integrator draws it black).
-    /// Throws shade::invalid_parameter as ggx and rough_dielectric do (alpha in [1e-4,
-    /// 1e4]; eta in [1e-4, 1e4], not 1).
-    void add_rough_glass_sphere(const shade::sphere<real>& sphere, real alpha, real eta) {
-        const shade::rough_dielectric<shade::ggx<real>> glass(shade::ggx<real>(alpha), eta);
+    /// index eta inside, or with `model` compensated, shade::compensated_rough_dielectric
+    /// (path integrator only; the classic integrator draws it black). Throws
+    /// shade::invalid_parameter as ggx and rough_dielectric do (alpha in [1e-4, 1e4]; eta
+    /// in [1e-4, 1e4], not 1).
+    void add_rough_glass_sphere(const shade::sphere<real>& sphere, real alpha, real eta,
+                                rough_glass_model model = rough_glass_model::single_scattering) {
+        const rough_glass_bsdf glass = make_rough_glass(alpha, eta, model);
         add_sphere(sphere, make_material(shade::any_brdf<real>(shade::lambert<real>(rgb(0)))));
         objects.back().rough_glass = glass;
     }
     /// A closed mesh of rough glass (its triangles wound counter-clockwise seen from
     /// outside, so that their normals point out of the medium), as add_rough_glass_sphere.
-    void add_rough_glass_mesh(tracer::mesh m, real alpha, real eta) {
-        const shade::rough_dielectric<shade::ggx<real>> glass(shade::ggx<real>(alpha), eta);
+    void add_rough_glass_mesh(tracer::mesh m, real alpha, real eta,
+                              rough_glass_model model = rough_glass_model::single_scattering) {
+        const rough_glass_bsdf glass = make_rough_glass(alpha, eta, model);
         add_mesh(std::move(m), mesh_shading::flat, make_material(shade::any_brdf<real>(shade::lambert<real>(rgb(0)))));
         objects.back().rough_glass = glass;
     }
