@@ -42,6 +42,7 @@
 #include <shade/shade.hpp>
 
 #include "support/cli.hpp"
+#include "support/float_literals.hpp"
 #include "support/progress.hpp"
 
 namespace ex = shade::examples;
@@ -177,22 +178,12 @@ table compute(const std::string& name, const std::string& what, const albedo_fun
     return out;
 }
 
-// x rounded to `digits` significant digits, as write_numbers writes it and the compiler
+// x rounded to `digits` significant digits, as ex::write_float_literals writes it and the compiler
 // reads it back: the averages are then computed from the values the header holds.
 float as_written(double x, int digits) {
     char text[32];
     std::snprintf(text, sizeof text, "%.*g", digits, double(float(x)));
     return std::strtof(text, nullptr);
-}
-
-// Floats with `digits` significant digits as C++ float literals ("1" becomes "1.f").
-void write_numbers(std::FILE* f, const float* x, std::size_t count, int digits = 7) {
-    for (std::size_t i = 0; i < count; ++i) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%.*g", digits, double(x[i]));
-        const bool has_point = std::string_view(text).find_first_of(".e") != std::string_view::npos;
-        std::fprintf(f, "%s%s%sf", i ? ", " : "", text, has_point ? "" : ".");
-    }
 }
 
 void write(std::FILE* f, const std::vector<table>& tables, const settings& s) {
@@ -217,12 +208,12 @@ void write(std::FILE* f, const std::vector<table>& tables, const settings& s) {
         std::fprintf(f, "/// E_avg consistency <= %.1e.\n", t.max_average);
         std::fprintf(f, "inline constexpr float %s[%zu * %zu] = {\n", t.name.c_str(), n, n);
         for (std::size_t j = 0; j < n; ++j) {
-            write_numbers(f, t.e.data() + j * n, n);
+            ex::write_float_literals(f, t.e.data() + j * n, n);
             std::fprintf(f, ",\n");
         }
         std::fprintf(f, "};\n\n/// E_avg(alpha) of %s.\n", t.what.c_str());
         std::fprintf(f, "inline constexpr float %s_average[%zu] = {\n", t.name.c_str(), n);
-        write_numbers(f, t.average.data(), n);
+        ex::write_float_literals(f, t.average.data(), n);
         std::fprintf(f, "};\n");
     }
     std::fprintf(f, "\n} // namespace shade::detail\n");
@@ -308,14 +299,14 @@ void write_anisotropic(std::FILE* f, const std::vector<anisotropic_table>& table
         std::fprintf(f, "/// Node standard error <= %.1e; |Delta| <= %.3f.\n", t.max_error, t.max_delta);
         std::fprintf(f, "inline constexpr float %s[anisotropic_albedo_size] = {\n", t.name.c_str());
         for (std::size_t row = 0; row < t.delta.size() / d::anisotropic_albedo_mu_nodes; ++row) {
-            write_numbers(f, t.delta.data() + row * d::anisotropic_albedo_mu_nodes, d::anisotropic_albedo_mu_nodes, 5);
+            ex::write_float_literals(f, t.delta.data() + row * d::anisotropic_albedo_mu_nodes, d::anisotropic_albedo_mu_nodes, 5);
             std::fprintf(f, ",\n");
         }
         std::fprintf(f, "};\n\n/// The cosine averages of the rows of %s (anisotropic_albedo_row_average), one slice per line.\n",
                      t.name.c_str());
         std::fprintf(f, "inline constexpr float %s_average[anisotropic_albedo_rows] = {\n", t.name.c_str());
         for (std::size_t k = 0; k < d::anisotropic_albedo_rows / d::anisotropic_albedo_azimuth_nodes; ++k) {
-            write_numbers(f, t.average.data() + k * d::anisotropic_albedo_azimuth_nodes, d::anisotropic_albedo_azimuth_nodes);
+            ex::write_float_literals(f, t.average.data() + k * d::anisotropic_albedo_azimuth_nodes, d::anisotropic_albedo_azimuth_nodes);
             std::fprintf(f, ",\n");
         }
         std::fprintf(f, "};\n");

@@ -38,6 +38,7 @@
 #include <shade/check/energy.hpp>
 
 #include "support/cli.hpp"
+#include "support/float_literals.hpp"
 #include "support/progress.hpp"
 
 namespace ex = shade::examples;
@@ -167,15 +168,6 @@ table compute(const std::string& name, const std::string& what, const estimator&
     return out;
 }
 
-void write_numbers(std::FILE* f, const float* x, std::size_t count) {
-    for (std::size_t i = 0; i < count; ++i) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%.7g", double(x[i]));
-        const bool has_point = std::string_view(text).find_first_of(".e") != std::string_view::npos;
-        std::fprintf(f, "%s%s%sf", i ? ", " : "", text, has_point ? "" : ".");
-    }
-}
-
 void write(std::FILE* f, const std::vector<table>& tables, const settings& s) {
     const d::dielectric_albedo_grid& g = s.grid;
     std::fprintf(f, "#pragma once\n");
@@ -200,7 +192,7 @@ void write(std::FILE* f, const std::vector<table>& tables, const settings& s) {
         std::fprintf(f, "/// at the cell centres with mu >= 0.05 <= %.1e.\n", t.max_domain);
         std::fprintf(f, "inline constexpr float %s[%zu] = {\n", t.name.c_str(), g.size());
         for (std::size_t r = 0; r < g.size() / g.mu_nodes; ++r) {
-            write_numbers(f, t.e.data() + r * g.mu_nodes, g.mu_nodes);
+            ex::write_float_literals(f, t.e.data() + r * g.mu_nodes, g.mu_nodes);
             std::fprintf(f, ",\n");
         }
         std::fprintf(f, "};\n");
