@@ -9,11 +9,9 @@
 //   auto r = shade::check::adjoint_reciprocity(glass, at, glass.eta(), {.model = "my glass"});
 //   if (!r) std::cerr << r << '\n';
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <cstddef>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -93,55 +91,11 @@ result<scalar_of<B>> adjoint_reciprocity(const B& model, const surface_point<sca
         options.relative_tolerance >= 0 ? options.relative_tolerance : default_adjoint_reciprocity_tolerance<T>();
     const vec3<T> n = at.n();
     const auto eta2 = [&](const vec3<T>& w) { return glm::dot(w, n) < T(0) ? eta_inside * eta_inside : 1.0; };
-    struct evaluated {
-        vec3<T> l, v;
-        rgb<T> f_lv, f_vl;
-        double scale_lv, scale_vl; ///< eta_l^2 and eta_v^2
-    };
-    std::vector<evaluated> values;
-    std::vector<double> sizes;
-    for (const auto& [l, v] : sphere_pairs(at, options.pairs, options.seed)) {
-        const evaluated e{l, v, model.f(l, v, at), model.f(v, l, at), eta2(l), eta2(v)};
-        double size = 0;
-        for (int c = 0; c < 3; ++c)
-            for (const double x : {double(e.f_lv[c]) * e.scale_lv, double(e.f_vl[c]) * e.scale_vl})
-                if (std::isfinite(x)) size = std::max(size, std::abs(x));
-        sizes.push_back(size);
-        values.push_back(e);
-    }
-    double typical = 0;
-    if (!sizes.empty()) {
-        const auto k = sizes.begin() + std::ptrdiff_t(sizes.size() * 9 / 10);
-        std::nth_element(sizes.begin(), k, sizes.end());
-        typical = *k;
-    }
-    const double scale = 1e-3 * typical;
-    bool have_worst = false;
-    for (const auto& e : values) {
-        ++r.tried;
-        double measure = 0;
-        for (int c = 0; c < 3; ++c) {
-            const double a = double(e.f_lv[c]) * e.scale_lv;
-            const double b = double(e.f_vl[c]) * e.scale_vl;
-            if (!std::isfinite(a) || !std::isfinite(b)) {
-                measure = std::numeric_limits<double>::infinity();
-                break;
-            }
-            const double size = std::max(std::abs(a), std::abs(b));
-            if (size < options.absolute_floor) continue;
-            measure = std::max(measure, std::abs(a - b) / std::max(size, scale));
-        }
-        if (measure > r.tolerance) ++r.failures;
-        if (!have_worst || measure > r.worst) {
-            have_worst = true;
-            r.worst = measure;
-            r.l = e.l;
-            r.v = e.v;
-            r.value = e.f_lv;
-            r.other = e.f_vl;
-        }
-    }
-    r.decide(r.failures == 0 ? verdict::pass : verdict::fail);
+    // Compared: f(l, v) eta_l^2 against f(v, l) eta_v^2.
+    std::vector<detail::reciprocity_pair<T>> values;
+    for (const auto& [l, v] : sphere_pairs(at, options.pairs, options.seed))
+        values.push_back({l, v, model.f(l, v, at), model.f(v, l, at), eta2(l), eta2(v)});
+    detail::judge_reciprocity_pairs(r, values, options.absolute_floor);
     const std::string tried = std::to_string(r.tried) + " direction pairs over the sphere";
     const std::string eta = "eta_inside = " + detail::number(eta_inside);
     if (r.passed) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <concepts>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -24,29 +25,31 @@ template <std::floating_point T>
 
 namespace detail {
 
-/// The body of reciprocity (see there), on the type-erased model.
+/// Two directions, the model's values both ways and the factor each value is multiplied by
+/// before they are compared (1 for BRDFs; eta_l^2 and eta_v^2 for the adjoint form).
 template <std::floating_point T>
-result<T> run_reciprocity(const model_ref<T>& model, const surface_point<T>& at, const pair_options& options) {
-    result<T> r;
-    r.property = "reciprocity";
-    r.model = options.model;
-    r.at = at;
-    r.tolerance = options.relative_tolerance >= 0 ? options.relative_tolerance
-                                                  : default_reciprocity_tolerance<T>();
-    struct evaluated {
-        vec3<T> l, v;
-        rgb<T> f_lv, f_vl;
-    };
-    std::vector<evaluated> values;
+struct reciprocity_pair {
+    vec3<T> l, v;
+    rgb<T> f_lv, f_vl;
+    double scale_lv = 1, scale_vl = 1;
+};
+
+/// Judges the pairs into r (tried, failures, worst with its directions and values, and the
+/// verdict; r.tolerance set by the caller). Per pair the measure is the largest relative
+/// difference over the channels of a = f_lv scale_lv and b = f_vl scale_vl,
+/// |a - b| / max(|a|, |b|, s), infinite when either is not finite; channels where both are
+/// below absolute_floor are skipped, and s is 1e-3 times the 90th percentile of the pairs'
+/// largest value, so that values near zero beside large ones are compared absolutely.
+template <std::floating_point T>
+void judge_reciprocity_pairs(result<T>& r, const std::vector<reciprocity_pair<T>>& values, double absolute_floor) {
     std::vector<double> sizes;
-    for (const auto& [l, v] : hemisphere_pairs(at, options.pairs, options.seed)) {
-        const evaluated e{l, v, model.f(l, v, at), model.f(v, l, at)};
+    sizes.reserve(values.size());
+    for (const auto& e : values) {
         double size = 0;
         for (int c = 0; c < 3; ++c)
-            for (const double x : {double(e.f_lv[c]), double(e.f_vl[c])})
+            for (const double x : {double(e.f_lv[c]) * e.scale_lv, double(e.f_vl[c]) * e.scale_vl})
                 if (std::isfinite(x)) size = std::max(size, std::abs(x));
         sizes.push_back(size);
-        values.push_back(e);
     }
     double typical = 0;
     if (!sizes.empty()) {
@@ -60,14 +63,14 @@ result<T> run_reciprocity(const model_ref<T>& model, const surface_point<T>& at,
         ++r.tried;
         double measure = 0;
         for (int c = 0; c < 3; ++c) {
-            const double a = double(e.f_lv[c]);
-            const double b = double(e.f_vl[c]);
+            const double a = double(e.f_lv[c]) * e.scale_lv;
+            const double b = double(e.f_vl[c]) * e.scale_vl;
             if (!std::isfinite(a) || !std::isfinite(b)) {
                 measure = std::numeric_limits<double>::infinity();
                 break;
             }
             const double size = std::max(std::abs(a), std::abs(b));
-            if (size < options.absolute_floor) continue;
+            if (size < absolute_floor) continue;
             measure = std::max(measure, std::abs(a - b) / std::max(size, scale));
         }
         if (measure > r.tolerance) ++r.failures;
@@ -81,6 +84,21 @@ result<T> run_reciprocity(const model_ref<T>& model, const surface_point<T>& at,
         }
     }
     r.decide(r.failures == 0 ? verdict::pass : verdict::fail);
+}
+
+/// The body of reciprocity (see there), on the type-erased model.
+template <std::floating_point T>
+result<T> run_reciprocity(const model_ref<T>& model, const surface_point<T>& at, const pair_options& options) {
+    result<T> r;
+    r.property = "reciprocity";
+    r.model = options.model;
+    r.at = at;
+    r.tolerance = options.relative_tolerance >= 0 ? options.relative_tolerance
+                                                  : default_reciprocity_tolerance<T>();
+    std::vector<reciprocity_pair<T>> values;
+    for (const auto& [l, v] : hemisphere_pairs(at, options.pairs, options.seed))
+        values.push_back({l, v, model.f(l, v, at), model.f(v, l, at)});
+    judge_reciprocity_pairs(r, values, options.absolute_floor);
     const std::string tried = std::to_string(r.tried) + " direction pairs";
     if (r.passed) {
         r.message = "reciprocity holds for " + r.model + ": f(l, v) = f(v, l) within relative " +
