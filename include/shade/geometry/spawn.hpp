@@ -66,6 +66,14 @@ template <std::floating_point T>
 /// A shadow ray from the hit's surface to point `to` on another surface (normal to_n,
 /// rounding bound to_error): both ends offset off their surfaces toward each other, t in
 /// [0, 1]. Use it toward an area light's sampled point, or between two hits.
+///
+/// The guarantee holds for the intersector that produced to_error: the shadow ray is then
+/// tested against the target's surface with that same routine, whose own rounding of t
+/// to_error bounds. When the target point comes from one routine (say a light's sampler on
+/// a sphere) and the scene tests the same surface with another (the scene's sphere test),
+/// the second may round t by more than to_error covers and report the target's surface as
+/// the occluder; decide visibility then by identity (is the first surface along
+/// spawn_ray(from, to - from) the target?) rather than by an unoccluded segment.
 template <std::floating_point T>
 [[nodiscard]] inline ray<T> spawn_ray_to(const hit<T>& from, const vec3<T>& to, const vec3<T>& to_error,
                                          const vec3<T>& to_n) noexcept {
