@@ -1,0 +1,208 @@
+// shade::openpbr_parameters (names, defaults, ranges of OpenPBR Surface 1.1) and the
+// specification's closed-form pieces in shade::openpbr.
+
+#include <cmath>
+#include <string>
+
+#include <doctest/doctest.h>
+
+#include <shade/brdf/fresnel.hpp>
+#include <shade/core/error.hpp>
+#include <shade/material/openpbr_parameters.hpp>
+
+namespace {
+
+using shade::rgb;
+
+// 2 integral_0^1 F(mu, eta) mu dmu by the midpoint rule on 400000 cells, in double; for
+// eta < 1 the cells below the critical cosine sqrt(1 - eta^2) have F = 1 exactly.
+double fresnel_albedo_midpoint(double eta) {
+    const int cells = 400000;
+    double sum = 0;
+    for (int i = 0; i < cells; ++i) {
+        const double mu = (i + 0.5) / cells;
+        sum += 2 * shade::F_dielectric(mu, eta) * mu / cells;
+    }
+    return sum;
+}
+
+template <class T>
+bool close_enough(const rgb<T>& a, const rgb<T>& b) {
+    for (int c = 0; c < 3; ++c)
+        if (std::abs(double(a[c]) - double(b[c])) > 1e-5) return false;
+    return true;
+}
+
+} // namespace
+
+TEST_CASE_TEMPLATE("openpbr_parameters: the specification's defaults validate", T, float, double) {
+    const shade::openpbr_parameters<T> p;
+    CHECK_NOTHROW(p.validate());
+    CHECK(p.base_color == rgb<T>(T(0.8)));
+    CHECK(p.specular_roughness == T(0.3));
+    CHECK(p.specular_ior == T(1.5));
+    CHECK(p.coat_ior == T(1.6));
+    CHECK(p.fuzz_roughness == T(0.5));
+    CHECK(p.thin_film_thickness == T(0.5));
+    CHECK(p.thin_film_ior == T(1.4));
+    CHECK(p.subsurface_radius_scale == rgb<T>(T(1), T(0.5), T(0.25)));
+    CHECK(p.transmission_dispersion_abbe_number == T(20));
+    CHECK(p.coat_darkening == T(1));
+    CHECK(p.geometry_opacity == T(1));
+    CHECK(!p.geometry_thin_walled);
+}
+
+TEST_CASE_TEMPLATE("openpbr_parameters: a parameter outside its range is named", T, float, double) {
+    const auto expect_named = [](const std::string& name, auto change) {
+        shade::openpbr_parameters<T> p;
+        change(p);
+        CAPTURE(name);
+        const std::string quoted = "'" + name + "'";
+        CHECK_THROWS_WITH_AS(p.validate(), doctest::Contains(quoted.c_str()), shade::invalid_parameter);
+    };
+    using P = shade::openpbr_parameters<T>;
+    expect_named("base_weight", [](P& p) { p.base_weight = T(1.5); });
+    expect_named("base_color", [](P& p) { p.base_color = rgb<T>(T(0.5), T(-0.1), T(0.5)); });
+    expect_named("base_metalness", [](P& p) { p.base_metalness = T(std::nan("")); });
+    expect_named("specular_weight", [](P& p) { p.specular_weight = T(-1); });
+    expect_named("specular_ior", [](P& p) { p.specular_ior = T(0); });
+    expect_named("specular_roughness_anisotropy", [](P& p) { p.specular_roughness_anisotropy = T(2); });
+    expect_named("transmission_depth", [](P& p) { p.transmission_depth = T(INFINITY); });
+    expect_named("transmission_scatter_anisotropy", [](P& p) { p.transmission_scatter_anisotropy = T(-1.5); });
+    expect_named("transmission_dispersion_abbe_number", [](P& p) { p.transmission_dispersion_abbe_number = T(0); });
+    expect_named("subsurface_radius_scale", [](P& p) { p.subsurface_radius_scale = rgb<T>(T(2)); });
+    expect_named("coat_color", [](P& p) { p.coat_color = rgb<T>(T(1.01)); });
+    expect_named("coat_ior", [](P& p) { p.coat_ior = T(-1.6); });
+    expect_named("coat_darkening", [](P& p) { p.coat_darkening = T(1.1); });
+    expect_named("fuzz_roughness", [](P& p) { p.fuzz_roughness = T(-0.1); });
+    expect_named("thin_film_thickness", [](P& p) { p.thin_film_thickness = T(-0.5); });
+    expect_named("thin_film_ior", [](P& p) { p.thin_film_ior = T(0); });
+    expect_named("emission_luminance", [](P& p) { p.emission_luminance = T(-1); });
+    expect_named("emission_color", [](P& p) { p.emission_color = rgb<T>(T(1), T(-1), T(1)); });
+    expect_named("geometry_opacity", [](P& p) { p.geometry_opacity = T(2); });
+    // Values above 1 are allowed where the specification allows them.
+    shade::openpbr_parameters<T> hdr;
+    hdr.specular_weight = T(3);
+    hdr.emission_color = rgb<T>(T(20));
+    hdr.transmission_depth = T(5);
+    CHECK_NOTHROW(hdr.validate());
+}
+
+TEST_CASE_TEMPLATE("openpbr::roughness_to_alpha keeps alpha_t^2 + alpha_b^2 = 2 r^4", T, float, double) {
+    for (const double r : {0.0, 0.2, 0.5, 1.0})
+        for (const double a : {0.0, 0.3, 0.9, 1.0}) {
+            const auto alpha = shade::openpbr::roughness_to_alpha(T(r), T(a));
+            CHECK(double(alpha.t * alpha.t + alpha.b * alpha.b) == doctest::Approx(2 * std::pow(r, 4)).epsilon(1e-6));
+            CHECK(double(alpha.b) == doctest::Approx((1 - a) * double(alpha.t)).epsilon(1e-6));
+        }
+    // Isotropic: alpha = r^2 both ways. a = 1: all the variance along the tangent,
+    // alpha_t = sqrt(2) r^2.
+    const auto iso = shade::openpbr::roughness_to_alpha(T(0.5), T(0));
+    CHECK(double(iso.t) == doctest::Approx(0.25));
+    CHECK(double(iso.b) == doctest::Approx(0.25));
+    const auto full = shade::openpbr::roughness_to_alpha(T(0.5), T(1));
+    CHECK(double(full.t) == doctest::Approx(0.25 * std::sqrt(2.0)));
+    CHECK(full.b == T(0));
+}
+
+TEST_CASE_TEMPLATE("openpbr::modulated_ior_ratio scales the normal-incidence reflectance by specular_weight", T, float,
+                   double) {
+    for (const double eta : {1.5, 1.33, 2.4, 0.7})
+        for (const double xi : {0.0, 0.25, 0.5, 1.0, 2.0}) {
+            CAPTURE(eta);
+            CAPTURE(xi);
+            const T modulated = shade::openpbr::modulated_ior_ratio(T(eta), T(xi));
+            // F0 of the new ratio is xi times F0 of the old one (xi below 1 / F_s here).
+            const double f_s = std::pow((1 - eta) / (1 + eta), 2);
+            CHECK(double(shade::f0_from_ior(modulated)) == doctest::Approx(xi * f_s).epsilon(1e-5).scale(1));
+            // The same side of 1 as eta (a denser medium stays denser).
+            if (xi > 0) CHECK((double(modulated) - 1) * (eta - 1) > 0);
+        }
+    CHECK(shade::openpbr::modulated_ior_ratio(T(1.5), T(0)) == T(1));
+    CHECK(double(shade::openpbr::modulated_ior_ratio(T(1.5), T(1))) == doctest::Approx(1.5));
+    // xi F_s >= 1 is clamped: the largest index ratio, never infinite or NaN.
+    const T huge = shade::openpbr::modulated_ior_ratio(T(1.5), T(1000));
+    CHECK(std::isfinite(huge));
+    CHECK(huge == shade::dielectric_eta_max<T>);
+}
+
+TEST_CASE_TEMPLATE("openpbr::specular_ior_ratio blends the ambient and coat ratios, never below 1 under a denser coat",
+                   T, float, double) {
+    // No coat: n_b / n_a. Full coat rarer than the base: n_b / n_c. Full coat denser than the
+    // base (1.6 over 1.5): inverted to n_c / n_b = 1.0667 (no total internal reflection).
+    CHECK(double(shade::openpbr::specular_ior_ratio(T(1.5), T(1), T(1.6), T(0))) == doctest::Approx(1.5));
+    CHECK(double(shade::openpbr::specular_ior_ratio(T(1.5), T(1), T(1.2), T(1))) == doctest::Approx(1.25));
+    CHECK(double(shade::openpbr::specular_ior_ratio(T(1.5), T(1), T(1.6), T(1))) == doctest::Approx(1.6 / 1.5));
+    CHECK(double(shade::openpbr::specular_ior_ratio(T(1.5), T(1), T(1.6), T(0.5))) ==
+          doctest::Approx(0.5 * 1.5 + 0.5 * 1.6 / 1.5));
+}
+
+TEST_CASE_TEMPLATE("openpbr::coat_roughened adds slope variances, the coat's twice", T, float, double) {
+    CHECK(double(shade::openpbr::coat_roughened(T(0.3), T(0.5), T(0))) == doctest::Approx(0.3));
+    CHECK(double(shade::openpbr::coat_roughened(T(0.3), T(0), T(1))) == doctest::Approx(0.3));
+    // (0.3^4 + 2 * 0.5^4)^(1/4) = (0.0081 + 0.125)^(1/4) = 0.1331^(1/4).
+    CHECK(double(shade::openpbr::coat_roughened(T(0.3), T(0.5), T(1))) == doctest::Approx(std::pow(0.1331, 0.25)));
+    CHECK(double(shade::openpbr::coat_roughened(T(0.9), T(0.9), T(1))) == doctest::Approx(1.0));
+    CHECK(double(shade::openpbr::coat_roughened(T(0.3), T(0.5), T(0.5))) ==
+          doctest::Approx(0.5 * 0.3 + 0.5 * std::pow(0.1331, 0.25)));
+}
+
+TEST_CASE_TEMPLATE("openpbr::fresnel_hemispherical_albedo: the integral, its relation across 1, d'Eon's fit", T, float,
+                   double) {
+    for (const double eta : {1.0, 1.1, 1.33, 1.5, 2.0, 3.0, 0.8, 0.5}) {
+        CAPTURE(eta);
+        CHECK(double(shade::openpbr::fresnel_hemispherical_albedo(T(eta))) ==
+              doctest::Approx(fresnel_albedo_midpoint(eta)).epsilon(2e-6).scale(1));
+    }
+    // d'Eon 2021's fit, accurate to 0.2 % for eta in [1, 3] (the specification's footnote
+    // avg_fresnel): ln((10893 eta - 1438.2) / (-774.4 eta^2 + 10212 eta + 1)).
+    for (const double eta : {1.2, 1.5, 2.0, 2.5, 3.0}) {
+        const double fit = std::log((10893 * eta - 1438.2) / (-774.4 * eta * eta + 10212 * eta + 1));
+        CHECK(double(shade::openpbr::fresnel_hemispherical_albedo(T(eta))) == doctest::Approx(fit).epsilon(2e-3));
+    }
+}
+
+TEST_CASE_TEMPLATE("openpbr::coat_darkening_factor", T, float, double) {
+    const T eta_c = T(1.5);
+    // A white base loses nothing: Delta = (1 - K) / (1 - K) = 1.
+    CHECK(close_enough(shade::openpbr::coat_darkening_factor(rgb<T>(1), eta_c, T(0.7), T(0.5), T(1), T(1)), rgb<T>(1)));
+    // No coat, or coat_darkening 0: factor 1.
+    CHECK(close_enough(shade::openpbr::coat_darkening_factor(rgb<T>(T(0.3)), eta_c, T(0.7), T(0.5), T(0), T(1)),
+                       rgb<T>(1)));
+    CHECK(close_enough(shade::openpbr::coat_darkening_factor(rgb<T>(T(0.3)), eta_c, T(0.7), T(0.5), T(1), T(0)),
+                       rgb<T>(1)));
+    // A rough base (r_b = 1) under a full coat: K = K_r = 1 - (1 - E_F(1.5)) / 2.25, with
+    // E_F(1.5) from the midpoint integral; Delta = (1 - K) / (1 - 0.3 K).
+    const double k_r = 1 - (1 - fresnel_albedo_midpoint(1.5)) / 2.25;
+    const double expected = (1 - k_r) / (1 - 0.3 * k_r);
+    const rgb<T> rough = shade::openpbr::coat_darkening_factor(rgb<T>(T(0.3)), eta_c, T(0.7), T(1), T(1), T(1));
+    CHECK(double(rough.x) == doctest::Approx(expected).epsilon(1e-5));
+    // A smooth base: K = K_s = F(mu_o, eta_c); half coverage halves the change.
+    const double k_s = shade::F_dielectric(0.7, 1.5);
+    const rgb<T> smooth = shade::openpbr::coat_darkening_factor(rgb<T>(T(0.3)), eta_c, T(0.7), T(0), T(0.5), T(1));
+    CHECK(double(smooth.y) == doctest::Approx(0.5 + 0.5 * (1 - k_s) / (1 - 0.3 * k_s)).epsilon(1e-5));
+    // Darker bases darken more (Delta falls as E_b falls), and the factor stays in (0, 1].
+    const rgb<T> graded =
+        shade::openpbr::coat_darkening_factor(rgb<T>(T(0.9), T(0.5), T(0.1)), eta_c, T(0.7), T(1), T(1), T(1));
+    CHECK(graded.x > graded.y);
+    CHECK(graded.y > graded.z);
+    CHECK(graded.z > T(0));
+}
+
+TEST_CASE_TEMPLATE("openpbr::base_roughness_estimate and coat_absorption", T, float, double) {
+    // Metal: r. Dielectric with F_s = 0.04 at weight 1: lerp(1, r, 0.04).
+    CHECK(double(shade::openpbr::base_roughness_estimate(T(0.2), T(1), T(1), T(1.5))) == doctest::Approx(0.2));
+    CHECK(double(shade::openpbr::base_roughness_estimate(T(0.2), T(0), T(1), T(1.5))) ==
+          doctest::Approx(1 + 0.04 * (0.2 - 1)));
+    // Normal incidence: coat_color itself (T_coat^2).
+    const rgb<T> color(T(0.9), T(0.5), T(0.2));
+    CHECK(close_enough(shade::openpbr::coat_absorption(color, T(1), T(1), T(1.6)), color));
+    // At mu = 0.5 through a coat of 1.6: mu^t = sqrt(1 - 0.75 / 2.56); both paths so the
+    // exponent is 1 / mu^t.
+    const double mu_t = std::sqrt(1 - 0.75 / 2.56);
+    const rgb<T> slant = shade::openpbr::coat_absorption(color, T(0.5), T(0.5), T(1.6));
+    CHECK(double(slant.y) == doctest::Approx(std::pow(0.5, 1 / mu_t)).epsilon(1e-5));
+    CHECK(slant.z < color.z);
+    // A clear coat absorbs nothing at any angle.
+    CHECK(close_enough(shade::openpbr::coat_absorption(rgb<T>(1), T(0.01), T(0.3), T(1.6)), rgb<T>(1)));
+}
