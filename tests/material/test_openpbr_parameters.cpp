@@ -206,3 +206,77 @@ TEST_CASE_TEMPLATE("openpbr::base_roughness_estimate and coat_absorption", T, fl
     // A clear coat absorbs nothing at any angle.
     CHECK(close_enough(shade::openpbr::coat_absorption(rgb<T>(1), T(0.01), T(0.3), T(1.6)), rgb<T>(1)));
 }
+
+TEST_CASE_TEMPLATE("openpbr::transmission_medium: Beer's law at transmission_depth, grey shift of negative absorption",
+                   T, float, double) {
+    shade::openpbr_parameters<T> p;
+    CHECK(!shade::openpbr::transmission_medium(p).present); // depth 0: no medium
+    p.transmission_color = rgb<T>(T(0.5), T(0.8), T(1));
+    p.transmission_depth = T(2);
+    const auto clear = shade::openpbr::transmission_medium(p);
+    REQUIRE(clear.present);
+    // exp(-sigma_t * depth) = transmission_color: white light has that colour at that depth.
+    for (int c = 0; c < 3; ++c)
+        CHECK(std::exp(-double(clear.sigma_t[c]) * 2) == doctest::Approx(double(p.transmission_color[c])).epsilon(1e-6));
+    CHECK(clear.albedo == rgb<T>(0));
+    // Scattering S = 0.5 in a channel whose extinction is only ln(1/0.8)/2 = 0.1116: sigma_a
+    // would be 0.1116 - 0.25 < 0 in green and 0 - 0.25 in blue; every channel is shifted up by
+    // 0.25 (the blue deficit), then sigma_t = sigma_a + sigma_s. (Colours after a depth of 2:
+    // red ln 2 / 2 - 0.25 + 0.25 of absorption plus 0.25 of scattering.)
+    p.transmission_scatter = rgb<T>(T(0.5));
+    p.transmission_scatter_anisotropy = T(0.3);
+    const auto murky = shade::openpbr::transmission_medium(p);
+    const double sigma_s = 0.25, shift = 0.25;
+    const double sigma_t_red = std::log(2.0) / 2 - sigma_s + shift + sigma_s;
+    CHECK(double(murky.sigma_t.x) == doctest::Approx(sigma_t_red).epsilon(1e-6));
+    // Blue: sigma_a = 0 - 0.25 + shift = 0, so sigma_t = sigma_s = 0.25 and the albedo is 1.
+    CHECK(double(murky.sigma_t.z) == doctest::Approx(sigma_s).epsilon(1e-6));
+    CHECK(double(murky.albedo.z) == doctest::Approx(1.0).epsilon(1e-6));
+    CHECK(double(murky.albedo.x) == doctest::Approx(sigma_s / sigma_t_red).epsilon(1e-6));
+    CHECK(murky.g == T(0.3));
+    // Black transmission_color: a finite, huge extinction, no NaN.
+    p.transmission_color = rgb<T>(0);
+    const auto black = shade::openpbr::transmission_medium(p);
+    for (int c = 0; c < 3; ++c) {
+        CHECK(std::isfinite(black.sigma_t[c]));
+        CHECK(black.sigma_t[c] > T(10));
+        CHECK(black.albedo[c] >= T(0));
+    }
+}
+
+TEST_CASE_TEMPLATE("openpbr::subsurface_medium inverts van de Hulst's relation", T, float, double) {
+    shade::openpbr_parameters<T> p;
+    p.subsurface_radius = T(0.5);
+    for (const double g : {0.0, 0.5, -0.3})
+        for (const double color : {0.05, 0.3, 0.8, 0.99}) {
+            p.subsurface_color = rgb<T>(T(color));
+            p.subsurface_scatter_anisotropy = T(g);
+            const auto m = shade::openpbr::subsurface_medium(p);
+            // Forward: C = (1 - s)(1 - 0.139 s) / (1 + 1.17 s), s = sqrt((1 - a) / (1 - a g)); the
+            // inversion's constants are the quadratic's roots to 6 digits.
+            const double a = double(m.albedo.x);
+            const double s = std::sqrt((1 - a) / (1 - a * g));
+            CHECK((1 - s) * (1 - 0.139 * s) / (1 + 1.17 * s) == doctest::Approx(color).epsilon(2e-4).scale(1));
+        }
+    // Mean free paths radius * scale = (0.5, 0.25, 0.125): sigma_t = (2, 4, 8).
+    const auto m = shade::openpbr::subsurface_medium(p);
+    CHECK(double(m.sigma_t.x) == doctest::Approx(2));
+    CHECK(double(m.sigma_t.z) == doctest::Approx(8));
+    p.subsurface_radius = T(0);
+    CHECK(std::isfinite(shade::openpbr::subsurface_medium(p).sigma_t.x));
+}
+
+TEST_CASE_TEMPLATE("openpbr::dispersed_ior follows Cauchy through n_d with the Abbe number", T, float, double) {
+    shade::openpbr_parameters<T> p;
+    CHECK(std::isinf(shade::openpbr::abbe_number(p))); // scale 0: no dispersion
+    CHECK(shade::openpbr::dispersed_ior(T(1.5), shade::openpbr::abbe_number(p), T(450)) == T(1.5));
+    p.transmission_dispersion_scale = T(0.5);
+    const T v = shade::openpbr::abbe_number(p);
+    CHECK(double(v) == doctest::Approx(40));
+    const double n_d = double(shade::openpbr::dispersed_ior(T(1.5), v, T(587.6)));
+    const double n_f = double(shade::openpbr::dispersed_ior(T(1.5), v, T(486.1)));
+    const double n_c = double(shade::openpbr::dispersed_ior(T(1.5), v, T(656.3)));
+    CHECK(n_d == doctest::Approx(1.5).epsilon(1e-6));
+    CHECK((n_d - 1) / (n_f - n_c) == doctest::Approx(40).epsilon(1e-3));
+    CHECK(n_f > n_d); // normal dispersion: blue bends more
+}
