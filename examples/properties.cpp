@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include <shade/brdf/microfacet_reflection.hpp>
 #include <shade/bsdf/layer.hpp>
 #include <shade/bsdf/mix.hpp>
 #include <shade/check/bsdf_energy.hpp>
@@ -195,6 +196,10 @@ std::vector<std::function<row()>> model_jobs(const settings& s) {
     add("Cook-Torrance Walter, GGX/height-correlated Smith, alpha = 0.3, F = 1",
                             cook_torrance<ggx<T>, schlick<T>, smith_height_correlated<T>>(ggx<T>(0.3), schlick<T>(one)),
                             c(0.2f, 0.6f, 0.9f));
+    add("Microfacet reflection (the lobe alone), GGX/height-correlated Smith, alpha = 0.5, gold",
+        microfacet_reflection<ggx<T>, schlick<T>, smith_height_correlated<T>>(ggx<T>(0.5),
+                                                                             schlick<T>(rgb<T>(1.0, 0.71, 0.29))),
+        c(0.7f, 0.5f, 0.1f));
     using ggx_ms = compensated_ggx_conductor<T>;
     using beckmann_ms = compensated_beckmann_conductor<T>;
     add("Cook-Torrance Walter, GGX/height-correlated Smith + Kulla-Conty, alpha = 1, F = 1",

@@ -9,6 +9,7 @@
 #include <shade/brdf/blinn_phong.hpp>
 #include <shade/brdf/cook_torrance.hpp>
 #include <shade/brdf/lambert.hpp>
+#include <shade/brdf/microfacet_reflection.hpp>
 #include <shade/brdf/oren_nayar.hpp>
 #include <shade/brdf/phong.hpp>
 #include <shade/check/doctest.hpp>
@@ -61,6 +62,9 @@ TEST_CASE_TEMPLATE("physically based models pass positivity, reciprocity and ene
     expect_physical(cook_torrance<beckmann<T>, dielectric_fresnel<T>, v_groove<T>>(
                         beckmann<T>(T(0.3)), dielectric_fresnel<T>(T(1.5)), rgb<T>(1)),
                     "cook-torrance beckmann/v-groove, glass Fresnel");
+    expect_physical(microfacet_reflection<ggx<T>, conductor_fresnel<T>, smith_height_correlated<T>>(
+                        ggx<T>(T(0.4)), conductor_fresnel<T>(rgb<T>(T(0.2), T(0.9), T(1.1)), rgb<T>(T(3.9), T(2.4), T(2.2)))),
+                    "microfacet reflection lobe, ggx/height-correlated smith, conductor");
     // A diffuse base is only energy conserving when k_d + k_s <= 1: the diffuse term is not
     // reduced by the Fresnel reflectance, which tends to 1 at grazing.
     expect_physical(cook_torrance<ggx<T>, schlick<T>, smith_ggx<T>>(

@@ -20,6 +20,7 @@
 #include <shade/brdf/cook_torrance.hpp>
 #include <shade/brdf/coupled_plastic.hpp>
 #include <shade/brdf/lambert.hpp>
+#include <shade/brdf/microfacet_reflection.hpp>
 #include <shade/brdf/oren_nayar.hpp>
 #include <shade/brdf/phong.hpp>
 #include <shade/check/doctest.hpp>
@@ -206,6 +207,12 @@ TEST_CASE_TEMPLATE("every sampled model passes the sampling checks", T, float, d
     run(compensated_ggx_conductor<T>(ggx<T>(T(0.05), T(0.5)), schlick<T>(rgb<T>(T(1), T(0.71), T(0.29)))),
         "compensated ggx (kulla-conty), alpha 0.05 x 0.5, gold");
     run(compensated_beckmann_conductor<T>(beckmann<T>(T(0.5)), schlick<T>(one)), "compensated beckmann, m = 0.5, F = 1");
+    run(microfacet_reflection<ggx<T>, schlick<T>, smith_height_correlated<T>>(ggx<T>(T(0.5)),
+                                                                             schlick<T>(rgb<T>(T(1), T(0.71), T(0.29)))),
+        "microfacet reflection lobe, ggx 0.5, gold");
+    run(microfacet_reflection<beckmann<T>, schlick<T>, smith_height_correlated<T>, cook_torrance_form::walter, kulla_conty>(
+            beckmann<T>(T(0.3), T(0.1)), schlick<T>(one)),
+        "microfacet reflection lobe, compensated beckmann 0.3 x 0.1");
     run(coupled_plastic<T>(ggx<T>(T(0.5)), one), "coupled plastic, alpha = 0.5, k_d = 1");
     run(checker<lambert<T>, normalized_phong<T>>(lambert<T>(one), normalized_phong<T>(zero, one, T(10)), T(1)),
                  "checker of lambert and phong");

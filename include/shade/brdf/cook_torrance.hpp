@@ -1,8 +1,8 @@
 #pragma once
-// shade::cook_torrance: the microfacet specular BRDF F D G / (c (n·l)(n·v)) over a
-// Lambertian base, composed at compile time from a distribution D, a Fresnel term F, a
-// masking term G (shade/brdf/microfacet.hpp, shade/brdf/fresnel.hpp) and a normalization
-// form:
+// shade::cook_torrance: the microfacet specular BRDF F D G / (c (n·l)(n·v))
+// (shade::microfacet_reflection, shade/brdf/microfacet_reflection.hpp) over a Lambertian
+// base, composed at compile time from a distribution D, a Fresnel term F, a masking term G
+// (shade/brdf/microfacet.hpp, shade/brdf/fresnel.hpp) and a normalization form:
 //
 //   cook_torrance<beckmann<T>, schlick<T>, v_groove<T>>                  default: Walter et al.
 //   cook_torrance<ggx<T>, dielectric_fresnel<T>, smith_ggx<T>, cook_torrance_form::course>
@@ -27,6 +27,7 @@
 #include <shade/brdf/fresnel.hpp>
 #include <shade/brdf/microfacet.hpp>
 #include <shade/brdf/microfacet/albedo_table.hpp>
+#include <shade/brdf/microfacet_reflection.hpp>
 #include <shade/brdf/multiple_scattering.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
@@ -35,85 +36,6 @@
 #include <shade/core/types.hpp>
 
 namespace shade {
-
-/// The normalizations of the Cook-Torrance specular term, used as the Form parameter of
-/// shade::cook_torrance. Each form is f_s = scale * F D G / ((n·l)(n·v)) with D the
-/// normalized distribution (integral of D (n·h) dh = 1, as in shade/brdf/microfacet.hpp);
-/// `scale<T>()` returns that constant and `factor_vs_walter` its ratio to the default.
-/// All three forms are reciprocal (every factor is symmetric in l and v).
-namespace cook_torrance_form {
-
-/// The microfacet-consistent form (default):  f_s = F D G / (4 (n·l)(n·v)).
-///
-/// Walter, Marschner, Li, Torrance 2007, "Microfacet Models for Refraction through Rough
-/// Surfaces", EGSR, eq. 20. The 4 is the Jacobian |dh/dl| = 1/(4 (h·l)) of the half-vector
-/// map. With a Smith G (and F <= 1) the directional albedo is <= 1: energy conserving
-/// (single scattering only, so rough surfaces lose some energy). With the V-groove G the
-/// albedo is also below 1 in our numerical checks, but no general bound is claimed.
-struct walter {
-    static constexpr double factor_vs_walter = 1.0;
-    template <std::floating_point T>
-    [[nodiscard]] static constexpr T scale() noexcept {
-        return T(0.25);
-    }
-};
-
-/// The form common in course slides and textbooks:  f_s = F D G / (pi (n·l)(n·v)).
-///
-/// This is the 1982 paper's expression (see paper_1982) with a NORMALIZED D plugged in.
-/// It is 4/pi ~ 1.27 times the default, so it reflects more energy than it receives:
-/// with F = 1 and a narrow lobe the albedo at normal incidence is ~1.27. Not energy
-/// conserving.
-struct course {
-    static constexpr double factor_vs_walter = 4.0 / 3.14159265358979323846;
-    template <std::floating_point T>
-    [[nodiscard]] static constexpr T scale() noexcept {
-        return inv_pi<T>;
-    }
-};
-
-/// The expression of the 1982 paper, with the paper's own (unnormalized) distribution.
-///
-/// Cook, Torrance 1982, "A Reflectance Model for Computer Graphics", ACM ToG 1(1): 7-24:
-///   R_s = (F / pi) D G / ((N·L)(N·V)),   with Beckmann   D = exp(-(tan(alpha)/m)^2) / (m^2 cos^4(alpha)).
-/// The paper's D has no 1/pi, i.e. it is pi times the normalized D_beckmann, so in terms
-/// of the normalized D used here
-///   R_s = (F / pi) (pi D) G / ((n·l)(n·v)) = F D G / ((n·l)(n·v)),
-/// which is 4 times the default. (For GGX the same convention, pi times the normalized D,
-/// is applied.) Not energy conserving: with F = 1 and a narrow lobe the albedo at normal
-/// incidence is ~4. Provided to reproduce the paper's images and numbers. (The paper's
-/// expression was checked against secondary sources quoting it, not the original scan.)
-struct paper_1982 {
-    static constexpr double factor_vs_walter = 4.0;
-    template <std::floating_point T>
-    [[nodiscard]] static constexpr T scale() noexcept {
-        return T(1);
-    }
-};
-
-} // namespace cook_torrance_form
-
-/// X is one of the shade::cook_torrance_form types (or a user type with the same members).
-template <class X, class T>
-concept cook_torrance_normalization = std::floating_point<T> && requires {
-    { X::template scale<T>() } -> std::same_as<T>;
-};
-
-/// The distribution, masking and form are those the Kulla-Conty tables were computed for:
-/// ggx or beckmann, smith_height_correlated, cook_torrance_form::walter.
-template <class Distribution, class Masking, class Form>
-concept kulla_conty_compensable =
-    requires { detail::albedo_tables_of<Distribution>::e; } &&
-    std::same_as<Masking, smith_height_correlated<scalar_of<Distribution>>> &&
-    std::same_as<Form, cook_torrance_form::walter>;
-
-/// S is a Scattering policy of shade::cook_torrance for this distribution, masking and
-/// form: single_scattering always, kulla_conty (or kulla_conty_anisotropic, derived from
-/// it) when kulla_conty_compensable.
-template <class S, class Distribution, class Masking, class Form>
-concept scattering_policy_for =
-    std::same_as<S, single_scattering> ||
-    (std::derived_from<S, kulla_conty> && kulla_conty_compensable<Distribution, Masking, Form>);
 
 /// Cook-Torrance reflection: a Lambertian base plus a microfacet specular lobe.
 ///
@@ -126,6 +48,11 @@ concept scattering_policy_for =
 /// with k_d = d * (diffuse reflectance) and k_s = s. Neither is coupled to F, so
 /// energy conservation needs k_d + k_s * (specular albedo) <= 1 (e.g. k_d + k_s <= 1 with
 /// the walter form and a Smith G); the form constants are in shade::cook_torrance_form.
+///
+/// The specular part is shade::microfacet_reflection (lobe(), the same f and sampler)
+/// weighted by k_s. The model keeps a lobe choice of its own because it depends on the view
+/// (through F(n·v), below); a shade::mix of the lobe and shade::lambert chooses with a
+/// constant probability, which would change the pdf and the samples.
 ///
 /// The terms are evaluated in the local frame of at.shading (t, b, n): l, v and
 /// h = normalize(l + v) become vectors with n = +z and t = +x, so an anisotropic
@@ -190,6 +117,8 @@ public:
     using masking_type = Masking;
     using form_type = Form;
     using scattering_type = Scattering;
+    /// The specular lobe this model weighs by k_s.
+    using lobe_type = microfacet_reflection<Distribution, Fresnel, Masking, Form, Scattering>;
 
 private:
     using T = scalar_type;
@@ -204,16 +133,9 @@ public:
     /// >= 0.
     cook_torrance(const Distribution& distribution, const Fresnel& fresnel,
                   const rgb<T>& k_s = rgb<T>(1), const rgb<T>& k_d = rgb<T>(0))
-        : distribution_(distribution), fresnel_(fresnel),
-          k_s_(require_non_negative("k_s", k_s)), k_d_(require_non_negative("k_d", k_d)) {
-        if constexpr (compensated) ms_ = detail::scattering_state<Scattering, T>(distribution_, fresnel_);
-        // D <= peak, F <= 1, G <= 1, 1/((n·l)(n·v)) <= 1/cos_floor^2; with kulla_conty,
-        // f_ms <= its scale (each 1 - E factor is <= 1).
-        const T floor2 = detail::cos_floor<T> * detail::cos_floor<T>;
-        T lobe_peak = Form::template scale<T>() * (distribution_.peak() / floor2);
-        if constexpr (compensated) lobe_peak += detail::max_channel(ms_.scale);
-        detail::require_finite_peak(detail::peak_parameter_of(distribution_), lobe_peak);
-        const T peak = detail::max_channel(k_s_) * lobe_peak;
+        : k_s_(require_non_negative("k_s", k_s)), k_d_(require_non_negative("k_d", k_d)),
+          lobe_(distribution, fresnel) {
+        const T peak = detail::max_channel(k_s_) * lobe_.peak();
         detail::require_finite_peak("k_s", peak);
         detail::require_finite_peak("k_d", detail::max_channel(k_d_) * inv_pi<T> + peak);
     }
@@ -222,14 +144,13 @@ public:
     /// overflows).
     cook_torrance(unchecked_t, const Distribution& distribution, const Fresnel& fresnel,
                   const rgb<T>& k_s = rgb<T>(1), const rgb<T>& k_d = rgb<T>(0)) noexcept
-        : distribution_(distribution), fresnel_(fresnel), k_s_(k_s), k_d_(k_d) {
-        if constexpr (compensated) ms_ = detail::scattering_state<Scattering, T>(distribution_, fresnel_);
-    }
+        : k_s_(k_s), k_d_(k_d), lobe_(unchecked, distribution, fresnel) {}
 
-    [[nodiscard]] constexpr const Distribution& distribution() const noexcept { return distribution_; } ///< D term
-    [[nodiscard]] constexpr const Fresnel& fresnel() const noexcept { return fresnel_; } ///< F term
+    [[nodiscard]] constexpr const Distribution& distribution() const noexcept { return lobe_.distribution(); } ///< D term
+    [[nodiscard]] constexpr const Fresnel& fresnel() const noexcept { return lobe_.fresnel(); } ///< F term
     [[nodiscard]] constexpr const rgb<T>& k_s() const noexcept { return k_s_; } ///< specular weight
     [[nodiscard]] constexpr const rgb<T>& k_d() const noexcept { return k_d_; } ///< Lambert albedo
+    [[nodiscard]] constexpr const lobe_type& lobe() const noexcept { return lobe_; } ///< the specular lobe (k_s = 1)
 
     /// Diffuse part k_d / pi (1/sr), 0 unless n·l > 0 and n·v > 0.
     [[nodiscard]] rgb<T> f_diffuse(const vec3<T>& l, const vec3<T>& v,
@@ -239,42 +160,38 @@ public:
     }
 
     /// Specular part k_s scale F D G / ((n·l)(n·v)) (1/sr), plus k_s f_ms with
-    /// kulla_conty; 0 unless n·l > 0 and n·v > 0.
+    /// kulla_conty: k_s times the lobe's f; 0 unless n·l > 0 and n·v > 0.
     [[nodiscard]] rgb<T> f_specular(const vec3<T>& l, const vec3<T>& v,
                                     const surface_point<T>& at) const noexcept {
-        const vec3<T> l_local = at.shading.to_local(l);
-        const vec3<T> v_local = at.shading.to_local(v);
-        if (!(l_local.z > T(0)) || !(v_local.z > T(0))) return rgb<T>(0);
-        const auto [h, v_dot_h] = detail::half_vector_and_cos(l_local, v_local);
+        const auto value =
+            lobe_.template evaluate_local<true, false>(at.shading.to_local(l), at.shading.to_local(v), k_s_, T(0));
         if constexpr (compensated)
-            return specular(l_local, v_local, h, v_dot_h, D_of(h)) + multiple_scattering(l_local, v_local);
+            return value.single + value.multiple;
         else
-            return specular(l_local, v_local, h, v_dot_h, D_of(h));
+            return value.single;
     }
 
     /// With kulla_conty: the albedo E(mu) of the single-scattering lobe with F = 1 at
-    /// the view cosine mu, read from the table at the model's roughness (in [0, 1]); for
-    /// an anisotropic distribution, the isotropic table at sqrt(alpha_x alpha_y).
+    /// the view cosine mu (microfacet_reflection::single_scattering_albedo).
     [[nodiscard]] T single_scattering_albedo(T mu) const noexcept
         requires compensated
     {
-        return detail::albedo_lookup(detail::albedo_tables_of<Distribution>::e, detail::albedo_grid_nodes, mu,
-                                     ms_.alpha);
+        return lobe_.single_scattering_albedo(mu);
     }
 
-    /// With kulla_conty: the E(w) f_ms uses for the unit local direction w (n = +z): the
-    /// above at w.z, plus with kulla_conty_anisotropic its correction for w's azimuth.
+    /// With kulla_conty: the E(w) f_ms uses for the unit local direction w (n = +z)
+    /// (microfacet_reflection::single_scattering_albedo).
     [[nodiscard]] T single_scattering_albedo(const vec3<T>& w_local) const noexcept
         requires compensated
     {
-        return ms_.template albedo<Distribution>(w_local);
+        return lobe_.single_scattering_albedo(w_local);
     }
 
     /// With kulla_conty: E_avg, the cosine-weighted average of single_scattering_albedo.
     [[nodiscard]] T average_single_scattering_albedo() const noexcept
         requires compensated
     {
-        return ms_.e_avg;
+        return lobe_.average_single_scattering_albedo();
     }
 
     /// With kulla_conty: the probability q that sample(), having chosen the specular lobe,
@@ -283,10 +200,7 @@ public:
     [[nodiscard]] T multiple_scattering_probability(T n_dot_v) const noexcept
         requires compensated
     {
-        const T e = single_scattering_albedo(n_dot_v);
-        const T w_ms = ms_.f_ms_max * (T(1) - e);
-        const T w_ss = ms_.f_avg_max * e;
-        return w_ms > T(0) ? w_ms / (w_ms + w_ss) : T(0);
+        return lobe_.multiple_scattering_probability(n_dot_v);
     }
 
     /// BRDF value in 1/sr without the cosine: f_diffuse + f_specular.
@@ -322,12 +236,7 @@ public:
             bool cosine = false;
             // Of the specular draws (uc < p_s), the share q goes to the cosine.
             if constexpr (compensated) cosine = uc < choice.p_s * choice.q;
-            if (cosine) {
-                l_local = square_to_cosine_hemisphere(u);
-            } else {
-                const vec3<T> m = distribution_.sample_visible_normal(v_local, u);
-                l_local = T(2) * glm::dot(v_local, m) * m - v_local;
-            }
+            l_local = lobe_.draw_local(v_local, cosine, u);
         } else {
             l_local = square_to_cosine_hemisphere(u);
         }
@@ -347,7 +256,7 @@ public:
         const T w_d = detail::max_channel(k_d_);
         if (!(w_d > T(0))) return T(1);
         if (!(detail::max_channel(k_s_) > T(0))) return T(0);
-        const T w_s = detail::max_channel(k_s_ * fresnel_.F(n_dot_v)) *
+        const T w_s = detail::max_channel(k_s_ * lobe_.fresnel().F(n_dot_v)) *
                       (T(4) * Form::template scale<T>());
         // Divided by the larger weight first, so that huge (valid) weights cannot overflow
         // the sum.
@@ -378,70 +287,30 @@ private:
 
     // f and/or pdf of local l and v (choice: the lobe probabilities of v, read only for
     // the pdf), one routine for f(), pdf() and sample(), so that sample() returns exactly
-    // what f() and pdf() return at its direction.
+    // what f() and pdf() return at its direction. The specular lobe's parts come from
+    // lobe_type::evaluate_local with weight k_s.
     template <bool with_f, bool with_pdf>
     [[nodiscard]] value_and_pdf evaluate(const vec3<T>& l_local, const vec3<T>& v_local,
                                          const lobe_choice& choice) const noexcept {
         value_and_pdf out;
         if (!(l_local.z > T(0)) || !(v_local.z > T(0))) return out;
-        const auto [h, v_dot_h] = detail::half_vector_and_cos(l_local, v_local);
-        const T d = D_of(h);
+        const auto lobe = lobe_.template evaluate_local<with_f, with_pdf>(l_local, v_local, k_s_, choice.q);
         if constexpr (with_f) {
-            out.f = k_d_ * inv_pi<T> + specular(l_local, v_local, h, v_dot_h, d);
-            if constexpr (compensated) out.f += multiple_scattering(l_local, v_local);
+            out.f = k_d_ * inv_pi<T> + lobe.single;
+            if constexpr (compensated) out.f += lobe.multiple;
         }
         if constexpr (with_pdf) {
             const T p_s = choice.p_s;
-            // pdf_s = G1(v) D(h) / (4 n·v); v_local.z > 0 here.
-            T pdf_s = p_s > T(0) ? distribution_.G1(v_local) * d / (T(4) * v_local.z) : T(0);
-            if constexpr (compensated) {
-                const T q = choice.q;
-                pdf_s = (T(1) - q) * pdf_s + q * l_local.z * inv_pi<T>;
-            }
+            // The specular density is not read where the lobe is never chosen.
+            const T pdf_s = p_s > T(0) ? lobe.pdf : T(0);
             out.pdf = p_s * pdf_s + (T(1) - p_s) * l_local.z * inv_pi<T>;
         }
         return out;
     }
 
-    // D of the local half vector: D(h) when the distribution has the local form, else
-    // D(n·h).
-    [[nodiscard]] T D_of(const vec3<T>& h) const noexcept {
-        if constexpr (requires { { distribution_.D(h) } -> std::same_as<T>; })
-            return distribution_.D(h);
-        else
-            return distribution_.D(h.z);
-    }
-
-    // k_s scale F(v·h) D G / ((n·l)(n·v)) for local l, v, h with n·l, n·v > 0.
-    [[nodiscard]] rgb<T> specular(const vec3<T>& l, const vec3<T>& v, const vec3<T>& h, T v_dot_h,
-                                  T d) const noexcept {
-        T g;
-        if constexpr (requires { { masking_.G(distribution_, l, v, h, v_dot_h) } -> std::same_as<T>; })
-            g = masking_.G(distribution_, l, v, h, v_dot_h);
-        else
-            g = masking_.G(distribution_, l.z, v.z, h.z, v_dot_h);
-        const T lobe = Form::template scale<T>() * d * g /
-                       (detail::floored_cos(l.z) * detail::floored_cos(v.z));
-        return k_s_ * fresnel_.F(v_dot_h) * lobe;
-    }
-
-    // k_s f_ms = k_s F_ms (1 - E(l)) (1 - E(v)) / (pi (1 - E_avg)) for local l, v above
-    // the surface (kulla_conty only). Each factor is computed the same way for l and v, so
-    // the product is the same number with l and v exchanged.
-    [[nodiscard]] rgb<T> multiple_scattering(const vec3<T>& l_local, const vec3<T>& v_local) const noexcept
-        requires compensated
-    {
-        const T loss_l = T(1) - single_scattering_albedo(l_local);
-        const T loss_v = T(1) - single_scattering_albedo(v_local);
-        return k_s_ * ms_.scale * (loss_l * loss_v);
-    }
-
-    Distribution distribution_;
-    Fresnel fresnel_;
-    [[no_unique_address]] Masking masking_{};
     rgb<T> k_s_;
     rgb<T> k_d_;
-    [[no_unique_address]] detail::scattering_state<Scattering, T> ms_{};
+    lobe_type lobe_;
 };
 
 } // namespace shade
