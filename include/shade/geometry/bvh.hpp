@@ -141,6 +141,12 @@ public:
     [[nodiscard]] std::size_t node_count() const noexcept { return tree_.nodes.size() + tree_.wide_nodes.size(); }
     /// Children per node: 4 or 8 (see shade::bvh_width).
     [[nodiscard]] std::size_t node_width() const noexcept { return tree_.width; }
+    /// Bytes the hierarchy holds on the heap: its nodes (128 bytes each with four
+    /// children, 256 with eight) and its leaves' primitive indices (4 bytes each), as
+    /// allocated; not the object itself nor the caller's primitives.
+    [[nodiscard]] std::size_t memory_bytes() const noexcept {
+        return tree_.node_bytes() + tree_.order.capacity() * sizeof(std::uint32_t);
+    }
 
 private:
     detail::bvh_tree tree_;

@@ -170,6 +170,16 @@ public:
     [[nodiscard]] std::size_t node_count() const noexcept { return tree_.nodes.size() + tree_.wide_nodes.size(); }
     /// Children per node: 4 or 8 (see shade::bvh_width).
     [[nodiscard]] std::size_t node_width() const noexcept { return tree_.width; }
+    /// Bytes the hierarchy holds on the heap, as allocated: its nodes (128 bytes each with
+    /// four children, 256 with eight) and its leaf data, which is all it keeps of the
+    /// triangles (the list given is not referred to after the build): batched, one
+    /// leaf_bytes block per leaf_width triangles of a leaf (a leaf's last one partly
+    /// filled); otherwise each triangle and its index in the list given. Not the object
+    /// itself (sizeof).
+    [[nodiscard]] std::size_t memory_bytes() const noexcept {
+        return tree_.node_bytes() + leaves_.capacity() * sizeof(leaf_batch) +
+               triangles_.capacity() * sizeof(triangle<T>) + ids_.capacity() * sizeof(std::uint32_t);
+    }
 
 private:
     static constexpr std::uint32_t no_hit = ~std::uint32_t(0);
@@ -199,6 +209,15 @@ private:
         triangle_batch<T, batch_width> batch;
         std::array<lane_record, batch_width> lane;
     };
+
+public:
+    /// Bytes of one leaf block (batched only, else 0): the batch test's arrays (12
+    /// leaf_width scalars and the count, padded to the batch's alignment: 416) and each
+    /// lane's v1, v2 and index (8 x 28 bytes in float, 4 x 56 in double: 224), padded to a
+    /// cache line: 640 for float and for double.
+    static constexpr std::size_t leaf_bytes = batched ? sizeof(leaf_batch) : 0;
+
+private:
 
     /// Replaces every leaf's range of triangles (in ids_ order) by its range of leaf_batch
     /// blocks (ceil(count / leaf_width) of them, the last one partly filled).
@@ -233,7 +252,7 @@ private:
                 ref = detail::make_leaf_ref(block_first, static_cast<std::uint32_t>(leaves_.size()) - block_first);
             }
         });
-        ids_ = {};
+        std::vector<std::uint32_t>().swap(ids_); // frees it (= {} would keep the capacity)
     }
 
     detail::bvh_tree tree_;             // the nodes (its order is moved to ids_)

@@ -155,6 +155,11 @@ struct bvh_tree {
     std::vector<bvh_node<8>> wide_nodes;
     std::vector<std::uint32_t> order;
     std::size_t width = 4; ///< children per node: 4 (nodes) or 8 (wide_nodes)
+
+    /// Bytes of the nodes held (both widths' arrays, as allocated).
+    [[nodiscard]] std::size_t node_bytes() const noexcept {
+        return nodes.capacity() * sizeof(bvh_node<4>) + wide_nodes.capacity() * sizeof(bvh_node<8>);
+    }
 };
 
 /// Binned SAH builder (Wald 2007, "On fast Construction of SAH-based Bounding Volume
@@ -215,17 +220,33 @@ private:
 
     template <std::size_t W>
     void collapse_root(std::vector<bvh_node<W>>& nodes, std::uint32_t root) {
-        nodes.reserve(binary_.size() / (W / 2) + 1);
-        nodes.emplace_back();
         if (binary_[root].count > 0) {
             // A single leaf: one root node with one child.
+            nodes.emplace_back();
             set_empty(nodes[0]);
             set_child(nodes[0], 0, binary_[root].box, leaf_ref(binary_[root]));
         } else {
             plan_slots(W);
+            nodes.reserve(count_nodes<W>(root)); // exactly: no unused capacity is kept
+            nodes.emplace_back();
             collapse(nodes, 0, root);
             plans_ = {};
         }
+    }
+
+    /// The number of nodes collapse makes for the inner binary node `node`: its own and
+    /// those of its inner children, recursively.
+    template <std::size_t W>
+    [[nodiscard]] std::size_t count_nodes(std::uint32_t node) const {
+        std::array<std::uint32_t, W> kids{};
+        std::size_t n = 0;
+        const std::size_t left = plans_[node].node_left;
+        gather(binary_[node].first, left, kids.data(), n);
+        gather(binary_[node].right, W - left, kids.data(), n);
+        std::size_t total = 1;
+        for (std::size_t j = 0; j < n; ++j)
+            if (binary_[kids[j]].count == 0) total += count_nodes<W>(kids[j]);
+        return total;
     }
 
     template <std::size_t W>
