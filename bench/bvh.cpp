@@ -1,13 +1,21 @@
 // Bounding-volume hierarchies: shade::triangle_bvh<float> against Embree 3 in the same
-// binary, single thread: build time, and closest-hit throughput for primary (coherent)
-// and random (incoherent) rays, on icospheres of 20k / 82k / 328k triangles and on the
-// reference tracer's mesh scene. Embree is used only here (bench/CMakeLists.txt builds
-// this file only when find_package(embree 3) finds it); the library never depends on it.
+// binary, single thread: build time, closest-hit throughput for primary (coherent) and
+// random (incoherent) rays, any-hit throughput for shadow rays (triangle_bvh::any against
+// rtcOccluded1), and the memory of the built hierarchy, on icospheres of 20k / 82k / 328k
+// triangles and on the reference tracer's mesh scene. Embree is used only here
+// (bench/CMakeLists.txt builds this file only when find_package(embree 3) finds it); the
+// library never depends on it.
 //
 // Names (bench/support.hpp): bvh/<rays>/<scene>/<shade|embree> with rays = build,
-// primary or incoherent; ops_per_iter is the number of rays (or 1 build), so the time
-// per operation is ns per ray. Counters: hit_rate (shade's), and agreement: the fraction
-// of rays on which shade and Embree agree on hit or miss (computed once, before timing).
+// primary, incoherent or shadow; ops_per_iter is the number of rays (or 1 build), so the
+// time per operation is ns per ray. Counters: hit_rate (shade's; for shadow rays the
+// fraction occluded), agreement: the fraction of rays on which shade and Embree agree on
+// hit or miss (computed once, before timing); on the build rows, bytes_per_triangle: for
+// shade, triangle_bvh::memory_bytes() (nodes and leaf data) over the triangles; for Embree,
+// the bytes its device memory monitor (rtcSetDeviceMemoryMonitorFunction) counts as
+// allocated and not freed across rtcCommitScene (the hierarchy and its leaf triangles,
+// as its allocator holds them; the geometry's vertex and index buffers, allocated before,
+// are not counted), and peak_bytes_per_triangle, the most held during the commit.
 
 #include <cmath>
 #include <cstddef>
@@ -40,7 +48,7 @@ struct scene_data {
     std::vector<float> positions; // x y z per vertex
     std::vector<std::uint32_t> indices;
     std::vector<shade::triangle<float>> triangles;
-    std::vector<shade::ray<float>> primary, incoherent;
+    std::vector<shade::ray<float>> primary, incoherent, shadow;
 };
 
 void add_mesh(scene_data& s, const tracer::mesh& m) {
@@ -87,6 +95,34 @@ std::vector<shade::ray<float>> random_rays(const v3& centre, float extent, std::
     return rays;
 }
 
+/// Shadow rays: origins as for random_rays, each toward a point near a random triangle
+/// (uniform barycentrics) moved off its plane along the unit normal by a distance of
+/// either sign and magnitude in [0.001, 0.01] x extent, the segment t in [0, 1] (the
+/// direction is the unnormalised difference): the end point lies in front of or behind
+/// the surface, never on it, so the rounding of either test does not decide whether the
+/// segment is blocked; some are (the mesh lies between), some are not.
+std::vector<shade::ray<float>> shadow_rays(const scene_data& s, const v3& centre, float extent, std::uint64_t seed) {
+    shade::rng g(seed);
+    std::vector<shade::ray<float>> rays;
+    while (rays.size() < incoherent_count) {
+        const v3 o = centre + extent * v3(2 * g.uniform<float>() - 1, 2 * g.uniform<float>() - 1,
+                                          2 * g.uniform<float>() - 1);
+        const auto i = static_cast<std::size_t>(g.uniform<float>() * float(s.triangles.size())) % s.triangles.size();
+        const shade::triangle<float>& tri = s.triangles[i];
+        const v3 n = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
+        const float n_len = glm::length(n);
+        if (!(n_len > 0.0f)) continue;
+        float u = g.uniform<float>(), w = g.uniform<float>();
+        if (u + w > 1.0f) u = 1.0f - u, w = 1.0f - w;
+        const float offset = extent * (0.001f + 0.009f * g.uniform<float>()) * (g.uniform<float>() < 0.5f ? -1.0f : 1.0f);
+        const v3 target = tri.v0 + u * (tri.v1 - tri.v0) + w * (tri.v2 - tri.v0) + (offset / n_len) * n;
+        const v3 d = target - o;
+        if (glm::length(d) < 0.01f * extent) continue;
+        rays.push_back({o, d, 0.0f, 1.0f});
+    }
+    return rays;
+}
+
 scene_data icosphere(int levels, const char* name) {
     scene_data s;
     s.name = name;
@@ -96,6 +132,7 @@ scene_data icosphere(int levels, const char* name) {
     const shade::pinhole_camera<double> cam({0.3, 0.4, 3}, {0, 0, 0}, {0, 1, 0}, 50 * shade::pi<double> / 180, 1.0);
     s.primary = camera_rays(cam);
     s.incoherent = random_rays(v3(0), 1.5f, 99);
+    s.shadow = shadow_rays(s, v3(0), 1.5f, 97);
     return s;
 }
 
@@ -108,13 +145,34 @@ scene_data mesh_scene() {
     finish_triangles(s);
     s.primary = camera_rays(*sc.camera);
     s.incoherent = random_rays(v3(0, 0.35f, 0), 3.5f, 98);
+    s.shadow = shadow_rays(s, v3(0, 0.35f, 0), 3.5f, 96);
     return s;
 }
 
 // ---- Embree ---------------------------------------------------------------------------
 
+/// What Embree's device memory monitor reports: bytes held now and the most held since
+/// the last reset (single thread: no synchronisation needed).
+struct embree_memory {
+    long long held = 0;
+    long long peak = 0;
+    void reset() { peak = held; }
+};
+embree_memory embree_bytes;
+
+bool monitor(void* user, ssize_t bytes, bool) {
+    auto* m = static_cast<embree_memory*>(user);
+    m->held += bytes; // positive on allocation, negative on release
+    if (m->held > m->peak) m->peak = m->held;
+    return true;
+}
+
 struct embree_device {
-    RTCDevice device = rtcNewDevice("threads=1");
+    RTCDevice device = [] {
+        RTCDevice d = rtcNewDevice("threads=1");
+        rtcSetDeviceMemoryMonitorFunction(d, monitor, &embree_bytes);
+        return d;
+    }();
     ~embree_device() { rtcReleaseDevice(device); }
 };
 
@@ -140,6 +198,29 @@ RTCScene embree_build(const scene_data& s) {
     return scene;
 }
 
+/// The bytes Embree's scene over s holds after its commit beyond what it held before
+/// (the hierarchy and its leaves), and the most it held beyond that during the commit.
+std::pair<double, double> embree_memory_of(const scene_data& s) {
+    // As embree_build, with the monitor read around the commit.
+    RTCScene scene = rtcNewScene(device());
+    RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                           3 * sizeof(float), s.positions.size() / 3));
+    std::copy(s.positions.begin(), s.positions.end(), vb);
+    auto* ib = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), s.indices.size() / 3));
+    std::copy(s.indices.begin(), s.indices.end(), ib);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene, geom);
+    rtcReleaseGeometry(geom);
+    const long long before = embree_bytes.held;
+    embree_bytes.reset();
+    rtcCommitScene(scene);
+    const auto retained = double(embree_bytes.held - before), peak = double(embree_bytes.peak - before);
+    rtcReleaseScene(scene);
+    return {retained, peak};
+}
+
 /// Embree's closest hit of r: t, or +infinity on a miss.
 float embree_closest(RTCScene scene, const shade::ray<float>& r) {
     RTCIntersectContext context;
@@ -160,6 +241,24 @@ float embree_closest(RTCScene scene, const shade::ray<float>& r) {
     return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? std::numeric_limits<float>::infinity() : rh.ray.tfar;
 }
 
+/// Embree's occlusion test of r (the segment [t_min, t_max]): true when blocked.
+bool embree_occluded(RTCScene scene, const shade::ray<float>& r) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray{};
+    ray.org_x = r.origin.x;
+    ray.org_y = r.origin.y;
+    ray.org_z = r.origin.z;
+    ray.dir_x = r.direction.x;
+    ray.dir_y = r.direction.y;
+    ray.dir_z = r.direction.z;
+    ray.tnear = r.t_min;
+    ray.tfar = r.t_max;
+    ray.mask = ~0u;
+    rtcOccluded1(scene, &context, &ray);
+    return ray.tfar < 0.0f; // set to -infinity when occluded
+}
+
 struct built {
     scene_data data;
     shade::triangle_bvh<float> shade_bvh;      // the default width: 8 children where the CPU has AVX
@@ -170,20 +269,61 @@ struct built {
 void register_scene(const built& b) {
     const scene_data& s = b.data;
     const std::string build = "bvh/build/" + s.name + "/";
-    shade_bench::add(build + "embree", 1.0, [&s] {
-        RTCScene scene = embree_build(s);
-        benchmark::DoNotOptimize(scene);
-        rtcReleaseScene(scene);
-    });
+    const double triangles = double(s.triangles.size());
+    const auto [embree_retained, embree_peak] = embree_memory_of(s);
+    shade_bench::add(
+        build + "embree", 1.0,
+        [&s] {
+            RTCScene scene = embree_build(s);
+            benchmark::DoNotOptimize(scene);
+            rtcReleaseScene(scene);
+        },
+        -1.0,
+        {{"bytes_per_triangle", embree_retained / triangles}, {"peak_bytes_per_triangle", embree_peak / triangles}});
     // shade's hierarchy at the default width (eight children where the CPU has AVX) and
     // at four, each against Embree on the same rays.
     const std::pair<const char*, shade::bvh_width> widths[] = {{"shade", shade::bvh_width::automatic},
                                                               {"shade_four", shade::bvh_width::four}};
-    for (const auto& variant : widths)
-        shade_bench::add(build + variant.first, 1.0, [&s, width = variant.second] {
-            shade::triangle_bvh<float> t(s.triangles, width);
-            benchmark::DoNotOptimize(t);
-        });
+    for (const auto& variant : widths) {
+        const shade::triangle_bvh<float>& tree = variant.second == shade::bvh_width::four ? b.shade_bvh_four : b.shade_bvh;
+        shade_bench::add(
+            build + variant.first, 1.0,
+            [&s, width = variant.second] {
+                shade::triangle_bvh<float> t(s.triangles, width);
+                benchmark::DoNotOptimize(t);
+            },
+            -1.0, {{"bytes_per_triangle", double(tree.memory_bytes()) / triangles}});
+    }
+    {
+        // Shadow rays: any-hit against Embree's occlusion test.
+        const std::vector<shade::ray<float>>& rays = s.shadow;
+        const double n = double(rays.size());
+        const std::string group = "bvh/shadow/" + s.name + "/";
+        std::size_t embree_blocked = 0;
+        for (const auto& r : rays) embree_blocked += embree_occluded(b.embree, r);
+        shade_bench::add(
+            group + "embree", n,
+            [&b, &rays] {
+                for (const auto& r : rays) benchmark::DoNotOptimize(embree_occluded(b.embree, r));
+            },
+            double(embree_blocked) / n);
+        for (const auto& [name, width] : widths) {
+            const shade::triangle_bvh<float>& tree = width == shade::bvh_width::four ? b.shade_bvh_four : b.shade_bvh;
+            std::size_t agree = 0, blocked = 0;
+            for (const auto& r : rays) {
+                const bool a = tree.any(r);
+                agree += a == embree_occluded(b.embree, r);
+                blocked += a;
+            }
+            shade_bench::add(
+                group + name, n,
+                [&tree, &rays] {
+                    for (const auto& r : rays) benchmark::DoNotOptimize(tree.any(r));
+                },
+                double(blocked) / n,
+                {{"agreement", double(agree) / n}, {"node_width", double(tree.node_width())}});
+        }
+    }
     for (const bool coherent : {true, false}) {
         const std::vector<shade::ray<float>>& rays = coherent ? s.primary : s.incoherent;
         const double n = double(rays.size());
