@@ -109,6 +109,17 @@ struct bvh_v4 {
 [[nodiscard]] inline bvh_v4 bvh_vmax(bvh_v4 a, const bvh_v4& b) noexcept { for (std::size_t i = 0; i < 4; ++i) a.v[i] = a.v[i] < b.v[i] ? b.v[i] : a.v[i]; return a; }
 #endif
 
+/// The lanes of x, each in [0, 2^31), truncated toward zero to integers.
+[[nodiscard]] inline std::array<std::uint32_t, 4> bvh_truncate(const bvh_v4& x) noexcept {
+#if defined(__GNUC__)
+    using lanes_i32 [[gnu::vector_size(16)]] = std::int32_t;
+    const auto i = __builtin_convertvector(x, lanes_i32); // one conversion of the four lanes
+    return {std::uint32_t(i[0]), std::uint32_t(i[1]), std::uint32_t(i[2]), std::uint32_t(i[3])};
+#else
+    return {std::uint32_t(x[0]), std::uint32_t(x[1]), std::uint32_t(x[2]), std::uint32_t(x[3])};
+#endif
+}
+
 /// One primitive while building: its box (rounded outward to floats; x, y, z in lanes 0-2
 /// of lo and hi) and its index (lane 3 of lo, bit-cast). The builder partitions these in
 /// place.
@@ -164,8 +175,8 @@ struct bvh_tree {
 
 /// Binned SAH builder (Wald 2007, "On fast Construction of SAH-based Bounding Volume
 /// Hierarchies", IEEE Symposium on Interactive Ray Tracing, §3-4): at each node the
-/// primitives' centroids are sorted into `bins` equal bins along each axis of their
-/// bounds, and of the bins - 1 planes between bins on the three axes the one of least
+/// primitives' centroids are sorted into equal bins along each axis of their bounds
+/// (`bins` of them, fewer in small nodes: bins_for), and of the planes between bins on the three axes the one of least
 /// surface area heuristic cost is taken (Goldsmith, Salmon 1987, "Automatic Creation of
 /// Object Hierarchies for Ray Tracing", IEEE CG&A 7(5); MacDonald, Booth 1990, "Heuristics
 /// for ray tracing using space subdivision", The Visual Computer 6(3)):
@@ -181,7 +192,9 @@ public:
     static constexpr int bins = 16;
     static constexpr int median_depth = 48;
 
-    bvh_builder(std::uint32_t max_leaf, std::uint32_t block) : max_leaf_(max_leaf), block_(block) {}
+    /// block: a power of two.
+    bvh_builder(std::uint32_t max_leaf, std::uint32_t block)
+        : max_leaf_(max_leaf), block_(block), block_shift_(static_cast<std::uint32_t>(std::countr_zero(block))) {}
 
     /// Builds over refs (reordered in place), into nodes of `width` (4 or 8) children.
     [[nodiscard]] bvh_tree build(std::vector<bvh_prim_ref>& refs, std::size_t width = 4) {
@@ -216,7 +229,26 @@ private:
         std::uint8_t node_left = 0;          ///< as a node of its own: children from the left subtree
     };
 
-    [[nodiscard]] std::uint32_t blocks(std::uint32_t n) const noexcept { return (n + block_ - 1) / block_; }
+    [[nodiscard]] std::uint32_t blocks(std::uint32_t n) const noexcept {
+        return (n + block_ - 1) >> block_shift_; // block_ = 2^block_shift_
+    }
+    /// blocks of three counts, as floats in lanes 0-2.
+    [[nodiscard]] bvh_v4 blocks3(const std::array<std::uint32_t, 3>& n) const noexcept {
+        return bvh_v4{float(blocks(n[0])), float(blocks(n[1])), float(blocks(n[2])), 0.0f};
+    }
+    /// The half_area of three boxes, in lanes 0-2 (lane 3: 0).
+    [[nodiscard]] static bvh_v4 half_areas(const std::array<bvh_box, 3>& b) noexcept {
+#if defined(__GNUC__)
+        const bvh_v4 e0 = b[0].hi - b[0].lo, e1 = b[1].hi - b[1].lo, e2 = b[2].hi - b[2].lo;
+        const bvh_v4 x{e0[0], e1[0], e2[0], 0.0f}, y{e0[1], e1[1], e2[1], 0.0f}, z{e0[2], e1[2], e2[2], 0.0f};
+        const bvh_v4 area = x * y + y * z + z * x; // as bvh_box::half_area, lane by lane
+        using mask [[gnu::vector_size(16)]] = std::int32_t;
+        const mask valid = (x >= 0.0f) & (y >= 0.0f) & (z >= 0.0f); // not empty (nor NaN)
+        return reinterpret_cast<bvh_v4>(reinterpret_cast<mask>(area) & valid);
+#else
+        return bvh_v4{b[0].half_area(), b[1].half_area(), b[2].half_area(), 0.0f};
+#endif
+    }
 
     template <std::size_t W>
     void collapse_root(std::vector<bvh_node<W>>& nodes, std::uint32_t root) {
@@ -383,55 +415,54 @@ private:
         bvh_box left_box, left_centroids, right_box, right_centroids;
         if (depth < median_depth) {
             // Bin the centroids on every axis with extent: bin = floor((c - lo) scale).
-            std::array<std::array<bvh_box, bins>, 3> bin_box{};
-            std::array<std::array<std::uint32_t, bins>, 3> bin_count{};
+            const std::size_t nb = bins_for(n);
             bvh_v4 scale{0.0f, 0.0f, 0.0f, 0.0f};
             for (std::size_t k = 0; k < 3; ++k) {
                 const float extent = centroids.hi[k] - centroids.lo[k];
-                // Slightly under bins / extent, so the largest centroid falls in the last bin.
-                scale[k] = extent > 0.0f ? float(bins) * 0.99999f / extent : 0.0f;
+                // Slightly under nb / extent, so the largest centroid falls in the last bin.
+                scale[k] = extent > 0.0f ? float(nb) * 0.99999f / extent : 0.0f;
             }
             const bvh_v4 c_lo = centroids.lo;
-            const bvh_v4 zero{0.0f, 0.0f, 0.0f, 0.0f};
-            const bvh_v4 last{float(bins - 1), float(bins - 1), float(bins - 1), float(bins - 1)};
-            for (std::uint32_t i = begin; i < end; ++i) {
-                const bvh_prim_ref& r = refs_[i];
-                // Clamped to [0, bins - 1] without branches (the bins of successive
-                // primitives are unpredictable); a NaN lane (infinite bounds) gives 0.
-                const bvh_v4 x = bvh_vmin(bvh_vmax((r.centroid2() - c_lo) * scale, zero), last);
-                for (std::size_t k = 0; k < 3; ++k) {
-                    const auto b = static_cast<std::size_t>(x[k]);
-                    bin_box[k][b].grow(r.lo, r.hi);
-                    ++bin_count[k][b];
+            bin_primitives(begin, end, c_lo, scale, nb);
+            const auto& bin_box = bins_[0].box;
+            const auto& bin_count = bins_[0].count;
+            // Sweep, the three axes at once (lane k): right_cost[j] = A N of bins
+            // j..bins-1; then from the left, cost[j] = A N of bins 0..j-1 + right_cost[j],
+            // infinite where one side is empty or the axis has no extent.
+            std::array<bvh_v4, bins> right_cost{};
+            std::array<bvh_v4, bins> cost{};
+            {
+                std::array<bvh_box, 3> acc{};
+                std::array<std::uint32_t, 3> count{};
+                for (std::size_t j = nb - 1; j > 0; --j) {
+                    for (std::size_t k = 0; k < 3; ++k) {
+                        acc[k].grow(bin_box[k][j]);
+                        count[k] += bin_count[k][j];
+                    }
+                    right_cost[j] = half_areas(acc) * blocks3(count);
+                }
+                acc = {};
+                count = {};
+                for (std::size_t j = 1; j < nb; ++j) {
+                    for (std::size_t k = 0; k < 3; ++k) {
+                        acc[k].grow(bin_box[k][j - 1]);
+                        count[k] += bin_count[k][j - 1];
+                    }
+                    cost[j] = half_areas(acc) * blocks3(count) + right_cost[j];
+                    for (std::size_t k = 0; k < 3; ++k)
+                        if (count[k] == 0 || count[k] == n || !(scale[k] > 0.0f)) cost[j][k] = infinity<float>;
                 }
             }
-            // Sweep: right_cost[j] = A N of bins j..bins-1, then evaluate from the left.
+            // The least cost, the first one in the order axis by axis, split by split.
             float best_cost = infinity<float>;
             std::size_t best_axis = 0, best_split = 0;
-            for (std::size_t k = 0; k < 3; ++k) {
-                if (!(scale[k] > 0.0f)) continue;
-                std::array<float, bins> right_cost{};
-                bvh_box acc;
-                std::uint32_t count = 0;
-                for (std::size_t j = bins - 1; j > 0; --j) {
-                    acc.grow(bin_box[k][j]);
-                    count += bin_count[k][j];
-                    right_cost[j] = acc.half_area() * float(blocks(count));
-                }
-                acc = bvh_box{};
-                count = 0;
-                for (std::size_t j = 1; j < bins; ++j) {
-                    acc.grow(bin_box[k][j - 1]);
-                    count += bin_count[k][j - 1];
-                    if (count == 0 || count == n) continue;
-                    const float cost = acc.half_area() * float(blocks(count)) + right_cost[j];
-                    if (cost < best_cost) {
-                        best_cost = cost;
+            for (std::size_t k = 0; k < 3; ++k)
+                for (std::size_t j = 1; j < nb; ++j)
+                    if (cost[j][k] < best_cost) {
+                        best_cost = cost[j][k];
                         best_axis = k;
                         best_split = j;
                     }
-                }
-            }
             if (best_cost < infinity<float>) {
                 const float area = box.half_area();
                 const float split_cost = area + best_cost; // C_trav A + (A_L N_L + A_R N_R)
@@ -440,7 +471,7 @@ private:
                 // Partition (Hoare), gathering both sides' boxes on the way.
                 const float lo = c_lo[best_axis], sc = scale[best_axis];
                 const auto goes_left = [&](const bvh_prim_ref& r) {
-                    return bin_index((r.centroid2()[best_axis] - lo) * sc) < best_split;
+                    return bin_index((r.centroid2()[best_axis] - lo) * sc, nb) < best_split;
                 };
                 std::uint32_t i = begin, j = end;
                 for (;;) {
@@ -486,12 +517,77 @@ private:
         return index;
     }
 
+    /// The number of bins for a node of n primitives, 4 + n / 20 and at most `bins`, the
+    /// rule of Embree's binned builder (Wald, Woop, Benthin, Johnson, Ernst 2014, "Embree:
+    /// A Kernel Framework for Efficient CPU Ray Tracing", ACM TOG 33(4); the bin mapping
+    /// in its source, kernels/builders/heuristic_binning.h): a small node has few planes
+    /// worth telling apart, and its binning and sweep cost in proportion to the bins.
+    [[nodiscard]] static std::size_t bins_for(std::uint32_t n) noexcept {
+        const std::size_t nb = 4 + n / 20;
+        return nb < bins ? nb : std::size_t(bins);
+    }
+
+    /// The primitives' boxes and counts per bin and axis (bvh_box's empty box and 0 where
+    /// none fell).
+    struct bin_set {
+        std::array<std::array<bvh_box, bins>, 3> box;
+        std::array<std::array<std::uint32_t, bins>, 3> count;
+    };
+
+    /// Fills bins_[0] with refs_[begin, end) binned along each axis: bin =
+    /// floor((centroid2 - c_lo) scale), clamped to [0, bins - 1] (a NaN, from infinite
+    /// bounds, to 0). Successive primitives of a mesh often fall in the same bin, whose
+    /// box then grows through a chain of loads and stores; above a few dozen primitives,
+    /// even and odd ones go to two sets of bins (bins_[0] and bins_[1]), merged at the end
+    /// (the same boxes and counts: min, max and sums do not depend on the order).
+    void bin_primitives(std::uint32_t begin, std::uint32_t end, const bvh_v4& c_lo, const bvh_v4& scale,
+                        std::size_t nb) noexcept {
+        constexpr std::uint32_t two_sets_from = 64;
+        const std::size_t sets = end - begin >= two_sets_from ? 2 : 1;
+        for (std::size_t s = 0; s < sets; ++s) {
+            for (std::size_t k = 0; k < 3; ++k)
+                for (std::size_t j = 0; j < nb; ++j) {
+                    bins_[s].box[k][j] = bvh_box{};
+                    bins_[s].count[k][j] = 0;
+                }
+        }
+        const bvh_v4 zero{0.0f, 0.0f, 0.0f, 0.0f};
+        const auto top = float(nb - 1);
+        const bvh_v4 last{top, top, top, top};
+        const auto add = [&](bin_set& set, const bvh_prim_ref& r) {
+            // Clamped without branches (the bins of successive primitives are
+            // unpredictable); a NaN lane gives 0. Then truncated, all lanes at once.
+            const bvh_v4 x = bvh_vmin(bvh_vmax((r.centroid2() - c_lo) * scale, zero), last);
+            const std::array<std::uint32_t, 4> b = bvh_truncate(x);
+            for (std::size_t k = 0; k < 3; ++k) {
+                set.box[k][b[k]].grow(r.lo, r.hi);
+                ++set.count[k][b[k]];
+            }
+        };
+        std::uint32_t i = begin;
+        if (sets == 2) {
+            for (; i + 1 < end; i += 2) {
+                add(bins_[0], refs_[i]);
+                add(bins_[1], refs_[i + 1]);
+            }
+        }
+        for (; i < end; ++i) add(bins_[0], refs_[i]);
+        if (sets == 2) {
+            for (std::size_t k = 0; k < 3; ++k)
+                for (std::size_t j = 0; j < nb; ++j) {
+                    bins_[0].box[k][j].grow(bins_[1].box[k][j]);
+                    bins_[0].count[k][j] += bins_[1].count[k][j];
+                }
+        }
+    }
+
     /// The bin of a scaled centroid coordinate x, clamped to [0, bins - 1]; written so that
     /// a NaN x (from infinite bounds) lands in bin 0, never in a cast.
-    [[nodiscard]] static std::size_t bin_index(float x) noexcept {
+    [[nodiscard]] static std::size_t bin_index(float x, std::size_t nb) noexcept {
         // Branch-free (minss, maxss): the bins of successive primitives are unpredictable.
         const float lo = x > 0.0f ? x : 0.0f; // NaN compares false: 0
-        return static_cast<std::size_t>(lo < float(bins - 1) ? lo : float(bins - 1));
+        const auto top = float(nb - 1);
+        return static_cast<std::size_t>(lo < top ? lo : top);
     }
 
     /// Reorders refs_[begin, end) so that refs_[mid] holds the reference whose doubled
@@ -524,9 +620,11 @@ private:
 
     std::uint32_t max_leaf_;
     std::uint32_t block_;
+    std::uint32_t block_shift_;
     bvh_prim_ref* refs_ = nullptr;
     std::vector<binary_node> binary_;
     std::vector<slot_plan> plans_;
+    std::array<bin_set, 2> bins_; // bin_primitives's result (bins_[0]) and its second set
 };
 
 /// Throws shade::invalid_parameter naming `parameter` unless there are fewer than 2^27
