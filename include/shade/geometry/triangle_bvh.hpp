@@ -170,12 +170,9 @@ public:
     [[nodiscard]] std::size_t node_count() const noexcept { return tree_.nodes.size() + tree_.wide_nodes.size(); }
     /// Children per node: 4 or 8 (see shade::bvh_width).
     [[nodiscard]] std::size_t node_width() const noexcept { return tree_.width; }
-    /// Bytes the hierarchy holds on the heap, as allocated: its nodes (128 bytes each with
-    /// four children, 256 with eight) and its leaf data, which is all it keeps of the
-    /// triangles (the list given is not referred to after the build): batched, one
-    /// leaf_bytes block per leaf_width triangles of a leaf (a leaf's last one partly
-    /// filled); otherwise each triangle and its index in the list given. Not the object
-    /// itself (sizeof).
+    /// Bytes held on the heap, as allocated: the nodes (128 bytes each with four children,
+    /// 256 with eight) and the leaf data, all that is kept of the triangles: batched, a
+    /// leaf_bytes block per leaf_width triangles of a leaf; else each triangle and its index.
     [[nodiscard]] std::size_t memory_bytes() const noexcept {
         return tree_.node_bytes() + leaves_.capacity() * sizeof(leaf_batch) +
                triangles_.capacity() * sizeof(triangle<T>) + ids_.capacity() * sizeof(std::uint32_t);
@@ -211,10 +208,8 @@ private:
     };
 
 public:
-    /// Bytes of one leaf block (batched only, else 0): the batch test's arrays (12
-    /// leaf_width scalars and the count, padded to the batch's alignment: 416) and each
-    /// lane's v1, v2 and index (8 x 28 bytes in float, 4 x 56 in double: 224), padded to a
-    /// cache line: 640 for float and for double.
+    /// Bytes of a leaf block (batched only, else 0): the batch (416) and the lanes' v1, v2
+    /// and index (8 x 28 in float, 4 x 56 in double), a multiple of 64: 640.
     static constexpr std::size_t leaf_bytes = batched ? sizeof(leaf_batch) : 0;
 
 private:

@@ -176,10 +176,10 @@ struct bvh_tree {
 /// Binned SAH builder (Wald 2007, "On fast Construction of SAH-based Bounding Volume
 /// Hierarchies", IEEE Symposium on Interactive Ray Tracing, §3-4): at each node the
 /// primitives' centroids are sorted into equal bins along each axis of their bounds
-/// (`bins` of them, fewer in small nodes: bins_for), and of the planes between bins on the three axes the one of least
-/// surface area heuristic cost is taken (Goldsmith, Salmon 1987, "Automatic Creation of
-/// Object Hierarchies for Ray Tracing", IEEE CG&A 7(5); MacDonald, Booth 1990, "Heuristics
-/// for ray tracing using space subdivision", The Visual Computer 6(3)):
+/// (`bins`, fewer in small nodes: bins_for), and of the planes between bins on the three
+/// axes the one of least surface area heuristic cost is taken (Goldsmith, Salmon 1987,
+/// "Automatic Creation of Object Hierarchies for Ray Tracing", IEEE CG&A 7(5); MacDonald,
+/// Booth 1990, "Heuristics for ray tracing using space subdivision", The Visual Computer 6(3)):
 ///     cost(split) = C_trav + (A_L N_L + A_R N_R) / A,    cost(leaf) = N,
 /// with A the surface areas, N the numbers of primitives (counted in whole blocks of
 /// `block` primitives, the width of the leaves' batch tests) and C_trav = 1. A node
@@ -266,8 +266,7 @@ private:
         }
     }
 
-    /// The number of nodes collapse makes for the inner binary node `node`: its own and
-    /// those of its inner children, recursively.
+    /// The number of nodes collapse makes for the inner binary node `node`.
     template <std::size_t W>
     [[nodiscard]] std::size_t count_nodes(std::uint32_t node) const {
         std::array<std::uint32_t, W> kids{};
@@ -426,32 +425,29 @@ private:
             bin_primitives(begin, end, c_lo, scale, nb);
             const auto& bin_box = bins_[0].box;
             const auto& bin_count = bins_[0].count;
-            // Sweep, the three axes at once (lane k): right_cost[j] = A N of bins
-            // j..bins-1; then from the left, cost[j] = A N of bins 0..j-1 + right_cost[j],
+            // Sweep, axis k in lane k: cost[j] = (A N of bins < j) + (A N of bins >= j),
             // infinite where one side is empty or the axis has no extent.
             std::array<bvh_v4, bins> right_cost{};
             std::array<bvh_v4, bins> cost{};
-            {
-                std::array<bvh_box, 3> acc{};
-                std::array<std::uint32_t, 3> count{};
-                for (std::size_t j = nb - 1; j > 0; --j) {
-                    for (std::size_t k = 0; k < 3; ++k) {
-                        acc[k].grow(bin_box[k][j]);
-                        count[k] += bin_count[k][j];
-                    }
-                    right_cost[j] = half_areas(acc) * blocks3(count);
+            std::array<bvh_box, 3> acc{};
+            std::array<std::uint32_t, 3> count{};
+            for (std::size_t j = nb - 1; j > 0; --j) {
+                for (std::size_t k = 0; k < 3; ++k) {
+                    acc[k].grow(bin_box[k][j]);
+                    count[k] += bin_count[k][j];
                 }
-                acc = {};
-                count = {};
-                for (std::size_t j = 1; j < nb; ++j) {
-                    for (std::size_t k = 0; k < 3; ++k) {
-                        acc[k].grow(bin_box[k][j - 1]);
-                        count[k] += bin_count[k][j - 1];
-                    }
-                    cost[j] = half_areas(acc) * blocks3(count) + right_cost[j];
-                    for (std::size_t k = 0; k < 3; ++k)
-                        if (count[k] == 0 || count[k] == n || !(scale[k] > 0.0f)) cost[j][k] = infinity<float>;
+                right_cost[j] = half_areas(acc) * blocks3(count);
+            }
+            acc = {};
+            count = {};
+            for (std::size_t j = 1; j < nb; ++j) {
+                for (std::size_t k = 0; k < 3; ++k) {
+                    acc[k].grow(bin_box[k][j - 1]);
+                    count[k] += bin_count[k][j - 1];
                 }
+                cost[j] = half_areas(acc) * blocks3(count) + right_cost[j];
+                for (std::size_t k = 0; k < 3; ++k)
+                    if (count[k] == 0 || count[k] == n || !(scale[k] > 0.0f)) cost[j][k] = infinity<float>;
             }
             // The least cost, the first one in the order axis by axis, split by split.
             float best_cost = infinity<float>;
@@ -517,46 +513,38 @@ private:
         return index;
     }
 
-    /// The number of bins for a node of n primitives, 4 + n / 20 and at most `bins`, the
-    /// rule of Embree's binned builder (Wald, Woop, Benthin, Johnson, Ernst 2014, "Embree:
-    /// A Kernel Framework for Efficient CPU Ray Tracing", ACM TOG 33(4); the bin mapping
-    /// in its source, kernels/builders/heuristic_binning.h): a small node has few planes
-    /// worth telling apart, and its binning and sweep cost in proportion to the bins.
+    /// Bins for a node of n primitives: 4 + n / 20, at most `bins` (the rule of Embree's
+    /// builder, Wald et al. 2014, "Embree: A Kernel Framework for Efficient CPU Ray
+    /// Tracing", ACM TOG 33(4), in kernels/builders/heuristic_binning.h): cheaper small nodes.
     [[nodiscard]] static std::size_t bins_for(std::uint32_t n) noexcept {
         const std::size_t nb = 4 + n / 20;
         return nb < bins ? nb : std::size_t(bins);
     }
 
-    /// The primitives' boxes and counts per bin and axis (bvh_box's empty box and 0 where
-    /// none fell).
+    /// The primitives' boxes and counts per axis and bin.
     struct bin_set {
         std::array<std::array<bvh_box, bins>, 3> box;
         std::array<std::array<std::uint32_t, bins>, 3> count;
     };
 
-    /// Fills bins_[0] with refs_[begin, end) binned along each axis: bin =
-    /// floor((centroid2 - c_lo) scale), clamped to [0, bins - 1] (a NaN, from infinite
-    /// bounds, to 0). Successive primitives of a mesh often fall in the same bin, whose
-    /// box then grows through a chain of loads and stores; above a few dozen primitives,
-    /// even and odd ones go to two sets of bins (bins_[0] and bins_[1]), merged at the end
-    /// (the same boxes and counts: min, max and sums do not depend on the order).
+    /// Fills bins_[0] with refs_[begin, end) binned on each axis into nb bins (as bin_index).
+    /// Successive primitives often share a bin, whose box then grows through a chain of
+    /// loads and stores: from 64 on, odd ones go to bins_[1], merged at the end.
     void bin_primitives(std::uint32_t begin, std::uint32_t end, const bvh_v4& c_lo, const bvh_v4& scale,
                         std::size_t nb) noexcept {
         constexpr std::uint32_t two_sets_from = 64;
         const std::size_t sets = end - begin >= two_sets_from ? 2 : 1;
-        for (std::size_t s = 0; s < sets; ++s) {
+        for (std::size_t s = 0; s < sets; ++s)
             for (std::size_t k = 0; k < 3; ++k)
                 for (std::size_t j = 0; j < nb; ++j) {
                     bins_[s].box[k][j] = bvh_box{};
                     bins_[s].count[k][j] = 0;
                 }
-        }
         const bvh_v4 zero{0.0f, 0.0f, 0.0f, 0.0f};
         const auto top = float(nb - 1);
         const bvh_v4 last{top, top, top, top};
         const auto add = [&](bin_set& set, const bvh_prim_ref& r) {
-            // Clamped without branches (the bins of successive primitives are
-            // unpredictable); a NaN lane gives 0. Then truncated, all lanes at once.
+            // Clamped without branches (a NaN lane gives 0), then truncated.
             const bvh_v4 x = bvh_vmin(bvh_vmax((r.centroid2() - c_lo) * scale, zero), last);
             const std::array<std::uint32_t, 4> b = bvh_truncate(x);
             for (std::size_t k = 0; k < 3; ++k) {
@@ -565,20 +553,16 @@ private:
             }
         };
         std::uint32_t i = begin;
-        if (sets == 2) {
-            for (; i + 1 < end; i += 2) {
-                add(bins_[0], refs_[i]);
-                add(bins_[1], refs_[i + 1]);
-            }
+        for (; sets == 2 && i + 1 < end; i += 2) {
+            add(bins_[0], refs_[i]);
+            add(bins_[1], refs_[i + 1]);
         }
         for (; i < end; ++i) add(bins_[0], refs_[i]);
-        if (sets == 2) {
-            for (std::size_t k = 0; k < 3; ++k)
-                for (std::size_t j = 0; j < nb; ++j) {
-                    bins_[0].box[k][j].grow(bins_[1].box[k][j]);
-                    bins_[0].count[k][j] += bins_[1].count[k][j];
-                }
-        }
+        for (std::size_t k = 0; sets == 2 && k < 3; ++k)
+            for (std::size_t j = 0; j < nb; ++j) {
+                bins_[0].box[k][j].grow(bins_[1].box[k][j]);
+                bins_[0].count[k][j] += bins_[1].count[k][j];
+            }
     }
 
     /// The bin of a scaled centroid coordinate x, clamped to [0, bins - 1]; written so that
