@@ -16,12 +16,23 @@
 // the header as the table's stated accuracy, with the largest difference over the cells
 // whose centre has mu >= 0.05
 // (the views the compensation promises R + T for).
+//
+//   dielectric_albedo_tables --anisotropic --out include/shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp
+//
+// writes instead the anisotropic corrections of
+// shade/bsdf/dielectric_anisotropic_albedo_table.hpp: at each node, Delta = E(w) - E_iso(mu,
+// sqrt(alpha_x alpha_y), eta_s), E(w) estimated as above for the anisotropic interface and
+// the view w at the node's azimuth, E_iso read from the committed isotropic table; each row's
+// cosine average; and, as the stated accuracy, the largest node standard error and the range
+// of E_iso + Delta (the table) minus a fresh estimate at random points of the domain with
+// mu >= 0.1.
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -33,9 +44,12 @@
 #include <vector>
 
 #include <shade/brdf/microfacet/ggx.hpp>
+#include <shade/bsdf/detail/dielectric_albedo_data.hpp>
 #include <shade/bsdf/dielectric_albedo_table.hpp>
+#include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>
 #include <shade/bsdf/rough_dielectric.hpp>
 #include <shade/check/energy.hpp>
+#include <shade/core/random.hpp>
 
 #include "support/cli.hpp"
 #include "support/float_literals.hpp"
@@ -51,6 +65,7 @@ using T = double;
 constexpr std::string_view usage =
     R"(usage: dielectric_albedo_tables [--out FILE.hpp] [--mu-nodes N] [--alpha-nodes N] [--eta-nodes N]
                                 [--strata S] [--threads K] [--quiet]
+       dielectric_albedo_tables --anisotropic [--out FILE.hpp] [--strata S] [--threads K] [--quiet]
 
 Computes E(mu, alpha, eta_s) = R + T (importance mode) of
 shade::rough_dielectric over GGX, for light entering (eta_s in
@@ -62,7 +77,11 @@ writes the header of constants.
   --mu-nodes N      nodes along the view coordinate, 4 to 128 (default 25)
   --alpha-nodes N   nodes along sqrt(alpha), 4 to 128 (default 16)
   --eta-nodes N     nodes along log(eta - 1), 2 to 64 (default 12)
-  --strata S        S^2 samples per node, 16 to 2048 (default 384)
+  --strata S        S^2 samples per node, 16 to 2048 (default 384; 128 with --anisotropic)
+  --anisotropic     write instead the corrections Delta = E(w) - E_iso(mu, sqrt(alpha_x
+                    alpha_y), eta_s) of anisotropic GGX interfaces on the fixed grid of
+                    dielectric_anisotropic_albedo_table.hpp, and their row averages (default
+                    output dielectric_anisotropic_albedo_data.hpp; the node options do not apply)
   --threads K       worker threads, 1 to 64 (default 2)
   --quiet           no progress bar
 )";
@@ -73,6 +92,7 @@ struct settings {
     std::size_t strata = 384;
     unsigned threads = 2;
     bool quiet = false;
+    bool anisotropic = false;
 };
 
 // E of a model of index eta_s at view cosine mu: the importance-mode weight of its sampler.
@@ -86,6 +106,26 @@ shade::check::albedo_sample<T> estimate(double mu, double alpha, double eta_s, s
     // The lobe choice uc is integrated out exactly: for each u, the reflection (uc = 0 < F)
     // and the refraction (uc just below 1, drawn unless F = 1) weighted by the F and 1 - F
     // with which sample() chooses them at the visible normal it draws from u.
+    const auto weight = [&](const shade::vec2<T>& u, T uc) {
+        const auto s = model.sample(v, uc, u, at, shade::transport_mode::importance);
+        return s ? s->weight.x : 0.0;
+    };
+    return shade::check::detail::stratified_estimate<T>(v, strata, seed, true, [&](const shade::vec2<T>& u, shade::rng&) {
+        const shade::vec3<T> m = model.distribution().sample_visible_normal(v, u);
+        const double F = shade::F_dielectric(glm::dot(v, m), eta_s);
+        const double reflected = F > 0 ? F * weight(u, 0) : 0.0;
+        const double refracted = F < 1 ? (1 - F) * weight(u, std::nextafter(1.0, 0.0)) : 0.0;
+        return glm::dvec3(reflected + refracted);
+    });
+}
+
+// E of an interface of roughnesses (alpha_x, alpha_y) and index eta_s for the unit local view
+// v (v.z > 0), estimated as estimate() does.
+shade::check::albedo_sample<T> estimate_view(double alpha_x, double alpha_y, double eta_s, const shade::vec3<T>& v,
+                                             std::size_t strata, std::uint64_t seed) {
+    const shade::rough_dielectric<shade::ggx<T>> model{shade::ggx<T>(alpha_x, alpha_y), eta_s};
+    shade::surface_point<T> at;
+    at.shading = shade::frame<T>::from_normal_tangent({0, 0, 1}, {1, 0, 0});
     const auto weight = [&](const shade::vec2<T>& u, T uc) {
         const auto s = model.sample(v, uc, u, at, shade::transport_mode::importance);
         return s ? s->weight.x : 0.0;
@@ -200,11 +240,145 @@ void write(std::FILE* f, const std::vector<table>& tables, const settings& s) {
     std::fprintf(f, "\n} // namespace shade::detail\n");
 }
 
+// x rounded to the float the header will hold when written with `digits` significant digits.
+float as_written(double x, int digits) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.*g", digits, double(float(x)));
+    return std::strtof(text, nullptr);
+}
+
+struct anisotropic_table {
+    std::vector<float> delta;   // dielectric_anisotropic_size values
+    std::vector<float> average; // one per row
+    double max_error = 0;       // largest standard error of a node
+    double max_delta = 0;       // largest |Delta|
+    double lowest = 0;          // smallest table - fresh estimate at the random points
+    double highest = 0;         // largest
+    std::size_t points = 0;     // random points compared
+};
+
+// The unit local view at cosine mu and sin^2 of the azimuth from t (v.z > 0).
+shade::vec3<T> view_of(double mu, double sin2) {
+    const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
+    return {sin_theta * std::sqrt(1 - sin2), sin_theta * std::sqrt(sin2), mu};
+}
+
+// E_iso of the committed table at (mu, alpha, eta_s).
+double iso_albedo(double mu, double alpha, double eta_s) {
+    const d::dielectric_albedo_grid g{};
+    return d::dielectric_albedo_lookup(d::ggx_rough_dielectric_albedo, g, d::dielectric_albedo_locate(g, alpha, eta_s), mu);
+}
+
+anisotropic_table compute_anisotropic(const settings& s, ex::progress& bar, std::size_t points) {
+    constexpr std::size_t nx = d::dielectric_anisotropic_mu_nodes, nu = d::dielectric_anisotropic_azimuth_nodes;
+    constexpr std::size_t ny = d::dielectric_anisotropic_roughness_nodes, nr = d::dielectric_anisotropic_ratio_nodes;
+    constexpr std::size_t ne = d::dielectric_anisotropic_eta_nodes;
+    anisotropic_table out{std::vector<float>(d::dielectric_anisotropic_size, 0.0f),
+                          std::vector<float>(d::dielectric_anisotropic_rows, 0.0f), 0, 0, 0, 0, points};
+    std::vector<double> errors(d::dielectric_anisotropic_size, 0.0);
+    parallel_for(d::dielectric_anisotropic_size, s.threads, [&](std::size_t index) {
+        const std::size_t i_x = index % nx, i_u = index / nx % nu, j = index / (nx * nu) % ny,
+                          k = index / (nx * nu * ny) % nr, m = index / (nx * nu * ny * nr) % ne,
+                          side = index / (nx * nu * ny * nr * ne);
+        // r = 0 (isotropic) and y = 0 (a smooth interface) hold 0 by definition.
+        if (k > 0 && j > 0) {
+            const double y = double(j) / double(ny - 1), alpha = y * y;
+            const double q = std::pow(d::dielectric_anisotropic_ratio_max, double(k) / double(nr - 1));
+            const double eta_s = eta_of_side(side, d::dielectric_albedo_eta(m, ne));
+            const double x = double(i_x) / double(nx - 1);
+            const double mu = std::min(std::max(x * x, d::albedo_grid_mu_min), 1.0);
+            // sin^2 of the azimuth of the node's u.
+            const double phi = d::dielectric_anisotropic_phi(double(i_u) / double(nu - 1), (q - 1) * (q + 1),
+                                                             1 / (2 * std::log(q)));
+            const double sin2 = std::sin(phi) * std::sin(phi);
+            // The seed leaves out the azimuth: the pole column (mu = 1) is then the same
+            // estimate for every u, as Delta there is.
+            const auto a = estimate_view(alpha / std::sqrt(q), alpha * std::sqrt(q), eta_s, view_of(mu, sin2), s.strata,
+                                         1 + index / (nx * nu) * nx + i_x);
+            out.delta[index] = as_written(std::min(a.albedo.x, 1.0) - iso_albedo(mu, alpha, eta_s), 4);
+            errors[index] = a.standard_error.x;
+        }
+        bar.advance();
+    });
+    out.max_error = *std::max_element(errors.begin(), errors.end());
+    for (const float x : out.delta) out.max_delta = std::max(out.max_delta, double(std::abs(x)));
+    for (std::size_t n = 0; n < d::dielectric_anisotropic_rows; ++n)
+        out.average[n] = float(d::dielectric_anisotropic_row_average(out.delta.data() + n * nx));
+    // Random points of the domain: eta_hat - 1 log-uniform over [0.05, 2], either side,
+    // anisotropy log-uniform in [1, 20], either axis the smoother, the square root of the
+    // mean roughness uniform in [0.2, 1], mu >= 0.1 uniform in sqrt(mu), azimuth uniform.
+    std::vector<double> difference(points);
+    parallel_for(points, s.threads, [&](std::size_t p) {
+        shade::rng random(0x5eed0000 + p);
+        const double eta_hat = 1 + std::exp(d::dielectric_albedo_x_min + random.uniform<double>() * (d::dielectric_albedo_x_max -
+                                                                                                     d::dielectric_albedo_x_min));
+        const std::size_t side = p % 2;
+        const double eta_s = eta_of_side(side, eta_hat);
+        const double q = std::pow(d::dielectric_anisotropic_ratio_max, random.uniform<double>());
+        const double y = 0.2 + 0.8 * random.uniform<double>(), alpha = y * y;
+        const double x = std::sqrt(0.1) + (1 - std::sqrt(0.1)) * random.uniform<double>(), mu = x * x;
+        const double phi = random.uniform<double>() * 2 * shade::pi<double>;
+        const bool swap = p % 4 >= 2;
+        const double alpha_x = swap ? alpha * std::sqrt(q) : alpha / std::sqrt(q);
+        const double alpha_y = swap ? alpha / std::sqrt(q) : alpha * std::sqrt(q);
+        const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
+        const shade::vec3<T> v(sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu);
+        const auto fresh = estimate_view(alpha_x, alpha_y, eta_s, v, s.strata, 0x0f00000 + p);
+        const auto cell = d::dielectric_anisotropic_locate(alpha_x, alpha_y, eta_s);
+        const double table = iso_albedo(mu, std::sqrt(alpha_x * alpha_y), eta_s) +
+                             d::dielectric_anisotropic_delta(out.delta.data(), cell, side, v.x, v.y, v.z);
+        difference[p] = table - fresh.albedo.x;
+        bar.advance();
+    });
+    if (points > 0) {
+        out.lowest = *std::min_element(difference.begin(), difference.end());
+        out.highest = *std::max_element(difference.begin(), difference.end());
+    }
+    return out;
+}
+
+void write_anisotropic(std::FILE* f, const anisotropic_table& t, const settings& s) {
+    constexpr std::size_t nx = d::dielectric_anisotropic_mu_nodes, nu = d::dielectric_anisotropic_azimuth_nodes;
+    std::fprintf(f, "#pragma once\n");
+    std::fprintf(f, "// Generated by examples/dielectric_albedo_tables.cpp (--anisotropic --strata %zu); do not edit by hand.\n",
+                 s.strata);
+    std::fprintf(f, "// The anisotropic corrections of shade/bsdf/dielectric_anisotropic_albedo_table.hpp (grid,\n");
+    std::fprintf(f, "// interpolation, meaning): 2 sides x %zu (e) x %zu (r) x %zu (y) x %zu (u) rows of %zu (x) nodes,\n",
+                 d::dielectric_anisotropic_eta_nodes, d::dielectric_anisotropic_ratio_nodes,
+                 d::dielectric_anisotropic_roughness_nodes, nu, nx);
+    std::fprintf(f, "// one row per line; each node E(w), the mean importance-mode weight of %zu jittered samples of\n",
+                 s.strata * s.strata);
+    std::fprintf(f, "// the interface's own sampler, minus the isotropic table (dielectric_albedo_data.hpp) at the\n");
+    std::fprintf(f, "// geometric-mean roughness, written with 4 significant digits.\n\n");
+    std::fprintf(f, "#include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>\n\n");
+    std::fprintf(f, "namespace shade::detail {\n\n");
+    std::fprintf(f, "/// Delta_s(w) of shade::rough_dielectric<ggx> with alpha_x != alpha_y.\n");
+    std::fprintf(f, "/// Node standard error <= %.1e; |Delta| <= %.3f. The isotropic table plus Delta minus a fresh\n",
+                 t.max_error, t.max_delta);
+    std::fprintf(f, "/// estimate at %zu random points with mu >= 0.1 (interpolation, both estimates' noise and the\n",
+                 t.points);
+    std::fprintf(f, "/// isotropic table's error): from %.1e to %.1e.\n", t.lowest, t.highest);
+    std::fprintf(f, "inline constexpr float ggx_dielectric_anisotropic_delta[dielectric_anisotropic_size] = {\n");
+    for (std::size_t row = 0; row < d::dielectric_anisotropic_rows; ++row) {
+        ex::write_float_literals(f, t.delta.data() + row * nx, nx, 4);
+        std::fprintf(f, ",\n");
+    }
+    std::fprintf(f, "};\n\n/// The cosine averages of the rows of ggx_dielectric_anisotropic_delta\n");
+    std::fprintf(f, "/// (dielectric_anisotropic_row_average), the %zu azimuth rows of one node per line.\n", nu);
+    std::fprintf(f, "inline constexpr float ggx_dielectric_anisotropic_delta_average[dielectric_anisotropic_rows] = {\n");
+    for (std::size_t n = 0; n < d::dielectric_anisotropic_rows / nu; ++n) {
+        ex::write_float_literals(f, t.average.data() + n * nu, nu);
+        std::fprintf(f, ",\n");
+    }
+    std::fprintf(f, "};\n\n} // namespace shade::detail\n");
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     return ex::run_cli("dielectric_albedo_tables", [&] {
         settings s;
+        bool strata_given = false, nodes_given = false;
         ex::command_line args(argc, argv);
         while (args.next()) {
             if (args.flag("--help") || args.flag("-h")) {
@@ -212,15 +386,49 @@ int main(int argc, char** argv) {
                 return 0;
             }
             if (args.option("--out")) s.out = args.path();
-            else if (args.option("--mu-nodes")) s.grid.mu_nodes = args.integer<std::size_t>(4, 128);
-            else if (args.option("--alpha-nodes")) s.grid.alpha_nodes = args.integer<std::size_t>(4, 128);
-            else if (args.option("--eta-nodes")) s.grid.eta_nodes = args.integer<std::size_t>(2, 64);
-            else if (args.option("--strata")) s.strata = args.integer<std::size_t>(16, 2048);
+            else if (args.option("--mu-nodes")) {
+                s.grid.mu_nodes = args.integer<std::size_t>(4, 128);
+                nodes_given = true;
+            } else if (args.option("--alpha-nodes")) {
+                s.grid.alpha_nodes = args.integer<std::size_t>(4, 128);
+                nodes_given = true;
+            } else if (args.option("--eta-nodes")) {
+                s.grid.eta_nodes = args.integer<std::size_t>(2, 64);
+                nodes_given = true;
+            }
+            else if (args.option("--strata")) {
+                s.strata = args.integer<std::size_t>(16, 2048);
+                strata_given = true;
+            }
             else if (args.option("--threads")) s.threads = args.integer<unsigned>(1, 64);
             else if (args.flag("--quiet")) s.quiet = true;
+            else if (args.flag("--anisotropic")) s.anisotropic = true;
             else args.unknown();
         }
         (void)ex::output_format("--out", s.out, {".hpp", ".h"});
+        if (s.anisotropic && nodes_given)
+            throw ex::usage_error("--mu-nodes, --alpha-nodes and --eta-nodes do not apply to --anisotropic (its grid is fixed)");
+        if (s.anisotropic) {
+            if (s.out == "dielectric_albedo_data.hpp") s.out = "dielectric_anisotropic_albedo_data.hpp";
+            if (!strata_given) s.strata = 128;
+            ex::output_file header(s.out);
+            constexpr std::size_t points = 4000;
+            std::optional<ex::progress> bar(std::in_place, "dielectric_albedo_tables", d::dielectric_anisotropic_size + points,
+                                            !s.quiet);
+            const anisotropic_table t = compute_anisotropic(s, *bar, points);
+            bar.reset();
+            std::fprintf(stderr,
+                         "dielectric_albedo_tables: anisotropic: largest node standard error %.2e, |Delta| <= %.3f, table - "
+                         "fresh estimate from %.2e to %.2e at %zu points with mu >= 0.1\n",
+                         t.max_error, t.max_delta, t.lowest, t.highest, t.points);
+            std::FILE* f = std::fopen(header.temporary().c_str(), "w");
+            if (!f) throw std::runtime_error("cannot write " + header.temporary().string());
+            write_anisotropic(f, t, s);
+            if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + header.temporary().string());
+            header.commit();
+            std::fprintf(stderr, "dielectric_albedo_tables: wrote %s\n", s.out.string().c_str());
+            return 0;
+        }
         ex::output_file header(s.out);
         const d::dielectric_albedo_grid& g = s.grid;
         const std::size_t cells = 2 * (g.eta_nodes - 1) * (g.alpha_nodes - 1) * (g.mu_nodes - 1);

@@ -16,15 +16,15 @@
 
 namespace bsdf_test {
 
-/// R + T of `model` for a view in the local frame at cosine mu > 0 (v outside, azimuth 0),
-/// from strata^2 stratified u; albedo and standard error in channel x.
+/// R + T of `model` for the unit view v in the local frame (v.z > 0: v outside; n = +z,
+/// t = +x), from strata^2 stratified u; albedo and standard error in channel x.
 template <class Distribution>
 shade::check::albedo_sample<double> single_scattering_albedo(const shade::rough_dielectric<Distribution>& model,
-                                                             double mu, std::size_t strata, std::uint64_t seed) {
+                                                             const shade::vec3<double>& v, std::size_t strata,
+                                                             std::uint64_t seed) {
     using T = double;
     shade::surface_point<T> at;
     at.shading = shade::frame<T>::from_normal_tangent({0, 0, 1}, {1, 0, 0});
-    const shade::vec3<T> v(std::sqrt((1 - mu) * (1 + mu)), 0, mu);
     const auto weight = [&](const shade::vec2<T>& u, T uc) {
         const auto s = model.sample(v, uc, u, at, shade::transport_mode::importance);
         return s ? s->weight.x : 0.0;
@@ -36,6 +36,13 @@ shade::check::albedo_sample<double> single_scattering_albedo(const shade::rough_
         const double refracted = F < 1 ? (1 - F) * weight(u, std::nextafter(1.0, 0.0)) : 0.0;
         return glm::dvec3(reflected + refracted);
     });
+}
+
+/// R + T of `model` for a view in the local frame at cosine mu > 0 (v outside, azimuth 0).
+template <class Distribution>
+shade::check::albedo_sample<double> single_scattering_albedo(const shade::rough_dielectric<Distribution>& model,
+                                                             double mu, std::size_t strata, std::uint64_t seed) {
+    return single_scattering_albedo(model, shade::vec3<double>(std::sqrt((1 - mu) * (1 + mu)), 0, mu), strata, seed);
 }
 
 } // namespace bsdf_test

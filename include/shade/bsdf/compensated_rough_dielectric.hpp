@@ -17,7 +17,9 @@
 #include <shade/brdf/microfacet/ggx.hpp>
 #include <shade/bsdf/bsdf.hpp>
 #include <shade/bsdf/detail/dielectric_albedo_data.hpp>
+#include <shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp>
 #include <shade/bsdf/dielectric_albedo_table.hpp>
+#include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>
 #include <shade/bsdf/rough_dielectric.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/sampling.hpp>
@@ -101,8 +103,19 @@ template <std::floating_point T>
 /// cook_torrance), so that rough_dielectric's users do not compile the tables.
 /// The tables cover alpha in [1e-4, 1] and eta_hat = max(eta, 1 / eta) in [1.05, 3];
 /// outside that range the nearest end is read, so the compensation is approximate there
-/// (and partial for alpha > 1). Anisotropic GGX reads the tables at sqrt(alpha_x alpha_y),
-/// as shade::kulla_conty does.
+/// (and partial for alpha > 1).
+///
+/// Anisotropic GGX (alpha_x != alpha_y): E_s(w) depends on the azimuth of w as well as on
+/// mu, and no isotropic roughness reproduces it at every azimuth, so E_s(w) is the
+/// isotropic table at sqrt(alpha_x alpha_y) plus the tabulated correction Delta_s(w) of
+/// shade/bsdf/dielectric_anisotropic_albedo_table.hpp, read at each direction's own azimuth
+/// (for l on the far side, with the far side's table), and E_s,avg is the cosine-weighted
+/// hemispherical average of that same E_s(w). The formulas above hold unchanged with
+/// E_s(mu) read as E_s(w): f_ms stays a product of one factor per direction (adjoint
+/// reciprocal) and returns 1 - E_s(v) at every view. The correction covers anisotropy up to
+/// detail::dielectric_anisotropic_ratio_max (20:1); beyond, the 20:1 correction is read and
+/// the compensation is approximate. Isotropic interfaces read no correction (the values are
+/// those of the isotropic tables alone).
 ///
 /// Sampling: with probability E_s(mu_v) rough_dielectric's own sampler (uc rescaled), else
 /// the multiple-scattering lobe, a cosine-weighted direction on the far side with
@@ -133,9 +146,22 @@ public:
     /// The relative index of refraction n_inside / n_outside.
     [[nodiscard]] constexpr T eta() const noexcept { return single_.eta(); }
 
-    /// E_s(mu) of the table for a view in medium `inside` (false: outside) at cosine mu:
-    /// the single-scattering R + T the compensation assumes, dimensionless, in [0, 1].
-    [[nodiscard]] T single_scattering_albedo(bool inside, T mu) const noexcept { return albedo(inside ? 1 : 0, mu); }
+    /// E_s of the tables for a view in medium `inside` (false: outside) at cosine mu and
+    /// azimuth 0 (in the plane of n and the tangent t): the single-scattering R + T the
+    /// compensation assumes, dimensionless, in [0, 1].
+    [[nodiscard]] T single_scattering_albedo(bool inside, T mu) const noexcept {
+        const T m = glm::clamp(mu, T(0), T(1));
+        return albedo(inside ? 1 : 0, vec3<T>(std::sqrt((T(1) - m) * (T(1) + m)), T(0), m));
+    }
+
+    /// E_s(w) of the tables for the unit direction w on its own side s of the surface (its
+    /// azimuth included): the single-scattering R + T the compensation assumes for a view
+    /// along w, dimensionless, in [0, 1]; 0 when w lies on the surface.
+    [[nodiscard]] T single_scattering_albedo(const vec3<T>& w, const surface_point<T>& at) const noexcept {
+        const vec3<T> w_local = at.shading.to_local(w);
+        if (!(w_local.z != T(0)) || !std::isfinite(w_local.z)) return T(0);
+        return albedo(w_local.z > T(0) ? 0 : 1, w_local);
+    }
 
     /// The share tau of the lost energy that the multiple-scattering lobe transmits, for a
     /// view in medium `inside` (false: outside). In [0, 1].
@@ -153,7 +179,7 @@ public:
         const vec3<T> v_local = at.shading.to_local(v);
         if (!(v_local.z != T(0)) || !std::isfinite(v_local.z)) return T(0);
         const std::size_t s = v_local.z > T(0) ? 0 : 1;
-        const T p_ss = single_probability(s, std::abs(v_local.z));
+        const T p_ss = single_probability(s, v_local);
         return p_ss * single_.pdf(l, v, at) + (T(1) - p_ss) * multiple_pdf(s, at.shading.to_local(l), v_local);
     }
 
@@ -166,7 +192,7 @@ public:
         const vec3<T> v_local = at.shading.to_local(v);
         if (!(v_local.z != T(0)) || !std::isfinite(v_local.z)) return std::nullopt;
         const std::size_t s = v_local.z > T(0) ? 0 : 1;
-        const T p_ss = single_probability(s, std::abs(v_local.z));
+        const T p_ss = single_probability(s, v_local);
         vec3<T> l;
         if (uc < p_ss) {
             const T uc_ss = glm::min(uc / p_ss, T(1) - std::numeric_limits<T>::epsilon() / 2);
@@ -209,11 +235,20 @@ private:
     void prepare() noexcept {
         const detail::dielectric_albedo_grid grid{};
         const T eta = single_.eta();
-        const T alpha = std::sqrt(single_.distribution().alpha_x() * single_.distribution().alpha_y());
+        const T alpha_x = single_.distribution().alpha_x(), alpha_y = single_.distribution().alpha_y();
+        const T alpha = std::sqrt(alpha_x * alpha_y);
+        anisotropic_ = alpha_x != alpha_y;
+        if (anisotropic_) anisotropic_cell_ = detail::dielectric_anisotropic_locate(alpha_x, alpha_y, eta);
         for (std::size_t s = 0; s < 2; ++s) {
             side_[s].eta_s = s == 0 ? eta : T(1) / eta;
             side_[s].cell = detail::dielectric_albedo_locate(grid, alpha, side_[s].eta_s);
             side_[s].e_avg = detail::dielectric_albedo_average(detail::ggx_rough_dielectric_albedo, grid, side_[s].cell);
+            // The average of the corrected E_s(w): the isotropic average plus Delta_s,avg.
+            if (anisotropic_)
+                side_[s].e_avg = glm::clamp(side_[s].e_avg + detail::dielectric_anisotropic_delta_average(
+                                                                 detail::ggx_dielectric_anisotropic_delta_average,
+                                                                 anisotropic_cell_, side_[s].cell.side),
+                                            T(0), T(1));
         }
         const T loss[2] = {T(1) - side_[0].e_avg, T(1) - side_[1].e_avg};
         if (!(loss[0] > T(detail::dielectric_compensation_min_loss)) ||
@@ -241,18 +276,25 @@ private:
         }
     }
 
-    /// E_s(mu) from the table, clamped to [0, 1].
-    [[nodiscard]] T albedo(std::size_t s, T mu) const noexcept {
-        const T e = detail::dielectric_albedo_lookup(detail::ggx_rough_dielectric_albedo, detail::dielectric_albedo_grid{},
-                                                     side_[s].cell, mu);
+    /// E_s(w) for the local direction w in medium s (only |w.z| and the azimuth are read):
+    /// the isotropic table, plus Delta_s(w) when anisotropic; clamped to [0, 1] (near a
+    /// smooth interface the tables' noise can carry E_s + Delta_s just past 1, and f_ms >= 0
+    /// needs 1 - E_s >= 0).
+    [[nodiscard]] T albedo(std::size_t s, const vec3<T>& w) const noexcept {
+        const T mu = std::abs(w.z);
+        T e = detail::dielectric_albedo_lookup(detail::ggx_rough_dielectric_albedo, detail::dielectric_albedo_grid{},
+                                               side_[s].cell, mu);
+        if (anisotropic_)
+            e += detail::dielectric_anisotropic_delta(detail::ggx_dielectric_anisotropic_delta, anisotropic_cell_,
+                                                      side_[s].cell.side, w.x, w.y, mu);
         return glm::clamp(e, T(0), T(1));
     }
 
-    /// The probability of drawing from rough_dielectric's sampler for a view in medium s at
-    /// cosine mu_v: E_s(mu_v), the share of the energy single scattering carries (1 when
-    /// the lobe is off).
-    [[nodiscard]] T single_probability(std::size_t s, T mu_v) const noexcept {
-        return enabled_ ? albedo(s, mu_v) : T(1);
+    /// The probability of drawing from rough_dielectric's sampler for the local view v in
+    /// medium s: E_s(v), the share of the energy single scattering carries (1 when the lobe
+    /// is off).
+    [[nodiscard]] T single_probability(std::size_t s, const vec3<T>& v) const noexcept {
+        return enabled_ ? albedo(s, v) : T(1);
     }
 
     /// f_ms for local l and v, in the given mode (1/sr, no cosine); 0 when either lies on
@@ -261,9 +303,9 @@ private:
         if (!enabled_) return T(0);
         if (!(l.z != T(0)) || !(v.z != T(0)) || !std::isfinite(l.z) || !std::isfinite(v.z)) return T(0);
         const std::size_t s = v.z > T(0) ? 0 : 1;
-        const T loss_v = T(1) - albedo(s, std::abs(v.z));
-        if ((l.z > T(0)) == (v.z > T(0))) return side_[s].reflect * (T(1) - albedo(s, std::abs(l.z))) * loss_v;
-        const T f = side_[s].transmit * (T(1) - albedo(1 - s, std::abs(l.z))) * loss_v;
+        const T loss_v = T(1) - albedo(s, v);
+        if ((l.z > T(0)) == (v.z > T(0))) return side_[s].reflect * (T(1) - albedo(s, l)) * loss_v;
+        const T f = side_[s].transmit * (T(1) - albedo(1 - s, l)) * loss_v;
         return mode == transport_mode::importance ? f * sqr(side_[s].eta_s) : f;
     }
 
@@ -277,6 +319,8 @@ private:
 
     single_scattering_type single_;
     side_state side_[2]{};
+    detail::dielectric_anisotropic_cell<T> anisotropic_cell_{}; ///< where Delta is read (when anisotropic)
+    bool anisotropic_ = false; ///< alpha_x != alpha_y
     bool enabled_ = false;
 };
 
