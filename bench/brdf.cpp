@@ -8,7 +8,8 @@
 //                                            and pdf for the models that sample), and
 //                                            legacy_f: f of the model as it was before the
 //                                            sampling redesign (bench/legacy/, the same
-//                                            parameters); baseline f.
+//                                            parameters; none for zeltner_sheen, which
+//                                            came after it); baseline f.
 //                                            Floors of what a sampler cannot avoid:
 //                                            lambert/cosine_direction (the cosine-hemisphere
 //                                            map of u and the frame, no BRDF at all),
@@ -36,6 +37,7 @@
 #include <shade/brdf/microfacet.hpp>
 #include <shade/brdf/oren_nayar.hpp>
 #include <shade/brdf/phong.hpp>
+#include <shade/brdf/sheen.hpp>
 #include <shade/core/random.hpp>
 #include <shade/core/surface_point.hpp>
 
@@ -115,6 +117,15 @@ void add_model(const std::string& type, const std::string& name, const B& model,
     const std::string group = "brdf_sampling/" + type + "/" + name + "/";
     add_f(group + "f", model);
     add_f(group + "legacy_f", legacy);
+    if constexpr (shade::sampled_brdf<B>) add_sampling(group, model);
+}
+
+// As above for a model that has no legacy version (written after the sampling redesign).
+template <class B>
+void add_model(const std::string& type, const std::string& name, const B& model) {
+    add_f("brdf/" + type + "/" + name, model);
+    const std::string group = "brdf_sampling/" + type + "/" + name + "/";
+    add_f(group + "f", model);
     if constexpr (shade::sampled_brdf<B>) add_sampling(group, model);
 }
 
@@ -209,6 +220,7 @@ void register_all(const std::string& type) {
                                                                            shade::rgb<T>(1), k_d),
               old::cook_torrance<old::ggx<T>, old::schlick<T>, old::smith_ggx<T>>(
                   old::ggx<T>(T(0.3)), old::schlick<T>(f0), shade::rgb<T>(1), k_d));
+    add_model(type, "zeltner_sheen", shade::zeltner_sheen<T>(k_d, T(0.5)));
     add_sampling_floors<T>(type);
 }
 

@@ -1,0 +1,442 @@
+// shade::zeltner_sheen, the fuzz lobe of OpenPBR Surface (Zeltner, Burley, Chiang 2022),
+// and its fitted functions zeltner_sheen_albedo and zeltner_sheen_ltc_of.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <doctest/doctest.h>
+
+#include <shade/brdf/sheen.hpp>
+#include <shade/check/doctest.hpp>
+#include <shade/check/properties.hpp>
+#include <shade/core/random.hpp>
+
+#include "brdf/sampling.hpp"
+#include "brdf/support.hpp"
+
+using namespace brdf_test;
+
+static_assert(shade::sampled_brdf<shade::zeltner_sheen<float>>);
+static_assert(shade::sampled_brdf<shade::zeltner_sheen<double>>);
+
+namespace {
+
+// Transcription reference: the published fits (MaterialX PBR Specification, appendix
+// "Zeltner Sheen Model") written out again in double, independently of the header.
+double spec_albedo(double x, double y) {
+    const double s = y * (0.0206607 + 1.58491 * y) / (0.0379424 + y * (1.32227 + y));
+    const double m = y * (-0.193854 + y * (-1.14885 + y * (1.7932 - 0.95943 * y * y))) / (0.046391 + y);
+    const double o = y * (0.000654023 + (-0.0207818 + 0.119681 * y) * y) / (1.26264 + y * (-1.92021 + y));
+    return std::exp(-0.5 * std::pow((x - m) / s, 2)) / (s * std::sqrt(2 * pi_d)) + o;
+}
+double spec_a_inv(double x, double y) {
+    return (2.58126 * x + 0.813703 * y) * y / (1 + 0.310327 * x * x + 2.60994 * x * y);
+}
+double spec_b_inv(double x, double y) {
+    return std::sqrt(1 - x) * (y - 1) * y * y * y / (0.0000254053 + 1.71228 * x - 1.71506 * x * y + 1.34174 * y * y);
+}
+
+// ---------------------------------------------------------------------------------------
+// An independent model of the volume the fits describe (Zeltner et al. 2022; OpenPBR
+// "Fuzz"): a slab of unit thickness and unit density, purely scattering and index-matched,
+// of specular SGGX microflakes with the fibre-like matrix S = diag(1, 1, sigma^2),
+// sigma = alpha^2 (Heitz, Dupuy, Crassin, Dachsbacher 2015, "The SGGX Microflake
+// Distribution", ACM TOG 34(4): the extinction coefficient in direction w is density
+// times the projected area sigma(w) = sqrt(w^T S w), eq. 9, and the specular phase
+// function reflects the incoming direction about a normal drawn from the visible normals).
+//
+// Visible normals, by the ellipsoid picture of the SGGX: S is the distribution of normals
+// of the ellipsoid {x : x^T S x <= 1} = S^(-1/2)(unit ball), whose projected area along w
+// is pi |det S^(-1/2)| |S^(1/2) w| = (pi / sqrt|S|) sqrt(w^T S w), proportional to sigma(w).
+// A uniform point of that ellipsoid's shadow along w_i is the image under S^(-1/2) of a
+// uniform point of the unit disk seen along w' = S^(1/2) w_i (an affine map keeps parallel
+// lines parallel and uniform densities uniform); lifting it to the unit sphere u (facing w')
+// gives the visible point S^(-1/2) u, whose normal is S (S^(-1/2) u) = S^(1/2) u. For S
+// diagonal, S^(1/2) = diag(1, 1, sigma).
+// ---------------------------------------------------------------------------------------
+
+struct sggx_fibre_slab {
+    double sigma; // fibre cross-section parameter, alpha^2
+
+    // sigma(w) = sqrt(w^T S w) for unit w.
+    [[nodiscard]] double projected_area(const shade::vec3<double>& w) const {
+        return std::sqrt(w.x * w.x + w.y * w.y + sigma * sigma * w.z * w.z);
+    }
+
+    // A microflake normal drawn from the visible normals seen from w_i (unit).
+    [[nodiscard]] shade::vec3<double> visible_normal(const shade::vec3<double>& w_i, shade::rng& random) const {
+        const shade::vec3<double> w = glm::normalize(shade::vec3<double>(w_i.x, w_i.y, sigma * w_i.z));
+        const shade::frame<double> around = shade::frame<double>::from_normal(w);
+        const double r = std::sqrt(random.uniform<double>());
+        const double phi = 2 * pi_d * random.uniform<double>();
+        const double a = r * std::cos(phi), b = r * std::sin(phi);
+        const shade::vec3<double> u = around.to_world({a, b, std::sqrt(std::max(0.0, 1 - r * r))});
+        return glm::normalize(shade::vec3<double>(u.x, u.y, sigma * u.z));
+    }
+
+    // The fraction of `paths` light paths entering the top at cosine mu that leave through
+    // the top again (those leaving at the bottom count 0): a binomial estimate of E.
+    [[nodiscard]] double albedo(double mu, std::size_t paths, std::uint64_t seed) const {
+        shade::rng random(seed);
+        std::size_t reflected = 0;
+        for (std::size_t k = 0; k < paths; ++k) {
+            shade::vec3<double> d(std::sqrt(1 - mu * mu), 0, -mu); // propagation direction
+            double depth = 0;                                       // below the top, in [0, 1]
+            for (;;) {
+                const double free_path = -std::log(1 - random.uniform<double>()) / projected_area(d);
+                depth -= free_path * d.z;
+                if (depth < 0) {
+                    ++reflected;
+                    break;
+                }
+                if (depth > 1) break;
+                const shade::vec3<double> w_i = -d;
+                const shade::vec3<double> m = visible_normal(w_i, random);
+                d = glm::normalize(2 * glm::dot(w_i, m) * m - w_i);
+            }
+        }
+        return double(reflected) / double(paths);
+    }
+};
+
+} // namespace
+
+TEST_CASE("sheen: the fits equal the published formulas (transcription check)") {
+    // Only a check that the header copies the constants right: the reference functions
+    // above are the same formulas typed again.
+    for (const double y : {0.0, 0.01, 0.07, 0.25, 0.5, 0.8, 1.0})
+        for (const double x : {0.0, 0.02, 0.3, 0.5, 0.77, 1.0}) {
+            CAPTURE(x);
+            CAPTURE(y);
+            const double yc = std::max(y, 0.01);
+            CHECK(std::abs(shade::zeltner_sheen_albedo(x, y) - std::clamp(spec_albedo(x, yc), 0.0, 1.0)) <= 1e-14);
+            const auto m = shade::zeltner_sheen_ltc_of(x, y);
+            CHECK(std::abs(m.a_inv - spec_a_inv(x, yc)) <= 1e-14);
+            CHECK(std::abs(m.b_inv - spec_b_inv(x, yc)) <= 1e-14);
+            const auto mf = shade::zeltner_sheen_ltc_of(float(x), float(y));
+            CHECK(std::abs(double(mf.a_inv) - spec_a_inv(x, yc)) <= 1e-6);
+            CHECK(std::abs(double(shade::zeltner_sheen_albedo(float(x), float(y))) -
+                           std::clamp(spec_albedo(x, yc), 0.0, 1.0)) <= 1e-6);
+        }
+}
+
+TEST_CASE("sheen: the fitted albedo agrees with a simulation of the fibre volume") {
+    // The SGGX fibre slab above against (1) Zeltner et al.'s own table of R_i (their
+    // ltc_table_sheen_volume, third component, 2e6 random walks per node, so +-3.5e-4),
+    // and (2) the closed-form fit, whose worst distance from that table for alpha >= 0.25
+    // is 0.0246 (at mu = 0.01, alpha = 8/31; computed from the published table over all
+    // 28 x 32 nodes with alpha >= 0.25). Nodes are alpha = i/31, mu = max(0.01, j/31).
+    struct node {
+        int i, j;
+        double table_r;
+    };
+    const node nodes[] = {
+        {8, 3, 0.39802},  {8, 8, 0.10220},  {16, 3, 0.56229}, {16, 8, 0.37145},
+        {16, 16, 0.15718}, {24, 8, 0.52211}, {31, 0, 0.74973}, {31, 31, 0.34187},
+    };
+    constexpr std::size_t paths = 100000;
+    std::uint64_t seed = 7;
+    for (const node& n : nodes) {
+        const double alpha = n.i / 31.0, mu = std::max(0.01, n.j / 31.0);
+        const double simulated = sggx_fibre_slab{alpha * alpha}.albedo(mu, paths, seed++);
+        const double sigma = std::sqrt(simulated * (1 - simulated) / double(paths));
+        const double fit = shade::zeltner_sheen_albedo(mu, alpha);
+        CAPTURE(alpha);
+        CAPTURE(mu);
+        CAPTURE(simulated);
+        CAPTURE(fit);
+        CHECK(std::abs(simulated - n.table_r) <= 4 * std::hypot(sigma, 3.5e-4));
+        CHECK(std::abs(simulated - fit) <= 0.0246 + 4 * sigma);
+    }
+}
+
+TEST_CASE_TEMPLATE("sheen: the LTC density integrates to 1, so the albedo of f is F E", T, float, double) {
+    // Midpoint rule over the hemisphere in (cos theta = s^2, phi), which crowds points
+    // toward the horizon where the low-roughness lobes lie (within ~a_inv of it); d omega =
+    // 2 s ds dphi. Two resolutions: their difference bounds the error of the coarse one.
+    const auto at = tilted<T>();
+    const rgb<T> color(T(0.9), T(0.6), T(0.3));
+    for (const double alpha : {0.1, 0.3, 0.6, 1.0})
+        for (const double mu : {0.05, 0.4, 0.8, 1.0}) {
+            CAPTURE(alpha);
+            CAPTURE(mu);
+            const shade::zeltner_sheen<T> model(color, T(alpha));
+            const vec3<T> v = direction(at, T(std::acos(mu)), T(0.7));
+            auto integrate = [&](int n_s, int n_phi) {
+                double pdf_sum = 0;
+                shade::vec3<double> albedo(0);
+                for (int i = 0; i < n_s; ++i) {
+                    const double s = (i + 0.5) / n_s;
+                    const double cos_theta = s * s;
+                    for (int j = 0; j < n_phi; ++j) {
+                        const double phi = 2 * pi_d * (j + 0.5) / n_phi;
+                        const vec3<T> l = direction(at, T(std::acos(cos_theta)), T(phi));
+                        const double d_omega = 2 * s / n_s * 2 * pi_d / n_phi;
+                        pdf_sum += double(model.pdf(l, v, at)) * d_omega;
+                        albedo += shade::vec3<double>(model.f(l, v, at)) * double(glm::dot(at.n(), l)) * d_omega;
+                    }
+                }
+                return std::pair{pdf_sum, albedo};
+            };
+            const auto fine_result = integrate(1600, 256);
+            const double fine = fine_result.first, coarse = integrate(800, 128).first;
+            const shade::vec3<double> fine_albedo = fine_result.second;
+            CAPTURE(fine);
+            CAPTURE(coarse);
+            CHECK(std::abs(fine - coarse) <= 1e-3);
+            CHECK(std::abs(fine - 1) <= 1e-3);
+            const double e = double(model.albedo(T(mu)));
+            for (int c = 0; c < 3; ++c) CHECK(std::abs(fine_albedo[c] - double(color[c]) * e) <= 1e-3);
+        }
+}
+
+TEST_CASE_TEMPLATE("sheen: hand values at normal view", T, float, double) {
+    // v = n: mu = 1, b_inv = sqrt(1 - 1) (...) = 0, so M^-1 l = (a l_x, a l_y, l_z) with
+    // a = a_inv(1, alpha) and |M^-1 l|^2 = a^2 sin^2(theta) + cos^2(theta) for l at angle theta:
+    //   f = F E(1) a^2 / (pi (a^2 sin^2 + cos^2)^2);  at l = n: F E(1) a^2 / pi.
+    const auto at = flat<T>();
+    const rgb<T> color(T(0.8), T(0.5), T(0.25));
+    for (const double alpha : {0.2, 0.5, 1.0}) {
+        CAPTURE(alpha);
+        const shade::zeltner_sheen<T> model(color, T(alpha));
+        const double a = spec_a_inv(1, alpha), e = spec_albedo(1, alpha);
+        for (const double theta : {0.0, 0.4, 1.0, 1.45}) {
+            CAPTURE(theta);
+            const double q = a * a * std::sin(theta) * std::sin(theta) + std::cos(theta) * std::cos(theta);
+            const double expected = e * a * a / (pi_d * q * q);
+            const vec3<T> l = direction(at, T(theta), T(0.3));
+            for (int c = 0; c < 3; ++c)
+                CHECK(std::abs(double(model.f(l, at.n(), at)[c]) - double(color[c]) * expected) <=
+                      (sizeof(T) <= 4 ? 1e-5 : 1e-12) * double(color[c]) * expected);
+            CHECK(std::abs(double(model.pdf(l, at.n(), at)) - std::cos(theta) * expected / e) <=
+                  (sizeof(T) <= 4 ? 1e-5 : 1e-12) * std::cos(theta) * expected / e);
+        }
+    }
+}
+
+TEST_CASE_TEMPLATE("sheen: roughness 0 is the lobe at alpha 0.01", T, float, double) {
+    const auto at = tilted<T>();
+    const shade::zeltner_sheen<T> zero(rgb<T>(1), T(0)), hundredth(rgb<T>(1), T(0.01));
+    CHECK(zero.alpha() == hundredth.alpha());
+    CHECK(zero.roughness() == T(0));
+    for (const auto& p : random_pairs(at, 300)) CHECK(zero.f(p.l, p.v, at) == hundredth.f(p.l, p.v, at));
+    // E(mu, 0.01) peaks at mu = 0 with 1.243e-4 (the fit at y = 0.01). From mu = 0.2 on
+    // the Gaussian is below 1e-30 (s = 0.01 (0.0206607 + 0.0158491) / (0.0379424 +
+    // 0.0133227) = 0.0071223, m = -0.0345318: (0.2 - m) / s = 32.9) and E is the offset
+    // o = 0.01 (0.000654023 - 0.000207818 + 0.0000119681) / (1.26264 - 0.0192021 + 0.0001)
+    //   = 3.68443e-6.
+    CHECK(zero.albedo(T(0)) < T(1.3e-4));
+    CHECK(close(zero.albedo(T(0.2)), T(3.68443e-6), T(1e-5)));
+    CHECK(close(zero.albedo(T(0.9)), T(3.68443e-6), T(1e-5)));
+}
+
+TEST_CASE_TEMPLATE("sheen: sample weight is F E exactly; sample and pdf agree and pass chi-square", T, float,
+                   double) {
+    const rgb<T> color(T(0.7), T(0.5), T(0.3));
+    // The fixed-grid quadrature of check_sampled_model (bins around the mirror direction)
+    // resolves these lobes from alpha = 0.3 on. Below, the lobe of a grazing view is a band
+    // within ~a_inv of the horizon (a_inv(0, 0.1) = 0.0081): at alpha = 0.1 and 89.9 deg
+    // the grid's own stated error of the pdf integral is 0.023. The property kit's
+    // adaptive quadrature (next test case) covers roughness 0.03 and 0.1.
+    for (const T alpha : {T(0.3), T(0.7), T(1)}) {
+        CAPTURE(alpha);
+        const shade::zeltner_sheen<T> model(color, alpha);
+        check_sampled_model(model, tilted<T>());
+        const auto at = flat<T>();
+        shade::rng random(3);
+        for (const auto& v : sampling_views(at)) {
+            const T mu = glm::dot(at.n(), v);
+            for (int k = 0; k < 200; ++k) {
+                const auto s = model.sample(v, T(0.5), {random.uniform<T>(), random.uniform<T>()}, at);
+                if (!s) continue;
+                CHECK(s->weight == color * model.albedo(mu));
+            }
+        }
+    }
+}
+
+TEST_CASE_TEMPLATE("sheen: property kit (positivity, coverage, sampling, energy); not reciprocal", T, float,
+                   double) {
+    namespace check = shade::check;
+    shade::surface_point<T> at;
+    at.shading = shade::frame<T>::from_normal_tangent(glm::normalize(shade::vec3<T>(T(0.2), T(0.3), T(1))), {1, 0, 0});
+    for (const T roughness : {T(0.03), T(0.1), T(0.5), T(1)}) {
+        CAPTURE(roughness);
+        const shade::zeltner_sheen<T> model(rgb<T>(1), roughness);
+        const std::string name = "zeltner_sheen";
+        check::pair_options pairs{.pairs = 4000};
+        pairs.model = name;
+        check::doctest_expect(check::positivity(model, at, pairs));
+        check::doctest_expect(check::pdf_coverage(model, at, pairs));
+        check::sample_options consistency{.views = 100, .samples_per_view = 20};
+        consistency.model = name;
+        check::doctest_expect(check::sample_consistency(model, at, consistency));
+        for (const double theta_deg : {0.0, 60.0, 87.0}) {
+            const auto v = glm::normalize(
+                at.shading.to_world(shade::spherical_direction(T(theta_deg * shade::pi<double> / 180), T(0.4))));
+            check::chi2_options chi2{.samples = 40000, .tests = 24};
+            chi2.model = name;
+            check::doctest_expect(check::chi2_goodness_of_fit(model, v, at, chi2));
+            check::doctest_expect(check::pdf_normalization(model, v, at, chi2));
+        }
+        check::albedo_options albedo{.strata = 128, .view_angles = 4, .azimuths = 1,
+                                     .estimator = check::albedo_estimator::own_sampler};
+        albedo.model = name;
+        check::doctest_expect(check::energy_conservation(model, at, albedo));
+        // The lobe belongs to v: f(l, v) != f(v, l). The kit's reciprocity check must see it.
+        const auto recip = check::reciprocity(model, at, pairs);
+        MESSAGE("roughness " << double(roughness) << ": worst relative reciprocity difference " << recip.worst);
+        CHECK_FALSE(recip.passed);
+    }
+}
+
+TEST_CASE_TEMPLATE("sheen: zero below, finite and non-negative for degenerate pairs", T, float, double) {
+    for (const auto& at : {flat<T>(), tilted<T>()})
+        for (const T roughness : {T(0), T(0.01), T(0.3), T(1)}) {
+            CAPTURE(roughness);
+            const shade::zeltner_sheen<T> model(rgb<T>(1), roughness);
+            check_zero_below(model, at);
+            check_finite_non_negative(model, at);
+        }
+}
+
+TEST_CASE_TEMPLATE("sheen: invalid parameters throw naming the parameter", T, float, double) {
+    check_throws_naming([] { (void)shade::zeltner_sheen<T>(rgb<T>(T(1.2), 0, 0), T(0.3)); }, "color");
+    check_throws_naming([] { (void)shade::zeltner_sheen<T>(rgb<T>(-1), T(0.3)); }, "color");
+    check_throws_naming([] { (void)shade::zeltner_sheen<T>(rgb<T>(1), T(-0.1)); }, "roughness");
+    check_throws_naming([] { (void)shade::zeltner_sheen<T>(rgb<T>(1), T(1.5)); }, "roughness");
+    check_throws_naming([] { (void)shade::zeltner_sheen<T>(rgb<T>(1), std::numeric_limits<T>::quiet_NaN()); },
+                        "roughness");
+    CHECK_NOTHROW((void)shade::zeltner_sheen<T>(shade::unchecked, rgb<T>(2), T(0.5)));
+}
+
+// ---------------------------------------------------------------------------------------
+// shade::zeltner_sheen_reciprocal: F E'(n.l) E'(n.v) / (pi E'_avg).
+// ---------------------------------------------------------------------------------------
+
+static_assert(shade::sampled_brdf<shade::zeltner_sheen_reciprocal<float>>);
+static_assert(shade::sampled_brdf<shade::zeltner_sheen_reciprocal<double>>);
+
+namespace {
+
+// E' from the published formulas: the Gaussian plus max(o, 0).
+double spec_albedo_floored(double x, double y) {
+    const double o = y * (0.000654023 + (-0.0207818 + 0.119681 * y) * y) / (1.26264 + y * (-1.92021 + y));
+    return spec_albedo(x, y) - o + std::max(o, 0.0);
+}
+
+// 2 integral_0^1 E'(mu) mu dmu by the midpoint rule on 400000 cells (cells of 2.5e-6, far
+// below the narrowest Gaussian of the fit, s = 0.0071 at alpha = 0.01).
+double quadrature_average(double y) {
+    double sum = 0;
+    constexpr int n = 400000;
+    for (int i = 0; i < n; ++i) {
+        const double mu = (i + 0.5) / n;
+        sum += 2 * spec_albedo_floored(mu, y) * mu / n;
+    }
+    return sum;
+}
+
+} // namespace
+
+TEST_CASE_TEMPLATE("sheen reciprocal: E' is within 2.11e-5 of E, and E'_avg's closed form matches quadrature", T,
+                   float, double) {
+    for (const double alpha : {0.0, 0.03, 0.08, 0.1, 0.3, 0.6, 1.0}) {
+        CAPTURE(alpha);
+        const shade::zeltner_sheen_reciprocal<T> model(rgb<T>(1), T(alpha));
+        const double y = std::max(alpha, 0.01);
+        for (const double mu : {0.0, 0.01, 0.1, 0.5, 0.9, 1.0}) {
+            CHECK(std::abs(double(model.albedo(T(mu))) - double(shade::zeltner_sheen_albedo(T(mu), T(alpha)))) <=
+                  2.11e-5 + (sizeof(T) <= 4 ? 1e-6 : 1e-14));
+            CHECK(std::abs(double(model.albedo(T(mu))) - spec_albedo_floored(mu, y)) <=
+                  (sizeof(T) <= 4 ? 1e-6 : 1e-14));
+        }
+        const double reference = quadrature_average(y);
+        CAPTURE(reference);
+        CAPTURE(double(model.average_albedo()));
+        // The midpoint rule's error is about (h^2 / 24) |g'(1) - g'(0)| for g = 2 E' mu (the
+        // integrand is smooth inside [0, 1]), with g'(0) = 2 E'(0) <= 1.5 and h = 2.5e-6:
+        // below 1e-12. In float the fit's s, m, o carry rounding of ~6e-8 each, and E'_avg
+        // amplifies that of m / s by up to ~a^2 (a = -m/s, about 5 at small alpha): 1e-5.
+        if constexpr (sizeof(T) <= 4)
+            CHECK(std::abs(double(model.average_albedo()) - reference) <= 1e-5 * reference);
+        else
+            CHECK(std::abs(double(model.average_albedo()) - reference) <= 1e-12);
+    }
+}
+
+TEST_CASE_TEMPLATE("sheen reciprocal: hand values, reciprocity and albedo F E'", T, float, double) {
+    const auto at = tilted<T>();
+    const rgb<T> color(T(0.9), T(0.6), T(0.3));
+    for (const double alpha : {0.2, 0.5, 1.0}) {
+        CAPTURE(alpha);
+        const shade::zeltner_sheen_reciprocal<T> model(color, T(alpha));
+        const double e_avg = quadrature_average(alpha);
+        for (const auto& p : random_pairs(at, 200)) {
+            CHECK(model.f(p.l, p.v, at) == model.f(p.v, p.l, at));
+            const double mu_l = double(glm::dot(at.n(), p.l)), mu_v = double(glm::dot(at.n(), p.v));
+            if (!(mu_l > 0 && mu_v > 0)) continue;
+            const double expected = spec_albedo_floored(mu_l, alpha) * spec_albedo_floored(mu_v, alpha) / (pi_d * e_avg);
+            CHECK(std::abs(double(model.f(p.l, p.v, at)[1]) - 0.6 * expected) <=
+                  (sizeof(T) <= 4 ? 1e-5 : 1e-9) * 0.6 * expected);
+        }
+        // Albedo: 2 pi integral F E'(mu_l) E'(mu_v) mu_l dmu_l / (pi E'_avg) = F E'(mu_v);
+        // by the midpoint rule in mu_l (f does not depend on the azimuth).
+        for (const double mu_v : {0.05, 0.5, 1.0}) {
+            const vec3<T> v = direction(at, T(std::acos(mu_v)), T(0.2));
+            double albedo = 0;
+            constexpr int n = 20000;
+            for (int i = 0; i < n; ++i) {
+                const double mu_l = (i + 0.5) / n;
+                const vec3<T> l = direction(at, T(std::acos(mu_l)), T(1.3));
+                albedo += double(model.f(l, v, at)[0]) * mu_l * 2 * pi_d / n;
+            }
+            CHECK(std::abs(albedo - 0.9 * double(model.albedo(T(mu_v)))) <= 1e-3 * 0.9 * double(model.albedo(T(mu_v))));
+        }
+    }
+}
+
+TEST_CASE_TEMPLATE("sheen reciprocal: property kit, reciprocity included", T, float, double) {
+    namespace check = shade::check;
+    shade::surface_point<T> at;
+    at.shading = shade::frame<T>::from_normal_tangent(glm::normalize(shade::vec3<T>(T(0.2), T(0.3), T(1))), {1, 0, 0});
+    for (const T roughness : {T(0.3), T(1)}) {
+        CAPTURE(roughness);
+        const shade::zeltner_sheen_reciprocal<T> model(rgb<T>(1), roughness);
+        const std::string name = "zeltner_sheen_reciprocal";
+        check::pair_options pairs{.pairs = 4000};
+        pairs.model = name;
+        check::doctest_expect(check::positivity(model, at, pairs));
+        check::doctest_expect(check::reciprocity(model, at, pairs));
+        check::doctest_expect(check::pdf_coverage(model, at, pairs));
+        check::sample_options consistency{.views = 100, .samples_per_view = 20};
+        consistency.model = name;
+        check::doctest_expect(check::sample_consistency(model, at, consistency));
+        for (const double theta_deg : {0.0, 60.0, 87.0}) {
+            const auto v = glm::normalize(
+                at.shading.to_world(shade::spherical_direction(T(theta_deg * shade::pi<double> / 180), T(0.4))));
+            check::chi2_options chi2{.samples = 40000, .tests = 12};
+            chi2.model = name;
+            check::doctest_expect(check::chi2_goodness_of_fit(model, v, at, chi2));
+            check::doctest_expect(check::pdf_normalization(model, v, at, chi2));
+        }
+        check::albedo_options albedo{.strata = 128, .view_angles = 4, .azimuths = 1,
+                                     .estimator = check::albedo_estimator::own_sampler};
+        albedo.model = name;
+        check::doctest_expect(check::energy_conservation(model, at, albedo));
+    }
+}
+
+TEST_CASE_TEMPLATE("sheen reciprocal: degenerate pairs, validation", T, float, double) {
+    for (const auto& at : {flat<T>(), tilted<T>()})
+        for (const T roughness : {T(0), T(0.05), T(0.3), T(1)}) {
+            CAPTURE(roughness);
+            const shade::zeltner_sheen_reciprocal<T> model(rgb<T>(1), roughness);
+            check_zero_below(model, at);
+            check_finite_non_negative(model, at);
+        }
+    check_throws_naming([] { (void)shade::zeltner_sheen_reciprocal<T>(rgb<T>(2), T(0.3)); }, "color");
+    check_throws_naming([] { (void)shade::zeltner_sheen_reciprocal<T>(rgb<T>(1), T(-1)); }, "roughness");
+}
