@@ -543,21 +543,17 @@ private:
         const bvh_v4 zero{0.0f, 0.0f, 0.0f, 0.0f};
         const auto top = float(nb - 1);
         const bvh_v4 last{top, top, top, top};
-        const auto add = [&](bin_set& set, const bvh_prim_ref& r) {
+        const std::uint32_t odd = sets == 2 ? 1u : 0u;
+        for (std::uint32_t i = begin; i < end; ++i) {
+            bin_set& set = bins_[(i - begin) & odd];
+            const bvh_v4 lo = refs_[i].lo, hi = refs_[i].hi; // copies: no reload after the stores
             // Clamped without branches (a NaN lane gives 0), then truncated.
-            const bvh_v4 x = bvh_vmin(bvh_vmax((r.centroid2() - c_lo) * scale, zero), last);
-            const std::array<std::uint32_t, 4> b = bvh_truncate(x);
-            for (std::size_t k = 0; k < 3; ++k) {
-                set.box[k][b[k]].grow(r.lo, r.hi);
-                ++set.count[k][b[k]];
-            }
-        };
-        std::uint32_t i = begin;
-        for (; sets == 2 && i + 1 < end; i += 2) {
-            add(bins_[0], refs_[i]);
-            add(bins_[1], refs_[i + 1]);
+            const std::array<std::uint32_t, 4> b = bvh_truncate(bvh_vmin(bvh_vmax((lo + hi - c_lo) * scale, zero), last));
+            set.box[0][b[0]].grow(lo, hi); // unrolled by hand (-O2 does not)
+            set.box[1][b[1]].grow(lo, hi);
+            set.box[2][b[2]].grow(lo, hi);
+            ++set.count[0][b[0]], ++set.count[1][b[1]], ++set.count[2][b[2]];
         }
-        for (; i < end; ++i) add(bins_[0], refs_[i]);
         for (std::size_t k = 0; sets == 2 && k < 3; ++k)
             for (std::size_t j = 0; j < nb; ++j) {
                 bins_[0].box[k][j].grow(bins_[1].box[k][j]);
