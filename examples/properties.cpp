@@ -21,6 +21,7 @@
 #include <vector>
 
 #include <shade/brdf/microfacet_reflection.hpp>
+#include <shade/brdf/sheen.hpp>
 #include <shade/bsdf/layer.hpp>
 #include <shade/bsdf/mix.hpp>
 #include <shade/check/bsdf_energy.hpp>
@@ -223,6 +224,10 @@ std::vector<std::function<row()>> model_jobs(const settings& s) {
                             c(0.5f, 0.2f, 0.0f));
     add("Oren-Nayar (rho = 0.8, sigma = 0.3)", oren_nayar<T>(rgb<T>(0.8), 0.3), c(0.6f, 0.4f, 0.2f));
     add("Oren-Nayar (rho = 1, sigma = 0.5)", oren_nayar<T>(one, 0.5), c(0.8f, 0.6f, 0.3f));
+    add("Zeltner sheen (F = 1, roughness = 0.3)", zeltner_sheen<T>(one, 0.3), c(0.9f, 0.9f, 0.5f));
+    add("Zeltner sheen (F = 1, roughness = 1)", zeltner_sheen<T>(one, 1), c(0.7f, 0.7f, 0.3f));
+    add("Zeltner sheen reciprocal (F = 1, roughness = 0.3)", zeltner_sheen_reciprocal<T>(one, 0.3),
+                            c(0.9f, 0.7f, 0.7f));
     add("Ashikhmin-Shirley (R_d = 0.8, R_s = 0.2, p = 10, 200)",
                             ashikhmin_shirley<T>(rgb<T>(0.8), rgb<T>(0.2), 10, 200), c(0.2f, 0.7f, 0.3f));
     return jobs;
