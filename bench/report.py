@@ -297,11 +297,12 @@ def bound_rows(ns):
             "| kernel | data | ns per test | bound ns | ratio |", "|---|---|---:|---:|---:|"] + rows + [""]
 
 
-def bvh_rows(runs, flags=None):
+def bvh_rows(runs, flags=None, ctx=None):
     """The BVH section: shade::triangle_bvh<float> against Embree 3 per scene, from the
     bench_bvh groups bvh/<build|primary|incoherent|shadow>/<scene>/<shade|embree>; empty
     when bench_bvh did not run (Embree not installed). flags: the compiler flags of a
-    separate build (a section of its own), or None for the timed run of the report."""
+    separate build (a section of its own), or None for the timed run of the report; ctx:
+    the run's context (its date and load average are printed under the tables)."""
     ns = per_op(runs)
     scenes = []
     for name in ns:
@@ -370,6 +371,10 @@ def bvh_rows(runs, flags=None):
                        ("≤ 1.0 " + ("yes" if mem_a / mem_e <= 1.0 else "**no**")) if sc in ("ico82k", "ico328k")
                        else ""]
             out.append(f"| {sc} | {a / 1e6:.2f} | {e / 1e6:.2f} | {a / e:.2f}× | {goal} | " + " | ".join(mem) + " |")
+    if ctx:
+        out += ["", f"bench_bvh run {ctx.get('date', '?')}, load average at start "
+                f"{', '.join(f'{x:.2f}' for x in ctx.get('load_avg', [])) or '?'} (on a loaded machine "
+                "the ratios of single runs move by several per cent between builds)."]
     out.append("")
     return out
 
@@ -528,13 +533,12 @@ def main():
               "code built for the baseline).",
               ""]
 
-    lines += bvh_rows(time_runs)
+    bvh_json = os.path.join(args.time_dir, "bench_bvh.json")
+    lines += bvh_rows(time_runs, None, load_json(bvh_json)[0] if os.path.exists(bvh_json) else None)
     for flags, path in args.bvh_build:
         if os.path.exists(path):
             ctx, runs = load_json(path)
-            lines += bvh_rows(runs, flags)
-            lines[-1:-1] = [f"", f"Run {ctx.get('date', '?')}, load average at start "
-                            f"{', '.join(f'{x:.2f}' for x in ctx.get('load_avg', [])) or '?'}."]
+            lines += bvh_rows(runs, flags, ctx)
     lines += bound_rows(per_op(time_runs))
 
     native_runs, native_context = {}, {}
