@@ -8,8 +8,8 @@
 //                                            and pdf for the models that sample), and
 //                                            legacy_f: f of the model as it was before the
 //                                            sampling redesign (bench/legacy/, the same
-//                                            parameters; none for zeltner_sheen, which
-//                                            came after it); baseline f.
+//                                            parameters; none for zeltner_sheen and eon,
+//                                            which came after it); baseline f.
 //                                            Floors of what a sampler cannot avoid:
 //                                            lambert/cosine_direction (the cosine-hemisphere
 //                                            map of u and the frame, no BRDF at all),
@@ -32,6 +32,7 @@
 #include <shade/brdf/ashikhmin_shirley.hpp>
 #include <shade/brdf/blinn_phong.hpp>
 #include <shade/brdf/cook_torrance.hpp>
+#include <shade/brdf/eon.hpp>
 #include <shade/brdf/fresnel.hpp>
 #include <shade/brdf/lambert.hpp>
 #include <shade/brdf/microfacet.hpp>
@@ -197,6 +198,8 @@ void register_all(const std::string& type) {
     add_model(type, "blinn_phong", shade::blinn_phong<T>(k_d, k_s, T(32)), old::blinn_phong<T>(k_d, k_s, T(32)));
     add_model(type, "oren_nayar_trig", shade::oren_nayar_trig<T>(k_d, T(0.3)), old::oren_nayar_trig<T>(k_d, T(0.3)));
     add_model(type, "oren_nayar_trig_free", shade::oren_nayar<T>(k_d, T(0.3)), old::oren_nayar<T>(k_d, T(0.3)));
+    add_model(type, "eon", shade::eon<T>(k_d, T(0.5)));
+    add_model(type, "eon_approximate", shade::eon<T, shade::eon_albedo::approximate>(k_d, T(0.5)));
     add_model(type, "ashikhmin_shirley", shade::ashikhmin_shirley<T>(k_d, k_s, T(10), T(100)),
               old::ashikhmin_shirley<T>(k_d, k_s, T(10), T(100)));
     using shade::beckmann, shade::ggx, shade::schlick;

@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include <shade/brdf/eon.hpp>
 #include <shade/brdf/microfacet_reflection.hpp>
 #include <shade/brdf/sheen.hpp>
 #include <shade/bsdf/layer.hpp>
@@ -67,7 +68,7 @@ constexpr double sampling_views_deg[] = {0, 45, 75, 89};
 constexpr std::size_t curve_points = 30;
 // The chi-square tests of the whole table share alpha = 0.01 (Šidák); an upper bound on
 // their number.
-constexpr std::size_t chi2_family = 32 * std::size(sampling_views_deg);
+constexpr std::size_t chi2_family = 40 * std::size(sampling_views_deg);
 
 struct settings {
     std::optional<std::filesystem::path> out;           ///< the white-furnace plot, if asked for
@@ -228,6 +229,11 @@ std::vector<std::function<row()>> model_jobs(const settings& s) {
     add("Zeltner sheen (F = 1, roughness = 1)", zeltner_sheen<T>(one, 1), c(0.7f, 0.7f, 0.3f));
     add("Zeltner sheen reciprocal (F = 1, roughness = 0.3)", zeltner_sheen_reciprocal<T>(one, 0.3),
                             c(0.9f, 0.7f, 0.7f));
+    add("EON (rho = 1, roughness = 1)", eon<T>(one, 1.0), c(0.4f, 0.2f, 0.1f));
+    add("EON (rho = 0.8, roughness = 0.5)", eon<T>(rgb<T>(0.8), 0.5), c(0.7f, 0.5f, 0.4f));
+    add("EON, fitted albedo (rho = 1, roughness = 1)", eon<T, eon_albedo::approximate>(one, 1.0), c(0.5f, 0.3f, 0.0f));
+    add("Fujii Oren-Nayar, single scattering (rho = 1, roughness = 1)", fujii_oren_nayar<T>(one, 1.0),
+        c(0.9f, 0.7f, 0.5f));
     add("Ashikhmin-Shirley (R_d = 0.8, R_s = 0.2, p = 10, 200)",
                             ashikhmin_shirley<T>(rgb<T>(0.8), rgb<T>(0.2), 10, 200), c(0.2f, 0.7f, 0.3f));
     return jobs;

@@ -8,6 +8,7 @@
 #include <shade/brdf/ashikhmin_shirley.hpp>
 #include <shade/brdf/blinn_phong.hpp>
 #include <shade/brdf/cook_torrance.hpp>
+#include <shade/brdf/eon.hpp>
 #include <shade/brdf/lambert.hpp>
 #include <shade/brdf/microfacet_reflection.hpp>
 #include <shade/brdf/oren_nayar.hpp>
@@ -71,6 +72,8 @@ TEST_CASE_TEMPLATE("physically based models pass positivity, reciprocity and ene
                         ggx<T>(T(0.3)), schlick<T>(rgb<T>(T(0.04))), rgb<T>(T(0.5)), rgb<T>(T(0.5))),
                     "cook-torrance ggx/smith, k_s = k_d = 0.5");
     expect_physical(oren_nayar<T>(rgb<T>(T(0.8)), T(0.3)), "oren-nayar (rho 0.8, sigma 0.3)");
+    expect_physical(eon<T>(rgb<T>(1), T(1)), "eon (rho 1, r 1)");
+    expect_physical(eon<T, eon_albedo::approximate>(rgb<T>(1), T(1)), "eon, fitted albedo (rho 1, r 1)");
     expect_physical(ashikhmin_shirley<T>(rgb<T>(T(0.8)), rgb<T>(T(0.2)), T(10), T(200)),
                     "ashikhmin-shirley");
     // Combinators of physical BRDFs stay physical (convex blends).

@@ -19,6 +19,7 @@
 #include <shade/brdf/blinn_phong.hpp>
 #include <shade/brdf/cook_torrance.hpp>
 #include <shade/brdf/coupled_plastic.hpp>
+#include <shade/brdf/eon.hpp>
 #include <shade/brdf/lambert.hpp>
 #include <shade/brdf/microfacet_reflection.hpp>
 #include <shade/brdf/oren_nayar.hpp>
@@ -173,6 +174,10 @@ TEST_CASE_TEMPLATE("every sampled model passes the sampling checks", T, float, d
     run(lambert<T>(rgb<T>(T(0.8))), "lambert");
     run(oren_nayar<T>(rgb<T>(T(0.8)), T(0.3)), "oren-nayar sigma 0.3");
     run(oren_nayar<T>(one, T(1)), "oren-nayar sigma 1");
+    run(eon<T>(rgb<T>(T(0.8)), T(0.3)), "eon r 0.3");
+    run(eon<T>(one, T(1)), "eon r 1");
+    run(eon<T, eon_albedo::approximate>(one, T(1)), "eon (fitted albedo) r 1");
+    run(fujii_oren_nayar<T>(one, T(1)), "fujii oren-nayar r 1");
     for (const T s : {T(1), T(20), T(10000)}) {
         const std::string e = std::to_string(int(s));
         run(normalized_phong<T>(half, half, s), "normalized phong, s = " + e);

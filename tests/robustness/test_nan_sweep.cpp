@@ -25,6 +25,7 @@
 #include <shade/brdf/fresnel.hpp>
 #include <shade/brdf/lambert.hpp>
 #include <shade/brdf/microfacet.hpp>
+#include <shade/brdf/eon.hpp>
 #include <shade/brdf/oren_nayar.hpp>
 #include <shade/brdf/phong.hpp>
 #include <shade/light/any_light.hpp>
@@ -236,6 +237,16 @@ TEST_CASE_TEMPLATE("NaN sweep: Oren-Nayar, both evaluations, sigma 0 to 100", T,
         sweep_brdf(shade::oren_nayar<T>(one<T>, sigma), "trig_free" + s);
         sweep_brdf(shade::oren_nayar_trig<T>(one<T>, sigma), "trig" + s);
     }
+}
+
+TEST_CASE_TEMPLATE("NaN sweep: EON and FON, roughness 0 to 1, rho 0 and 1", T, float, double) {
+    for (const T r : {T(0), T(1e-4), T(0.5), T(1)})
+        for (const T rho : {T(0), T(1)}) {
+            const std::string s = " roughness " + std::to_string(r) + " rho " + std::to_string(rho);
+            sweep_brdf(shade::eon<T>(shade::rgb<T>(rho), r), "eon" + s);
+            sweep_brdf(shade::eon<T, shade::eon_albedo::approximate>(shade::rgb<T>(rho), r), "eon (fit)" + s);
+            sweep_brdf(shade::fujii_oren_nayar<T>(shade::rgb<T>(rho), r), "fon" + s);
+        }
 }
 
 TEST_CASE_TEMPLATE("NaN sweep: Ashikhmin-Shirley, exponents 0 and 1e4, R_s 0 and 1", T, float,

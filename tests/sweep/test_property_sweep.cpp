@@ -29,6 +29,7 @@
 #include <shade/brdf/coupled_plastic.hpp>
 #include <shade/brdf/lambert.hpp>
 #include <shade/brdf/metals.hpp>
+#include <shade/brdf/eon.hpp>
 #include <shade/brdf/oren_nayar.hpp>
 #include <shade/brdf/phong.hpp>
 #include <shade/check/doctest.hpp>
@@ -145,7 +146,7 @@ constexpr double exponents[] = {1, 2, 5, 20, 100, 1000, 10000};
 
 } // namespace
 
-TEST_CASE_TEMPLATE("Lambert and Oren-Nayar, sigma 0 to 1, both forms", T, float, double) {
+TEST_CASE_TEMPLATE("Lambert, Oren-Nayar (sigma 0 to 1, both forms), EON and FON (roughness 0 to 1)", T, float, double) {
     using namespace shade;
     energy_tally tally;
     sweep(lambert<T>(rgb<T>(1)), "lambert k_d = 1", energy::conserving, tally);
@@ -158,6 +159,13 @@ TEST_CASE_TEMPLATE("Lambert and Oren-Nayar, sigma 0 to 1, both forms", T, float,
               "oren-nayar (course form) rho = 1, sigma = " + number(s),
               s == 0.3 ? energy::violates : energy::not_claimed, tally);
         sweep(oren_nayar_trig<T>(rgb<T>(T(0.8)), T(s)), "oren-nayar (trig) rho = 0.8, sigma = " + number(s),
+              energy::conserving, tally);
+    }
+    for (const double r : {0.0, 0.1, 0.3, 0.5, 1.0}) {
+        sweep(eon<T>(rgb<T>(1), T(r)), "eon rho = 1, roughness = " + number(r), energy::conserving, tally);
+        sweep(eon<T, eon_albedo::approximate>(rgb<T>(1), T(r)), "eon (fitted albedo) rho = 1, roughness = " + number(r),
+              energy::conserving, tally);
+        sweep(fujii_oren_nayar<T>(rgb<T>(T(0.8)), T(r)), "fujii oren-nayar rho = 0.8, roughness = " + number(r),
               energy::conserving, tally);
     }
     CHECK(tally.passed > 0);
