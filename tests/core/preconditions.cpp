@@ -18,6 +18,7 @@ inline int failures = 0;
 
 #include <shade/brdf/ashikhmin_shirley.hpp>
 #include <shade/brdf/blinn_phong.hpp>
+#include <shade/brdf/eon.hpp>
 #include <shade/brdf/lambert.hpp>
 #include <shade/brdf/oren_nayar.hpp>
 #include <shade/brdf/phong.hpp>
@@ -109,6 +110,8 @@ TEST_CASE_TEMPLATE("SHADE_ASSERT: the models' f checks unit-length l, v and n", 
     };
     check(shade::lambert<T>(c(T(0.5))));
     check(shade::oren_nayar<T>(c(T(0.5)), T(0.3)));
+    check(shade::eon<T>(c(T(0.5)), T(0.3)));
+    check(shade::fujii_oren_nayar<T>(c(T(0.5)), T(0.3)));
     check(shade::phong<T>(c(T(0.25)), c(T(0.5)), T(20)));
     check(shade::blinn_phong<T>(c(T(0.25)), c(T(0.5)), T(20)));
     check(shade::ashikhmin_shirley<T>(c(T(0.25)), c(T(0.5)), T(10), T(100)));
