@@ -8,8 +8,9 @@
 //                                            and pdf for the models that sample), and
 //                                            legacy_f: f of the model as it was before the
 //                                            sampling redesign (bench/legacy/, the same
-//                                            parameters; none for zeltner_sheen and eon,
-//                                            which came after it); baseline f.
+//                                            parameters; none for the zeltner_sheen
+//                                            models and eon, which came after it);
+//                                            baseline f.
 //                                            Floors of what a sampler cannot avoid:
 //                                            lambert/cosine_direction (the cosine-hemisphere
 //                                            map of u and the frame, no BRDF at all),
@@ -224,6 +225,7 @@ void register_all(const std::string& type) {
               old::cook_torrance<old::ggx<T>, old::schlick<T>, old::smith_ggx<T>>(
                   old::ggx<T>(T(0.3)), old::schlick<T>(f0), shade::rgb<T>(1), k_d));
     add_model(type, "zeltner_sheen", shade::zeltner_sheen<T>(k_d, T(0.5)));
+    add_model(type, "zeltner_sheen_reciprocal", shade::zeltner_sheen_reciprocal<T>(k_d, T(0.5)));
     add_sampling_floors<T>(type);
 }
 

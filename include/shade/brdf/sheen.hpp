@@ -282,11 +282,12 @@ private:
 ///     f(l, v) = F E'(n·l) E'(n·v) / (pi E'_avg),    E'_avg = 2 integral_0^1 E'(mu) mu dmu   (1/sr)
 ///
 /// the separable form of Kulla, Conty 2017, "Revisiting Physically Based Shading at
-/// Imageworks", SIGGRAPH course (their f_ms, built from 1 - E), here built from E itself. E' is zeltner_sheen_albedo's Gaussian plus max(o, 0): it differs
-/// from E by at most 2.11e-5 (where the fit's offset o is negative, alpha in (0.0413,
-/// 0.1324)) and is never negative, so E'_avg has a closed form (below). Symmetric in l
-/// and v, and its directional albedo is exactly F E'(n·v): the same energy as
-/// zeltner_sheen, given to the layer below in the same amount (1 - E'(n·v)).
+/// Imageworks", SIGGRAPH course (their f_ms, built from 1 - E), here built from E itself.
+/// E' is zeltner_sheen_albedo's Gaussian plus max(o, 0): it differs from E by at most
+/// 2.11e-5 (where the fit's offset o is negative, alpha in (0.0413, 0.1324)) and is never
+/// negative, so E'_avg has a closed form (see average_albedo). Symmetric in l and v, and
+/// its directional albedo is F E'(n·v): the energy of zeltner_sheen, which leaves the
+/// same 1 - E'(n·v) to the layer below.
 ///
 /// What it gives up is the LTC lobe's shape: f depends on the two cosines only, not on
 /// the azimuth between l and v. The relative L1 distance of its cosine-weighted lobe from
@@ -294,10 +295,11 @@ private:
 /// roughness 1, 0.08 to 0.4 at 0.7, 0.1 to 0.6 at 0.5 and up to 1 at 0.1 (grazing views);
 /// zeltner_sheen differs from its own swap f(v, l) by comparable amounts (docs/conventions.md).
 ///
-/// Sampling (shade::sampled_brdf): zeltner_sheen's LTC sampler and density for the same
-/// roughness (which covers every l above the surface); the weight f (n·l) / pdf is not
-/// constant: its standard deviation over its mean is about 0.05 at roughness 1, up to 1.3
-/// at 0.3 and 2.5 at 0.1 (grazing views), worse below.
+/// Sampling (shade::sampled_brdf): exactly proportional to f (n·l), whatever v: the
+/// azimuth uniform and n·l = mu drawn with density E'(mu) mu / (E'_avg / 2) on [0, 1] by
+/// inverting its distribution function C(mu) / C(1) (closed form, see average_albedo) with
+/// safeguarded Newton steps; pdf(l) = E'(n·l) (n·l) / (pi E'_avg) (1/sr) and every
+/// sample's weight is F E'(n·v). uc is not used.
 template <std::floating_point T>
 class zeltner_sheen_reciprocal {
 public:
@@ -306,26 +308,39 @@ public:
     /// As zeltner_sheen's constructor: throws shade::invalid_parameter naming "color"
     /// unless every channel lies in [0, 1], or "roughness" unless it lies in [0, 1].
     zeltner_sheen_reciprocal(const rgb<T>& color, T roughness)
-        : lobe_(color, roughness), fit_(detail::sheen_albedo_fit<T>::at(lobe_.alpha())),
-          e_avg_(average_of(fit_)) {}
+        : color_(require_in_range("color", color, T(0), T(1))),
+          roughness_(require_in_range("roughness", roughness, T(0), T(1))),
+          alpha_(glm::max(roughness, zeltner_sheen_min_alpha<T>)), fit_(detail::sheen_albedo_fit<T>::at(alpha_)),
+          tail_a_(std::erfc(-double(fit_.m) / double(fit_.s) * inv_sqrt2)),
+          phi_a_(std::exp(-0.5 * sqr(double(fit_.m) / double(fit_.s))) * detail::inv_sqrt_two_pi<double>),
+          cdf_one_(cosine_cdf(1).value), e_avg_(T(cdf_one_)) {}
 
     /// Unchecked: the caller guarantees color in [0, 1]^3 and roughness in [0, 1].
     zeltner_sheen_reciprocal(unchecked_t, const rgb<T>& color, T roughness) noexcept
-        : lobe_(unchecked, color, roughness), fit_(detail::sheen_albedo_fit<T>::at(lobe_.alpha())),
-          e_avg_(average_of(fit_)) {}
+        : color_(color), roughness_(roughness), alpha_(glm::max(roughness, zeltner_sheen_min_alpha<T>)),
+          fit_(detail::sheen_albedo_fit<T>::at(alpha_)),
+          tail_a_(std::erfc(-double(fit_.m) / double(fit_.s) * inv_sqrt2)),
+          phi_a_(std::exp(-0.5 * sqr(double(fit_.m) / double(fit_.s))) * detail::inv_sqrt_two_pi<double>),
+          cdf_one_(cosine_cdf(1).value), e_avg_(T(cdf_one_)) {}
 
-    [[nodiscard]] constexpr const rgb<T>& color() const noexcept { return lobe_.color(); } ///< F
-    [[nodiscard]] constexpr T roughness() const noexcept { return lobe_.roughness(); } ///< as given
-    [[nodiscard]] constexpr T alpha() const noexcept { return lobe_.alpha(); } ///< max(roughness, 0.01)
+    [[nodiscard]] constexpr const rgb<T>& color() const noexcept { return color_; } ///< F
+    [[nodiscard]] constexpr T roughness() const noexcept { return roughness_; } ///< as given
+    [[nodiscard]] constexpr T alpha() const noexcept { return alpha_; } ///< max(roughness, 0.01)
 
     /// E'(mu): the directional albedo of this lobe without the colour (color() * albedo(mu)
     /// is the albedo of f for a view at cosine mu), within 2.11e-5 of zeltner_sheen_albedo.
-    [[nodiscard]] T albedo(T mu) const noexcept { return fit_.gaussian(mu) + glm::max(fit_.o, T(0)); }
+    /// Values below 1e-18 in float (1e-150 in double) are returned as 0: f multiplies two of
+    /// them, and a subnormal product would carry too few digits for f, pdf and the sample
+    /// weight to agree.
+    [[nodiscard]] T albedo(T mu) const noexcept {
+        const T e = fit_.gaussian(mu) + glm::max(fit_.o, T(0));
+        return e >= flush_below ? e : T(0);
+    }
 
-    /// E'_avg = 2 integral_0^1 E'(mu) mu dmu, in closed form: with a = -m/s, b = (1 - m)/s,
-    /// Phi and phi the standard normal distribution and density, 2 (m (Phi(b) - Phi(a)) +
-    /// s (phi(a) - phi(b))) + max(o, 0) (the Gaussian's integral of (m + s z) phi(z) dz
-    /// over [a, b]). Evaluated in double.
+    /// E'_avg = C(1), with C(mu) = 2 integral_0^mu E'(t) t dt in closed form: with
+    /// z(t) = (t - m)/s, Phi and phi the standard normal distribution and density,
+    /// C(mu) = 2 (m (Phi(z(mu)) - Phi(z(0))) + s (phi(z(0)) - phi(z(mu)))) + max(o, 0) mu^2
+    /// (the Gaussian part is the integral of (m + s z) phi(z) dz). Evaluated in double.
     [[nodiscard]] constexpr T average_albedo() const noexcept { return e_avg_; }
 
     /// BRDF value in 1/sr without the cosine: F E'(n·l) E'(n·v) / (pi E'_avg); 0 unless
@@ -335,39 +350,90 @@ public:
         const T n_dot_l = glm::dot(at.n(), l);
         const T n_dot_v = glm::dot(at.n(), v);
         if (!(n_dot_l > T(0)) || !(n_dot_v > T(0))) return rgb<T>(0);
-        return lobe_.color() * (albedo(n_dot_l) * albedo(n_dot_v) / (pi<T> * e_avg_));
+        return color_ * (albedo(n_dot_l) * albedo(n_dot_v) / (pi<T> * e_avg_));
     }
 
-    /// The density (1/sr) with which sample() draws l: zeltner_sheen's LTC density for v.
+    /// The density (1/sr) with which sample() draws l: E'(n·l) (n·l) / (pi E'_avg), the
+    /// same for every v above the surface; 0 unless n·l > 0 and n·v > 0.
     [[nodiscard]] T pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept {
-        return lobe_.pdf(l, v, at);
+        const T n_dot_l = glm::dot(at.n(), l);
+        if (!(n_dot_l > T(0)) || !(glm::dot(at.n(), v) > T(0))) return T(0);
+        return albedo(n_dot_l) * n_dot_l / (pi<T> * e_avg_);
     }
 
-    /// Draws l with zeltner_sheen's sampler (uc is not used); nullopt when v is not above
-    /// the surface or l falls on the horizon.
-    [[nodiscard]] std::optional<brdf_sample<T>> sample(const vec3<T>& v, T uc, const vec2<T>& u,
+    /// Draws l with the density pdf() from u (u.x for n·l, u.y for the azimuth; uc is not
+    /// used). The weight is F E'(n·v) exactly. nullopt when v is not above the surface or l
+    /// falls on the horizon.
+    [[nodiscard]] std::optional<brdf_sample<T>> sample(const vec3<T>& v, T /*uc*/, const vec2<T>& u,
                                                        const surface_point<T>& at) const noexcept {
-        const auto s = lobe_.sample(v, uc, u, at);
-        if (!s) return std::nullopt;
-        return detail::make_brdf_sample(s->l, f(s->l, v, at), s->pdf, glm::dot(at.n(), s->l));
+        const T n_dot_v = glm::dot(at.n(), v);
+        if (!(n_dot_v > T(0))) return std::nullopt;
+        const double mu = invert_cosine_cdf(double(u.x) * cdf_one_);
+        const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
+        const double phi = 2 * pi<double> * double(u.y);
+        const vec3<T> l = glm::normalize(
+            at.shading.to_world(vec3<T>(T(sin_theta * std::cos(phi)), T(sin_theta * std::sin(phi)), T(mu))));
+        const T n_dot_l = glm::dot(at.n(), l);
+        if (!(n_dot_l > T(0))) return std::nullopt;
+        const T e_v = albedo(n_dot_v);
+        const T density = albedo(n_dot_l) * n_dot_l / (pi<T> * e_avg_);
+        if (!(density > T(0))) return std::nullopt;
+        return brdf_sample<T>{l, color_ * (albedo(n_dot_l) * e_v / (pi<T> * e_avg_)), density, color_ * e_v};
     }
 
 private:
-    static T average_of(const detail::sheen_albedo_fit<T>& fit) noexcept {
-        const double s = double(fit.s), m = double(fit.m);
-        const double a = -m / s, b = (1 - m) / s;
-        // Phi(b) - Phi(a) = (erfc(a / sqrt 2) - erfc(b / sqrt 2)) / 2, without the
-        // cancellation of 1 - Phi in the upper tail (a is up to ~5 at small alpha).
-        constexpr double inv_sqrt2 = 0.707106781186547524400844362104849039;
-        const double mass = 0.5 * (std::erfc(a * inv_sqrt2) - std::erfc(b * inv_sqrt2));
-        const double phi_a = std::exp(-0.5 * a * a) * detail::inv_sqrt_two_pi<double>;
-        const double phi_b = std::exp(-0.5 * b * b) * detail::inv_sqrt_two_pi<double>;
-        return T(2 * (m * mass + s * (phi_a - phi_b)) + std::fmax(double(fit.o), 0.0));
+    // Above the square root of the smallest normal number with room for the division by
+    // pi E'_avg (<= 1.41): 1e-18^2 / 1.41 > 1.2e-38 (float), 1e-150^2 / 1.41 > 2.3e-308.
+    static constexpr T flush_below = sizeof(T) <= 4 ? T(1e-18) : T(1e-150);
+
+    // C(mu) = 2 integral_0^mu E'(t) t dt (see average_albedo) and its derivative
+    // 2 E'(mu) mu, in double. Phi(z) - Phi(a) is taken as (erfc(a / sqrt 2) - erfc(z /
+    // sqrt 2)) / 2, the difference of two upper tails, which keeps its precision where both
+    // are near 1 (m < 0 puts a = -m/s up to ~5); erfc(a / sqrt 2) and phi(a) are the
+    // constructor's (tail_a_, phi_a_).
+    struct cdf_at {
+        double value;
+        double slope;
+    };
+    [[nodiscard]] cdf_at cosine_cdf(double mu) const noexcept {
+        const double s = double(fit_.s), m = double(fit_.m), o = std::fmax(double(fit_.o), 0.0);
+        const double z = (mu - m) / s;
+        const double mass = 0.5 * (tail_a_ - std::erfc(z * inv_sqrt2));
+        const double phi_z = std::exp(-0.5 * z * z) * detail::inv_sqrt_two_pi<double>;
+        return {2 * (m * mass + s * (phi_a_ - phi_z)) + o * mu * mu, 2 * (phi_z / s + o) * mu};
     }
 
-    zeltner_sheen<T> lobe_;
+    // The mu in [0, 1] with C(mu) = target (0 <= target <= C(1)): Newton steps on C, kept
+    // inside a bisection bracket (a step leaving it, or a zero slope, bisects instead),
+    // until a step moves mu by less than 1e-10 (far below float's resolution of mu; the
+    // draws then follow the density to that accuracy) or after 60 steps.
+    [[nodiscard]] double invert_cosine_cdf(double target) const noexcept {
+        double lo = 0, hi = 1;
+        double mu = std::sqrt(target / cdf_one_); // the root for constant E'
+        if (!(mu > 0 && mu < 1)) mu = 0.5;
+        for (int i = 0; i < 60; ++i) {
+            const cdf_at c = cosine_cdf(mu);
+            const double residual = c.value - target;
+            if (residual > 0) hi = mu;
+            else lo = mu;
+            double next = c.slope > 0 ? mu - residual / c.slope : 0.5 * (lo + hi);
+            if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+            if (std::fabs(next - mu) <= 1e-10) return next;
+            mu = next;
+        }
+        return mu;
+    }
+
+    static constexpr double inv_sqrt2 = 0.707106781186547524400844362104849039;
+
+    rgb<T> color_;
+    T roughness_;
+    T alpha_;
     detail::sheen_albedo_fit<T> fit_;
-    T e_avg_;
+    double tail_a_;  // erfc(a / sqrt 2), a = -m/s
+    double phi_a_;   // phi(a)
+    double cdf_one_; // C(1) in double, what sample() inverts against
+    T e_avg_;        // C(1) as T
 };
 
 } // namespace shade
