@@ -123,3 +123,12 @@ TEST_CASE_TEMPLATE("f82_tint: a compensated GGX metal passes every property chec
     expect_every_property(metal(shade::ggx<T>(T(0.1), T(0.4)), copper), "compensated GGX 0.1 x 0.4, F82-tint copper",
                           36);
 }
+
+TEST_CASE_TEMPLATE("f82_tint: two-sided as Schlick, F(-c) = F(c)", T, float, double) {
+    const rgb<T> f0(T(0.9), T(0.6), T(0.3));
+    const rgb<T> tint(T(0.8), T(0.9), T(0.5));
+    for (int i = 0; i <= 50; ++i) {
+        const T c = T(i) / T(50);
+        CHECK(shade::F_f82_tint(f0, tint, T(0.9), -c) == shade::F_f82_tint(f0, tint, T(0.9), c));
+    }
+}

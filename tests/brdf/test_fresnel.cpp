@@ -27,9 +27,11 @@ TEST_CASE_TEMPLATE("F_schlick: f0 at normal incidence, 1 at grazing, the fifth p
     CHECK(close(shade::F_schlick(f0, T(0)), rgb<T>(1), tol<T>));
     // cos = 1/2: (1 - 1/2)^5 = 1/32, F = f0 + (1 - f0)/32.
     CHECK(close(shade::F_schlick(f0, T(0.5)), f0 + (rgb<T>(1) - f0) / T(32), tol<T>));
-    // Cosines a hair outside [0, 1] are clamped: F stays in [f0, 1].
+    // A cosine a hair above 1 is clamped: F stays in [f0, 1]. A hair below 0 is a grazing
+    // cosine from the other side: F(1e-7) = f0 + (1 - f0)(1 - 5e-7) to first order, 1 to
+    // within 5e-7.
     CHECK(close(shade::F_schlick(f0, T(1.0000001)), f0, tol<T>));
-    CHECK(close(shade::F_schlick(f0, T(-1e-7)), rgb<T>(1), tol<T>));
+    CHECK(close(shade::F_schlick(f0, T(-1e-7)), rgb<T>(1), T(1e-6)));
     const shade::schlick<T> term(f0);
     CHECK(close(term.F(T(0.5)), shade::F_schlick(f0, T(0.5)), tol<T>));
 }
@@ -232,4 +234,29 @@ TEST_CASE_TEMPLATE("F_dielectric_two_sided: from outside as F_dielectric, from i
     // Grazing from either side reflects everything.
     CHECK(shade::F_dielectric_two_sided(T(-0.0), eta) == T(1));
     CHECK(close(shade::F_dielectric_two_sided(T(1e-9), eta), T(1), T(1e-6)));
+}
+
+TEST_CASE_TEMPLATE("Fresnel terms are two-sided: |cos| for Schlick and conductors, 1/eta for a dielectric seen from behind", T, float, double) {
+    const rgb<T> f0(T(0.04), T(0.5), T(0.9));
+    const shade::conductor_fresnel<T> gold_like(rgb<T>(T(0.18), T(0.42), T(1.37)), rgb<T>(T(3.42), T(2.35), T(1.77)));
+    for (int i = 0; i <= 100; ++i) {
+        const T c = T(i) / T(100);
+        CAPTURE(c);
+        // An opaque reflector depends on the angle only: F(-c) = F(c) to the last bit.
+        CHECK(shade::F_schlick(f0, -c) == shade::F_schlick(f0, c));
+        CHECK(shade::F_conductor(-c, T(0.2), T(3.9)) == shade::F_conductor(c, T(0.2), T(3.9)));
+        CHECK(gold_like.F(-c) == gold_like.F(c));
+        // A dielectric seen from the side opposite its normal: the relative index inverted.
+        CHECK(shade::F_dielectric(-c, T(1.5)) == shade::F_dielectric(c, T(1) / T(1.5)));
+        CHECK(shade::F_dielectric(-c, T(1) / T(1.33)) == shade::F_dielectric(c, T(1) / (T(1) / T(1.33))));
+        CHECK(shade::dielectric_fresnel<T>(T(1.5)).F(-c) == rgb<T>(shade::F_dielectric(c, T(1) / T(1.5))));
+    }
+    // By hand, eta = 1.5 seen from inside (relative index 1/1.5): normal incidence reflects
+    // ((1 - 1.5)/(1 + 1.5))^2 = 0.04 as from outside; beyond the critical angle, sin > 1/1.5
+    // (cos < sqrt(5)/3 = 0.745), everything: cos 0.7 is totally reflected, cos 0.8 is not.
+    CHECK(close(shade::F_dielectric(T(-1), T(1.5)), T(0.04), T(1e-5)));
+    CHECK(shade::F_dielectric(T(-0.7), T(1.5)) == T(1));
+    CHECK(shade::F_dielectric(T(-0.8), T(1.5)) < T(1));
+    // From outside at the same cosines there is no total reflection.
+    CHECK(shade::F_dielectric(T(0.7), T(1.5)) < T(0.1));
 }

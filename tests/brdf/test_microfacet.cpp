@@ -51,9 +51,9 @@ TEST_CASE_TEMPLATE("D_beckmann: hand values", T, float, double) {
     // At theta_h = 45 deg: tan^2 = 1, cos^4 = 1/4: D = 4 exp(-1/m^2)/(pi m^2). m = 0.5:
     // 16 exp(-4)/pi.
     CHECK(close(shade::D_beckmann(std::sqrt(T(0.5)), T(0.5)), T(16) * std::exp(T(-4)) / shade::pi<T>, T(10) * tol<T>));
-    // Below the horizon: 0.
+    // On the horizon: 0; below it, the value of the mirror image (two-sided D).
     CHECK(shade::D_beckmann(T(0), T(0.5)) == T(0));
-    CHECK(shade::D_beckmann(T(-0.3), T(0.5)) == T(0));
+    CHECK(shade::D_beckmann(T(-0.3), T(0.5)) == shade::D_beckmann(T(0.3), T(0.5)));
     // Narrowest valid lobe: 1/(pi 1e-8) at the peak, 0 (not NaN) far from it.
     CHECK(close(shade::D_beckmann(T(1), T(1e-4)), T(1) / (shade::pi<T> * T(1e-8)), T(1e-5)));
     CHECK(shade::D_beckmann(T(0.9), T(1e-4)) == T(0));

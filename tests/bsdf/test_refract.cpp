@@ -6,6 +6,7 @@
 
 #include <shade/bsdf/refract.hpp>
 #include <shade/core/random.hpp>
+#include <shade/core/sampling.hpp>
 
 #include "brdf/support.hpp"
 
@@ -66,4 +67,57 @@ TEST_CASE_TEMPLATE("refract: normal incidence goes straight through; eta = 1 doe
     CHECK(close(std::sqrt(g->x * g->x + g->y * g->y), T(1) / T(1.5), T(1e-6)));
     // Grazing from the denser side: totally reflected.
     CHECK(!shade::refract(vec3<T>(1, 0, 0), n, T(1) / T(1.5)));
+}
+
+TEST_CASE_TEMPLATE("generalized_half_vector: the half vector for eta = 1, turned to n's side", T, float, double) {
+    const T tol = T(8) * std::numeric_limits<T>::epsilon();
+    shade::rng random(12);
+    for (int i = 0; i < 1000; ++i) {
+        const vec3<T> l = shade::square_to_uniform_sphere(shade::vec2<T>(random.uniform<T>(), random.uniform<T>()));
+        const vec3<T> v = shade::square_to_uniform_sphere(shade::vec2<T>(random.uniform<T>(), random.uniform<T>()));
+        const auto m = shade::generalized_half_vector(l, v, T(1));
+        REQUIRE(m);
+        // Walter et al. 2007, eq. 13: h = normalize(l + v), on n's side (local n = +z).
+        vec3<T> h = glm::normalize(l + v);
+        if (h.z < 0) h = -h;
+        CHECK(glm::length(*m - h) <= tol);
+        CHECK(m->z >= T(0));
+        // Given another normal, turned to its side.
+        const vec3<T> n = glm::normalize(vec3<T>(T(0.3), T(-0.5), T(0.8)));
+        const auto m_n = shade::generalized_half_vector(l, v, T(1), n);
+        REQUIRE(m_n);
+        CHECK(glm::dot(*m_n, n) >= T(0));
+        CHECK(glm::length(glm::cross(*m_n, *m)) <= tol);
+    }
+    // l = -v: no half vector.
+    CHECK(!shade::generalized_half_vector(vec3<T>(0, T(0.6), T(0.8)), vec3<T>(0, T(-0.6), T(-0.8)), T(1)));
+}
+
+TEST_CASE_TEMPLATE("generalized_half_vector: recovers the normal that refracts v into l (Snell's law)", T, float, double) {
+    // For a normal m and v on its side, l = refract(v, m, eta) crosses m; the generalized half
+    // vector of (l, v, eta) must be m again (turned to +z), and v, l must satisfy
+    // sin(theta_v) = eta sin(theta_l) about it (eta = eta_l / eta_v).
+    const T tol = sizeof(T) <= 4 ? T(2e-5) : T(1e-12);
+    shade::rng random(13);
+    int tested = 0;
+    for (const double eta : {1.5, 1.0 / 1.5, 1.33, 1.0 / 1.33, 2.4}) {
+        CAPTURE(eta);
+        for (int i = 0; i < 500; ++i) {
+            const vec3<T> m = shade::square_to_uniform_sphere(shade::vec2<T>(random.uniform<T>(), random.uniform<T>()));
+            vec3<T> v = shade::square_to_uniform_sphere(shade::vec2<T>(random.uniform<T>(), random.uniform<T>()));
+            if (glm::dot(v, m) < 0) v = -v;
+            if (glm::dot(v, m) < T(0.05)) continue; // near-grazing on m: refraction ill-conditioned
+            const auto l = shade::refract(v, m, T(eta));
+            if (!l) continue; // total internal reflection
+            const auto g = shade::generalized_half_vector(*l, v, T(eta));
+            REQUIRE(g);
+            const vec3<T> expected = m.z < 0 ? -m : m;
+            CHECK(glm::length(*g - expected) <= tol);
+            // Snell: |v x m| = eta |l x m|, v and l on opposite sides of m.
+            CHECK(std::abs(glm::length(glm::cross(v, *g)) - T(eta) * glm::length(glm::cross(*l, *g))) <= tol);
+            CHECK(glm::dot(v, *g) * glm::dot(*l, *g) < T(0));
+            ++tested;
+        }
+    }
+    CHECK(tested > 1500);
 }

@@ -48,7 +48,7 @@ inline constexpr T f82_mu_bar = T(1) / T(7);
 /// channel, clamped to [0, w]: for a small F_0 with a small t the correction can exceed
 /// Schlick's curve between mu_bar and 1 (F_0 = 0, t = 0 gives b = 49/6 and F_82(1/2) = 1/32 -
 /// 49/768 = -25/768); such inputs have no physical metal behind them, and the clamp keeps the term a
-/// reflectance. cos_theta is clamped to [0, 1] as F_schlick does.
+/// reflectance. Two-sided as F_schlick: F(-c) = F(c), |cos_theta| clamped to 1.
 template <std::floating_point T>
 [[nodiscard]] constexpr rgb<T> F_f82_tint(const rgb<T>& f0, const rgb<T>& tint, T weight, T cos_theta) noexcept {
     constexpr T mu_bar = f82_mu_bar<T>;
@@ -57,7 +57,7 @@ template <std::floating_point T>
     constexpr T m_bar3 = m_bar * m_bar * m_bar;
     constexpr T peak = mu_bar * m_bar3 * m_bar3;
     const rgb<T> b = F_schlick(f0, mu_bar) * (rgb<T>(1) - tint) / peak;
-    const T c = glm::clamp(cos_theta, T(0), T(1));
+    const T c = glm::clamp(cos_theta < T(0) ? -cos_theta : cos_theta, T(0), T(1));
     const T m = T(1) - c;
     const T m3 = m * m * m;
     const rgb<T> f82 = F_schlick(f0, c) - b * (c * m3 * m3);

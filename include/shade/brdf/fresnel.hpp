@@ -8,7 +8,13 @@
 // either side of a dielectric. Measured metals: shade/brdf/metals.hpp.
 //
 // The argument cos_theta is the cosine between the incident direction and the normal of
-// the reflecting (micro)facet, e.g. l·h = v·h in a microfacet model.
+// the reflecting (micro)facet, e.g. l·h = v·h in a microfacet model, on either side: a
+// negative cosine is light arriving from the side opposite the normal. Schlick's and the
+// conductor's reflectance depend on |cos_theta| (a conductor is opaque: only the side the
+// light comes from matters); the dielectric's also on the side, through eta, which is the
+// index opposite the normal over the index on its side and is inverted for light from the
+// other side (pbrt-v4's FrDielectric convention, Pharr, Jakob, Humphreys 2023, "Physically
+// Based Rendering", 4th ed., sec. 9.3.2).
 
 #include <cmath>
 #include <concepts>
@@ -31,11 +37,11 @@ namespace shade {
 ///     F(cos_theta) = f0 + (1 - f0) (1 - cos_theta)^5
 ///
 /// Returns the reflectance (dimensionless, in [f0, 1] per channel for f0 in [0, 1]);
-/// F(1) = f0 (normal incidence), F(0) = 1 (grazing). cos_theta is clamped to [0, 1] (a
-/// cosine slightly outside by rounding would otherwise push F outside [f0, 1]).
+/// F(1) = f0 (normal incidence), F(0) = 1 (grazing). Two-sided: F(-c) = F(c). |cos_theta|
+/// is clamped to 1 (a cosine slightly above by rounding would otherwise push F below f0).
 template <std::floating_point T>
 [[nodiscard]] constexpr rgb<T> F_schlick(const rgb<T>& f0, T cos_theta) noexcept {
-    const T c = glm::clamp(cos_theta, T(0), T(1));
+    const T c = glm::clamp(cos_theta < T(0) ? -cos_theta : cos_theta, T(0), T(1));
     const T m = T(1) - c;
     const T m2 = m * m;
     const T m5 = m2 * m2 * m;
@@ -63,10 +69,20 @@ template <std::floating_point T>
 /// the relative index of refraction (transmitted side over incident side), > 0; eta < 1
 /// means light arrives from the denser medium, and when eta^2 - 1 + c^2 < 0 it is totally
 /// internally reflected: F = 1. Returns the reflectance in [0, 1]; F(1) = f0_from_ior(eta).
-/// cos_theta is clamped to [0, 1] (see F_schlick). eta = 1 (no interface) returns 0, also
-/// at c = 0 where the formula would be 0/0.
+/// cos_theta is clamped to 1 (see F_schlick). eta = 1 (no interface) returns 0, also at
+/// c = 0 where the formula would be 0/0.
+///
+/// Two-sided: eta is the index on the side opposite the normal over the index on its side,
+/// and a negative cos_theta is light arriving from the side opposite the normal, for which
+/// the relative index is 1/eta: F(cos_theta, eta) = F(-cos_theta, 1/eta) for cos_theta < 0
+/// (light leaving glass of eta 1.5 through a normal pointing out is totally reflected
+/// beyond the critical angle, sin(theta) > 1/1.5). eta must be > 0.
 template <std::floating_point T>
 [[nodiscard]] inline T F_dielectric(T cos_theta, T eta) noexcept {
+    if (cos_theta < T(0)) {
+        cos_theta = -cos_theta;
+        eta = T(1) / eta;
+    }
     const T c = glm::clamp(cos_theta, T(0), T(1));
     const T g2 = eta * eta - T(1) + c * c;
     if (g2 < T(0)) return T(1); // total internal reflection
@@ -94,7 +110,8 @@ template <std::floating_point T>
 /// e.g. a ray leaving glass) is F_dielectric(-cos_theta, 1 / eta), totally internally
 /// reflected (1) beyond the critical angle, sin(theta) > 1 / eta for eta > 1. Returns the
 /// reflectance in [0, 1]; at cos_theta = 0 (grazing, from either side) it is 1 for
-/// eta != 1. eta must be finite and > 0.
+/// eta != 1. eta must be finite and > 0. The same function as F_dielectric, which is
+/// two-sided too; this name says so at the call.
 template <std::floating_point T>
 [[nodiscard]] inline T F_dielectric_two_sided(T cos_theta, T eta) noexcept {
     return cos_theta >= T(0) ? F_dielectric(cos_theta, eta) : F_dielectric(-cos_theta, T(1) / eta);
@@ -126,13 +143,13 @@ template <std::floating_point T>
 /// form (Re z >= 0: a = sqrt((|z| + Re z)/2), b = B/(2a); Re z < 0: b = sqrt((|z| - Re z)/2),
 /// a = B/(2b)), which does not cancel when A - s^2 is large and negative (metals: kappa > eta).
 ///
-/// cos_theta is clamped to [0, 1]; eta > 0 and kappa >= 0 are the real and imaginary parts
-/// of the conductor's index relative to the incident medium (eta in [1e-4, 1e4], kappa in
-/// [0, 1e4], as conductor_fresnel validates). Returns the reflectance in [0, 1].
+/// Two-sided: F(-c) = F(c) (|cos_theta|, clamped to 1). eta > 0 and kappa >= 0 are the real
+/// and imaginary parts of the conductor's index relative to the incident medium (eta in
+/// [1e-4, 1e4], kappa in [0, 1e4], as conductor_fresnel validates). Returns the reflectance in [0, 1].
 /// eta = 1, kappa = 0 at c = 0 (no interface, 0/0) returns 0, as F_dielectric does.
 template <std::floating_point T>
 [[nodiscard]] inline T F_conductor(T cos_theta, T eta, T kappa) noexcept {
-    const T c = glm::clamp(cos_theta, T(0), T(1));
+    const T c = glm::clamp(std::abs(cos_theta), T(0), T(1));
     const T s2 = (T(1) - c) * (T(1) + c);
     const T A = (eta - kappa) * (eta + kappa);
     const T B = T(2) * eta * kappa;
@@ -177,7 +194,7 @@ public:
     /// Reflectance at normal incidence.
     [[nodiscard]] constexpr const rgb<T>& f0() const noexcept { return f0_; }
 
-    /// F(cos_theta) per channel, dimensionless, in [f0, 1].
+    /// F(cos_theta) per channel, dimensionless, in [f0, 1]; F(-c) = F(c).
     [[nodiscard]] constexpr rgb<T> F(T cos_theta) const noexcept { return F_schlick(f0_, cos_theta); }
 
 private:
@@ -201,7 +218,8 @@ public:
     /// The relative index of refraction eta_t / eta_i.
     [[nodiscard]] constexpr T eta() const noexcept { return eta_; }
 
-    /// F(cos_theta), dimensionless, in [0, 1], as a grey colour.
+    /// F(cos_theta), dimensionless, in [0, 1], as a grey colour; a negative cos_theta is
+    /// light from the side of index ratio 1/eta (see F_dielectric).
     [[nodiscard]] rgb<T> F(T cos_theta) const noexcept { return rgb<T>(F_dielectric(cos_theta, eta_)); }
 
 private:
@@ -251,7 +269,7 @@ public:
     [[nodiscard]] constexpr const rgb<T>& eta() const noexcept { return eta_; }     ///< real part of the index
     [[nodiscard]] constexpr const rgb<T>& kappa() const noexcept { return kappa_; } ///< extinction coefficient
 
-    /// F(cos_theta) per channel, dimensionless, in [0, 1].
+    /// F(cos_theta) per channel, dimensionless, in [0, 1]; F(-c) = F(c).
     [[nodiscard]] rgb<T> F(T cos_theta) const noexcept {
         return rgb<T>(F_conductor(cos_theta, eta_.x, kappa_.x), F_conductor(cos_theta, eta_.y, kappa_.y),
                       F_conductor(cos_theta, eta_.z, kappa_.z));

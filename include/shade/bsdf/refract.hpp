@@ -1,9 +1,12 @@
 #pragma once
-// shade::refract: the direction of a ray refracted at a smooth interface (Snell's law).
-// The matching reflectance is shade::F_dielectric (shade/brdf/fresnel.hpp).
+// shade::refract: the direction of a ray refracted at a smooth interface (Snell's law), and
+// its inverse for microfacets, shade::generalized_half_vector: the normal that reflects or
+// refracts one given direction into another. The matching reflectance is
+// shade::F_dielectric (shade/brdf/fresnel.hpp).
 
 #include <cmath>
 #include <concepts>
+#include <limits>
 #include <optional>
 
 #include <glm/geometric.hpp>
@@ -43,6 +46,37 @@ template <std::floating_point T>
     if (!(sin2_t < T(1))) return std::nullopt; // total internal reflection (or a NaN eta)
     const T cos_t = std::sqrt(T(1) - sin2_t);
     return glm::normalize(-(w - cos_i * n) / eta - cos_t * n);
+}
+
+/// The microfacet normal that scatters light between the unit directions l and v: the
+/// generalized half vector
+///
+///     m = normalize(v + eta l),   turned to n's side (m·n >= 0)
+///
+/// Walter, Marschner, Li, Torrance 2007, "Microfacet Models for Refraction through Rough
+/// Surfaces", EGSR, eq. 16 (h_t = -(eta_i i + eta_o o) / |...|, written with both directions
+/// pointing away from the surface and divided by the index on v's side). eta = eta_l / eta_v
+/// is the index of refraction on l's side over that on v's side:
+///   * reflection (l and v on the same side): eta = 1, and m is the half vector
+///     normalize(l + v) (Walter et al. eq. 13);
+///   * refraction (opposite sides): m is the only normal through which refract(v, m, eta)
+///     (or refract(l, m, 1 / eta)) gives the other direction: v + eta l parallel to m is
+///     Snell's law eta_v (v x m) = -eta_l (l x m) with the two directions on opposite sides
+///     of m.
+/// n is the unit normal whose side m is turned to (the local frame's +z by default). Returns
+/// nullopt when v + eta l is 0 or not finite (l = -v with eta = 1; a refraction pair
+/// with eta = 1 has no such normal). For a pair that no normal can refract (both on one
+/// side of the computed m, e.g. eta on the wrong side), m is still returned: the caller
+/// tests the signs of l·m and v·m (G1(w, m), shade/brdf/microfacet/distribution.hpp).
+template <std::floating_point T>
+[[nodiscard]] inline std::optional<vec3<T>> generalized_half_vector(const vec3<T>& l, const vec3<T>& v, T eta,
+                                                                    const vec3<T>& n = vec3<T>(0, 0, 1)) noexcept {
+    vec3<T> m = v + eta * l;
+    const T length2 = glm::dot(m, m);
+    if (!(length2 > T(0)) || !(length2 <= std::numeric_limits<T>::max())) return std::nullopt;
+    m /= std::sqrt(length2);
+    if (glm::dot(m, n) < T(0)) m = -m;
+    return m;
 }
 
 } // namespace shade

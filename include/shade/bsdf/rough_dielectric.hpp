@@ -179,24 +179,23 @@ private:
         const bool reflected = cos_l > T(0);
         const T eta_prime = reflected ? T(1) : side.eta;
         // The generalized half vector, turned to the outside (Walter et al. eq. 16).
-        vec3<T> m = v + eta_prime * l;
-        const T length2 = glm::dot(m, m);
-        if (!(length2 > T(0))) return {};
-        m /= std::sqrt(length2);
-        if (m.z < T(0)) m = -m;
+        const std::optional<vec3<T>> half = generalized_half_vector(l, v, eta_prime);
+        if (!half) return {};
+        const vec3<T>& m = *half;
         const T v_dot_m = glm::dot(v, m);
         const T l_dot_m = glm::dot(l, m);
-        // Microfacets facing away from v, or from l on its side, scatter nothing.
-        if (!(v_dot_m > T(0)) || (reflected ? !(l_dot_m > T(0)) : !(l_dot_m < T(0)))) return {};
+        // Microfacets facing away from v, or from l on its side, scatter nothing (the side
+        // tests chi+((w·m)/(w·n)) of Walter et al. eq. 7, as in G1(w, m)).
+        if (!detail::same_side(v_dot_m, v.z) || !detail::same_side(l_dot_m, cos_l)) return {};
         const T D = distribution_.D(m);
-        const vec3<T> l_up(l.x, l.y, std::abs(l.z));
-        const T G = T(1) / (T(1) + (distribution_.Lambda(l_up) + distribution_.Lambda(v)));
+        // Lambda is two-sided: l below the surface has the Lambda of its mirror image.
+        const T G = T(1) / (T(1) + (distribution_.Lambda(l) + distribution_.Lambda(v)));
         // F of a refraction is the same seen from either side; it is taken from the rarer
         // side (eta > 1 across the interface), where F_dielectric has no total internal
         // reflection to come near, so that f(l, v) and f(v, l) use the same cosine and
-        // stay adjoint to rounding.
-        const T F = reflected || side.eta >= T(1) ? F_dielectric(v_dot_m, side.eta)
-                                                   : F_dielectric(-l_dot_m, T(1) / side.eta);
+        // stay adjoint to rounding: from v's side (v·m > 0, index ratio side.eta) or from l's
+        // (l·m < 0 for a refraction: the two-sided F_dielectric inverts side.eta).
+        const T F = F_dielectric(reflected || side.eta >= T(1) ? v_dot_m : l_dot_m, side.eta);
         const T D_visible = distribution_.G1(v) * v_dot_m * D / cos_v;
         if (reflected) {
             return {F * G * D / (T(4) * cos_l * cos_v), F * D_visible / (T(4) * v_dot_m)};

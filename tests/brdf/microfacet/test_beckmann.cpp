@@ -106,7 +106,8 @@ TEST_CASE_TEMPLATE("beckmann: Lambda and the exact G1, hand values", T, float, d
     const shade::beckmann<T> aniso(T(1), T(2));
     CHECK(close(aniso.Lambda(local(shade::pi<T> / 4, T(0))), T(0.02512727083000614), sizeof(T) <= 4 ? T(1e-4) : T(1e-12)));
     CHECK(close(aniso.Lambda(local(shade::pi<T> / 4, shade::pi<T> / 2)), T(0.1996412283742457), sizeof(T) <= 4 ? T(1e-4) : T(1e-12)));
-    // Limits: Lambda(n) = 0, G1(n) = 1; grazing or below: Lambda = inf, G1 = 0.
+    // Limits: Lambda(n) = 0, G1(n) = 1; grazing: Lambda = inf, G1 = 0 (below: the mirror
+    // image's, tests/brdf/microfacet/test_two_sided.cpp).
     CHECK(d.Lambda(vec3<T>(0, 0, 1)) == T(0));
     CHECK(d.G1(vec3<T>(0, 0, 1)) == T(1));
     CHECK(d.Lambda(vec3<T>(1, 0, 0)) == shade::infinity<T>);

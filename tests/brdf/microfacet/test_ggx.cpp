@@ -36,9 +36,12 @@ TEST_CASE_TEMPLATE("ggx: anisotropic D hand values", T, float, double) {
     CHECK(close(d.D(local(theta, T(0))), T(0.4) * shade::D_ggx(std::cos(theta), T(0.2)), T(10) * tol<T>));
     // ... and in the b-n plane, D = (ay/ax) D_ggx(c, ay).
     CHECK(close(d.D(local(theta, shade::pi<T> / 2)), T(2.5) * shade::D_ggx(std::cos(theta), T(0.5)), T(10) * tol<T>));
-    // Below the surface: 0.
+    // On the horizon: 0. Below the surface: the value of the mirror image (two-sided D).
     CHECK(d.D(vec3<T>(1, 0, 0)) == T(0));
-    CHECK(d.D(local(T(2), T(1))) == T(0));
+    const vec3<T> below = local(T(2), T(1));
+    CHECK(below.z < T(0));
+    CHECK(d.D(below) == d.D(vec3<T>(below.x, below.y, -below.z)));
+    CHECK(d.D(below) > T(0));
 }
 
 TEST_CASE_TEMPLATE("ggx: the isotropic local D equals D_ggx of the cosine", T, float, double) {
@@ -112,14 +115,15 @@ TEST_CASE_TEMPLATE("ggx: Lambda and G1 hand values", T, float, double) {
     const shade::ggx<T> aniso(T(1), T(0.1));
     CHECK(close(aniso.Lambda(local(shade::pi<T> / 3, T(0))), T(0.5), T(10) * tol<T>));
     CHECK(close(aniso.Lambda(local(shade::pi<T> / 3, shade::pi<T> / 2)), (std::sqrt(T(1.03)) - T(1)) / T(2), T(100) * tol<T>));
-    // G1 = 1/(1 + Lambda) everywhere; Lambda(n) = 0, G1(n) = 1; below: Lambda = inf, G1 = 0.
+    // G1 = 1/(1 + Lambda) everywhere; Lambda(n) = 0, G1(n) = 1; on the horizon: Lambda = inf,
+    // G1 = 0; below: the value of the mirror image (two-sided).
     for (const T theta : {T(0.1), T(0.8), T(1.4), T(1.57)})
         CHECK(close(aniso.G1(local(theta, T(1))), T(1) / (T(1) + aniso.Lambda(local(theta, T(1)))), T(10) * tol<T>));
     CHECK(aniso.Lambda(vec3<T>(0, 0, 1)) == T(0));
     CHECK(aniso.G1(vec3<T>(0, 0, 1)) == T(1));
     CHECK(aniso.Lambda(vec3<T>(1, 0, 0)) == shade::infinity<T>);
     CHECK(aniso.G1(vec3<T>(1, 0, 0)) == T(0));
-    CHECK(aniso.G1(vec3<T>(0, T(-0.6), T(-0.8))) == T(0));
+    CHECK(aniso.G1(vec3<T>(0, T(-0.6), T(-0.8))) == aniso.G1(vec3<T>(0, T(-0.6), T(0.8))));
 }
 
 TEST_CASE_TEMPLATE("ggx: peak bounds D, anisotropic included", T, float, double) {

@@ -54,10 +54,16 @@ TEST_CASE_TEMPLATE("masking: height-correlated and separable Smith, hand values"
     const vec3<T> n(0, 0, 1);
     CHECK(shade::smith_height_correlated<T>::G(d, n, n, n, T(1)) == T(1));
     CHECK(shade::smith_separable<T>::G(d, n, n, n, T(1)) == T(1));
-    // Below the surface: 0 (Lambda = inf).
+    // On the horizon: 0 (Lambda = inf). Below the surface: the value of the mirror image
+    // (two-sided terms; the side tests are the caller's).
+    const vec3<T> horizon(T(0.6), T(0.8), 0);
+    CHECK(shade::smith_height_correlated<T>::G(d, horizon, v, h, v_dot_h) == T(0));
+    CHECK(shade::smith_separable<T>::G(d, l, horizon, h, v_dot_h) == T(0));
     const vec3<T> below(T(0.6), 0, T(-0.8));
-    CHECK(shade::smith_height_correlated<T>::G(d, below, v, h, v_dot_h) == T(0));
-    CHECK(shade::smith_separable<T>::G(d, l, below, h, v_dot_h) == T(0));
+    const vec3<T> above(T(0.6), 0, T(0.8));
+    CHECK(shade::smith_height_correlated<T>::G(d, below, v, h, v_dot_h) ==
+          shade::smith_height_correlated<T>::G(d, above, v, h, v_dot_h));
+    CHECK(shade::smith_separable<T>::G(d, l, below, h, v_dot_h) == shade::smith_separable<T>::G(d, l, above, h, v_dot_h));
 }
 
 TEST_CASE_TEMPLATE("masking: height-correlated G2 >= separable G2, equal only without masking", T, float, double) {

@@ -31,15 +31,16 @@ namespace shade {
 ///
 ///     D(h) = exp(-tan^2(theta_h) / m^2) / (pi m^2 cos^4(theta_h))
 ///
-/// n_dot_h = cos(theta_h); m = RMS slope, in [1e-4, 1e4]. Returns D in 1/sr (0 for
-/// n·h <= 0); D(n) = 1/(pi m^2). 1 - cos^2 is computed as (1 - c)(1 + c), which keeps its
+/// n_dot_h = cos(theta_h); m = RMS slope, in [1e-4, 1e4]. Returns D in 1/sr; D(n) =
+/// 1/(pi m^2). Two-sided: D(-n_dot_h) = D(n_dot_h) (the convention of
+/// shade/brdf/microfacet/distribution.hpp), 0 on the horizon (n·h = 0, or NaN). 1 - cos^2 is computed as (1 - c)(1 + c), which keeps its
 /// accuracy for c near 1 (the peak of narrow lobes). Where exp(...) underflows to 0 the
 /// result is 0 (also when cos^4 underflows, which cannot happen with exp(...) > 0 for m in
 /// the valid range).
 template <std::floating_point T>
 [[nodiscard]] inline T D_beckmann(T n_dot_h, T m) noexcept {
-    if (!(n_dot_h > T(0))) return T(0);
-    const T c = glm::min(n_dot_h, T(1));
+    const T c = glm::min(std::abs(n_dot_h), T(1));
+    if (!(c > T(0))) return T(0);
     const T c2 = c * c;
     const T m2 = m * m;
     const T tan2 = (T(1) - c) * (T(1) + c) / c2;
@@ -54,7 +55,7 @@ namespace detail {
 /// 1/m_z^2 taken once: one division per evaluation (shade::beckmann keeps the reciprocals).
 template <std::floating_point T>
 [[nodiscard]] inline T D_beckmann_from_reciprocals(const vec3<T>& m, T inv_m_x, T inv_m_y, T inv_pi_m_xy) noexcept {
-    if (!(m.z > T(0))) return T(0);
+    if (!(std::abs(m.z) > T(0))) return T(0);
     const T inv_c2 = T(1) / (m.z * m.z);
     const T x = m.x * inv_m_x;
     const T y = m.y * inv_m_y;
@@ -73,8 +74,9 @@ template <std::floating_point T>
 ///
 ///     D(m) = exp(-(m_x^2/m_x'^2 + m_y^2/m_y'^2) / m_z^2) / (pi m_x' m_y' m_z^4)
 ///
-/// (m_x', m_y' the two RMS slopes, m the unit normal). Returns D in 1/sr, 0 for m_z <= 0 and
-/// where the exponential underflows; D(n) = 1/(pi m_x' m_y'). The tangent-plane components
+/// (m_x', m_y' the two RMS slopes, m the unit normal). Returns D in 1/sr, 0 where the
+/// exponential underflows; D(n) = 1/(pi m_x' m_y'). Two-sided: D(-m) = D(m) (m_z enters
+/// squared), 0 for m_z = 0. The tangent-plane components
 /// give tan^2 with full relative precision near the peak.
 template <std::floating_point T>
 [[nodiscard]] inline T D_beckmann(const vec3<T>& m, T m_x, T m_y) noexcept {
@@ -109,13 +111,14 @@ template <std::floating_point T>
     return (T(3.535) * a + T(2.181) * a * a) / (T(1) + T(2.276) * a + T(2.577) * a * a);
 }
 
-/// a = w_z / sqrt(m_x^2 w_x^2 + m_y^2 w_y^2) = 1 / (m_w tan(theta)), with m_w the RMS slope
-/// projected on w's azimuth (Heitz 2014, JCGT 3(2), eq. 80). +infinity at w = n.
+/// a = |w_z| / sqrt(m_x^2 w_x^2 + m_y^2 w_y^2) = 1 / (m_w |tan(theta)|), with m_w the RMS
+/// slope projected on w's azimuth (Heitz 2014, JCGT 3(2), eq. 80); the same for w and its
+/// mirror image below the surface. +infinity at w = n.
 template <std::floating_point T>
 [[nodiscard]] inline T beckmann_a(const vec3<T>& w, T m_x, T m_y) noexcept {
     const T q = sqr(m_x * w.x) + sqr(m_y * w.y);
     if (!(q > T(0))) return infinity<T>;
-    return w.z / std::sqrt(q);
+    return std::abs(w.z) / std::sqrt(q);
 }
 
 /// K(x) = (sqrt(pi)/2) erfc(-x) + (k/2) exp(-x^2): 1/cot(theta) times the cumulative
@@ -198,10 +201,11 @@ template <std::floating_point T>
 
 /// Smith's Lambda for the anisotropic Beckmann distribution, direction w in the local frame
 /// (see detail::lambda_beckmann_of_a; a = w_z / sqrt(m_x^2 w_x^2 + m_y^2 w_y^2), Heitz 2014,
-/// JCGT 3(2), eq. 80). Returns Lambda >= 0; 0 at w = n; +infinity for w_z <= 0.
+/// JCGT 3(2), eq. 80). Returns Lambda >= 0; 0 at w = n. Two-sided: a direction below the
+/// surface has the Lambda of its mirror image; +infinity on the horizon, w_z = 0.
 template <std::floating_point T>
 [[nodiscard]] inline T Lambda_beckmann(const vec3<T>& w, T m_x, T m_y) noexcept {
-    if (!(w.z > T(0))) return infinity<T>;
+    if (!(std::abs(w.z) > T(0))) return infinity<T>;
     const T a = detail::beckmann_a(w, m_x, m_y);
     if (!(a < infinity<T>)) return T(0);
     return detail::lambda_beckmann_of_a(a);
@@ -216,12 +220,13 @@ template <std::floating_point T>
 ///     G1 = (3.535 a + 2.181 a^2) / (1 + 2.276 a + 2.577 a^2)   if a < 1.6,   else 1
 ///
 /// n_dot_w = cos(theta) of the direction w (l or v) with the normal; m as in D_beckmann.
-/// Returns G1 in [0, 1]; 0 for n_dot_w <= 0, 1 at n_dot_w = 1. (The approximation departs
-/// from the exact erf form, G1_smith_beckmann_exact, by well under 1%.)
+/// Returns G1 in [0, 1]; 1 at n_dot_w = 1; two-sided, G1(-n_dot_w) = G1(n_dot_w) (c = |n·w|),
+/// 0 on the horizon. (The approximation departs from the exact erf form,
+/// G1_smith_beckmann_exact, by well under 1%.)
 template <std::floating_point T>
 [[nodiscard]] inline T G1_smith_beckmann(T n_dot_w, T m) noexcept {
-    if (!(n_dot_w > T(0))) return T(0);
-    const T c = glm::min(n_dot_w, T(1));
+    const T c = glm::min(std::abs(n_dot_w), T(1));
+    if (!(c > T(0))) return T(0);
     const T s = std::sqrt((T(1) - c) * (T(1) + c));
     // a >= 1.6 (including s = 0, where a would be +inf) gives exactly 1.
     if (!(m * s * T(1.6) > c)) return T(1);
@@ -233,12 +238,12 @@ template <std::floating_point T>
 ///
 /// Walter et al. 2007 (EGSR), eq. 26, G1 = 2 / (1 + erf(a) + exp(-a^2) / (a sqrt(pi))),
 /// which is 1/(1 + Lambda(a)) with the Beckmann Lambda of Heitz 2014 (JCGT 3(2), sec. 5);
-/// a = cos(theta) / (m sin(theta)). n_dot_w = cos(theta). Returns G1 in [0, 1]; 0 for
-/// n_dot_w <= 0, 1 at n_dot_w = 1.
+/// a = cos(theta) / (m sin(theta)). n_dot_w = cos(theta). Returns G1 in [0, 1]; 1 at
+/// n_dot_w = 1; two-sided, G1(-n_dot_w) = G1(n_dot_w), 0 on the horizon.
 template <std::floating_point T>
 [[nodiscard]] inline T G1_smith_beckmann_exact(T n_dot_w, T m) noexcept {
-    if (!(n_dot_w > T(0))) return T(0);
-    const T c = glm::min(n_dot_w, T(1));
+    const T c = glm::min(std::abs(n_dot_w), T(1));
+    if (!(c > T(0))) return T(0);
     const T s = std::sqrt((T(1) - c) * (T(1) + c));
     if (!(s > T(0))) return T(1);
     return T(1) / (T(1) + detail::lambda_beckmann_of_a(c / (m * s)));
@@ -289,9 +294,13 @@ public:
     /// Smith's Lambda of the local direction w, exact (see Lambda_beckmann).
     [[nodiscard]] T Lambda(const vec3<T>& w) const noexcept { return Lambda_beckmann(w, m_x_, m_y_); }
 
-    /// Smith masking G1(w) = 1/(1 + Lambda(w)) of the local direction w, in [0, 1]
-    /// (0 for w_z <= 0).
+    /// Smith masking G1(w) = 1/(1 + Lambda(w)) of the local direction w, in [0, 1] (either
+    /// side: the value of |w_z|; 0 on the horizon).
     [[nodiscard]] T G1(const vec3<T>& w) const noexcept { return T(1) / (T(1) + Lambda(w)); }
+
+    /// Smith masking of the microfacet normal m seen from w, either side (see
+    /// shade::detail::G1_of_normal): G1(w) when w·m has the sign of w_z, else 0. In [0, 1].
+    [[nodiscard]] T G1(const vec3<T>& w, const vec3<T>& m) const noexcept { return detail::G1_of_normal(*this, w, m); }
 
     /// The largest value of D over all m. Along an azimuth phi the distribution is the
     /// isotropic one with slope s(phi) (1/s^2 = cos^2(phi)/m_x^2 + sin^2(phi)/m_y^2) times

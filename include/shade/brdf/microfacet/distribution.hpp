@@ -7,6 +7,19 @@
 // so a microfacet normal m or a direction w is a unit vector whose z is its cosine with the
 // normal and whose x and y lie along the tangent and the bitangent (the axes of alpha_x and
 // alpha_y in an anisotropic distribution).
+//
+// Two-sided terms. The microsurface seen from below the surface is the same surface,
+// mirrored: D(m) = D(-m) (with m_z entering squared), Lambda and G1 of a direction w are
+// those of its mirror image (|w_z|), so that a model may give them normals and directions on
+// either side, as a rough interface between two dielectrics does (pbrt-v4's convention,
+// Pharr, Jakob, Humphreys 2023, "Physically Based Rendering", 4th ed., sec. 9.6). Which side
+// a microfacet faces is not D's business: models take microfacet normals on n's side (the
+// generalized half vector turned there, shade/bsdf/refract.hpp), and the masking of a normal
+// m seen from w, G1(w, m), carries the side test chi+((w·m)/(w·n)) (Walter, Marschner, Li,
+// Torrance 2007, "Microfacet Models for Refraction through Rough Surfaces", EGSR, eq. 7):
+// from above the surface w sees the microfacets whose fronts face it, from below those whose
+// backs do. A normal on the horizon (m_z = 0) or a direction on it (w_z = 0) has D = 0 or
+// G1 = 0.
 
 #include <concepts>
 #include <string_view>
@@ -59,12 +72,15 @@ concept microfacet_distribution = has_scalar_type<X> &&
     });
 
 /// X is a microfacet distribution with the Smith masking of its own microsurface and a
-/// sampler of its visible normals, all in the local frame (w, m unit vectors, w.z > 0):
-///   * `x.D(m)`: D in 1/sr;
-///   * `x.Lambda(w)`: Smith's Lambda (dimensionless, >= 0, +infinity for w.z <= 0);
+/// sampler of its visible normals, all in the local frame (w, m unit vectors on either side
+/// unless said, as in the header comment):
+///   * `x.D(m)`: D in 1/sr, D(-m) = D(m);
+///   * `x.Lambda(w)`: Smith's Lambda (dimensionless, >= 0, the same for w and its mirror
+///     image below the surface, +infinity for w.z = 0);
 ///   * `x.G1(w)` = 1 / (1 + Lambda(w)), in [0, 1];
-///   * `x.sample_visible_normal(w, u)`: a microfacet normal m drawn, for u uniform in
-///     [0,1)^2, with the density of visible normals D_w(m) (shade::D_visible).
+///   * `x.sample_visible_normal(w, u)`: for w.z > 0, a microfacet normal m drawn, for u
+///     uniform in [0,1)^2, with the density of visible normals D_w(m) (shade::D_visible).
+/// (shade::ggx and shade::beckmann also have G1(w, m), detail::G1_of_normal.)
 template <class X>
 concept sampled_microfacet_distribution = microfacet_distribution<X> &&
     requires(const X& x, const vec3<typename X::scalar_type>& w,
@@ -83,18 +99,46 @@ concept sampled_microfacet_distribution = microfacet_distribution<X> &&
 /// of Visible Normals", EGSR (Computer Graphics Forum 33(4)); normalized by the
 /// relation of Heitz 2014, "Understanding the Masking-Shadowing Function in
 /// Microfacet-Based BRDFs", JCGT 3(2), eq. 2: integral of G1(w) max(0, w·m) D(m) dm = n·w.
-/// w and m in the local frame; 0 unless w.z > 0. This is the density
-/// `sample_visible_normal(w, u)` draws m with.
+/// w and m in the local frame; 0 unless w.z > 0 and m.z > 0 (the normals of the surface seen
+/// from above; D itself is two-sided). This is the density `sample_visible_normal(w, u)`
+/// draws m with.
 template <sampled_microfacet_distribution X>
 [[nodiscard]] inline scalar_of<X> D_visible(const X& distribution, const vec3<scalar_of<X>>& w,
                                             const vec3<scalar_of<X>>& m) noexcept {
     using T = scalar_of<X>;
     const T w_dot_m = glm::dot(w, m);
-    if (!(w.z > T(0)) || !(w_dot_m > T(0))) return T(0);
+    if (!(w.z > T(0)) || !(m.z > T(0)) || !(w_dot_m > T(0))) return T(0);
     return distribution.G1(w) * w_dot_m * distribution.D(m) / w.z;
 }
 
 namespace detail {
+
+/// chi+(a / b) without the division: true when a and b are both > 0 or both < 0 (false when
+/// either is 0 or NaN). The product a b would underflow to 0 for tiny a and b.
+template <std::floating_point T>
+[[nodiscard]] constexpr bool same_side(T a, T b) noexcept {
+    return (a > T(0) && b > T(0)) || (a < T(0) && b < T(0));
+}
+
+/// The Smith masking of the microfacet normal m seen from the direction w, on either side
+/// (local frame, unit vectors):
+///
+///     G1(w, m) = chi+((w·m) / (w·n)) G1(w)
+///
+/// Walter, Marschner, Li, Torrance 2007, "Microfacet Models for Refraction through Rough
+/// Surfaces", EGSR: eq. 7 (no microfacet facing away from w is seen from w: the side test
+/// is on w·m relative to w·n, not on w·n alone) times Smith's G1(w) = 1/(1 + Lambda(w)), the
+/// distribution's own (for Beckmann and GGX, their eqs. 26 and 34). Returns G1 in [0, 1]; 0
+/// when w·m and w_z differ in sign or either is 0: from above, the microfacets whose fronts
+/// face w, from below those whose backs do. The configuration mirrored below the surface,
+/// its normal turned back to n's side (w -> (w_x, w_y, -w_z), m -> (-m_x, -m_y, m_z)), has
+/// the same value.
+template <class X>
+[[nodiscard]] inline scalar_of<X> G1_of_normal(const X& distribution, const vec3<scalar_of<X>>& w,
+                                               const vec3<scalar_of<X>>& m) noexcept {
+    using T = scalar_of<X>;
+    return same_side(glm::dot(w, m), w.z) ? distribution.G1(w) : T(0);
+}
 
 /// The name of the parameter that sets the distribution's peak value (for error messages
 /// when the peak overflows): `x.peak_parameter()` when the distribution has it, else

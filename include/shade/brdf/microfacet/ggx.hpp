@@ -28,16 +28,18 @@ namespace shade {
 ///     D(h) = alpha^2 / (pi cos^4(theta_h) (alpha^2 + tan^2(theta_h))^2)
 ///          = alpha^2 / (pi (alpha^2 cos^2(theta_h) + sin^2(theta_h))^2)
 ///
-/// n_dot_h = cos(theta_h); alpha in [1e-4, 1e4]. Returns D in 1/sr (0 for n·h <= 0);
-/// D(n) = 1/(pi alpha^2). The second form, with sin^2 = (1 - c)(1 + c), has no
+/// n_dot_h = cos(theta_h); alpha in [1e-4, 1e4]. Returns D in 1/sr; D(n) = 1/(pi alpha^2).
+/// Two-sided: a normal below the surface is given the value of its mirror image,
+/// D(-n_dot_h) = D(n_dot_h) (the convention of shade/brdf/microfacet/distribution.hpp), and a
+/// normal on the horizon (n·h = 0, or NaN) 0. The second form, with sin^2 = (1 - c)(1 + c), has no
 /// cancellation for tiny alpha (the usual (alpha^2 - 1) c^2 + 1 rounds to 0 at c = 1 when
 /// alpha^2 < float epsilon, giving Inf). A cosine alone cannot give sin^2 to better than
 /// the rounding of c near 1 (relative error ~ 6e-8 / sin^2 in float); the local-frame form
 /// D_ggx(m, alpha_x, alpha_y) takes sin^2 from the tangent components instead.
 template <std::floating_point T>
 [[nodiscard]] inline T D_ggx(T n_dot_h, T alpha) noexcept {
-    if (!(n_dot_h > T(0))) return T(0);
-    const T c = glm::min(n_dot_h, T(1));
+    const T c = glm::min(std::abs(n_dot_h), T(1));
+    if (!(c > T(0))) return T(0);
     const T a2 = alpha * alpha;
     const T s2 = (T(1) - c) * (T(1) + c);
     const T k = a2 * c * c + s2;
@@ -51,7 +53,7 @@ namespace detail {
 template <std::floating_point T>
 [[nodiscard]] inline T D_ggx_from_reciprocals(const vec3<T>& m, T inv_alpha_x, T inv_alpha_y,
                                              T inv_pi_alpha_xy) noexcept {
-    if (!(m.z > T(0))) return T(0);
+    if (!(std::abs(m.z) > T(0))) return T(0);
     const T x = m.x * inv_alpha_x;
     const T y = m.y * inv_alpha_y;
     const T k = x * x + y * y + m.z * m.z;
@@ -68,8 +70,8 @@ template <std::floating_point T>
 ///
 ///     D(m) = 1 / (pi alpha_x alpha_y (m_x^2/alpha_x^2 + m_y^2/alpha_y^2 + m_z^2)^2)
 ///
-/// m a unit vector; alpha_x, alpha_y in [1e-4, 1e4]. Returns D in 1/sr, 0 for m_z <= 0;
-/// D(n) = 1/(pi alpha_x alpha_y). With alpha_x = alpha_y = alpha it is D_ggx(m_z, alpha),
+/// m a unit vector; alpha_x, alpha_y in [1e-4, 1e4]. Returns D in 1/sr; D(n) =
+/// 1/(pi alpha_x alpha_y). Two-sided: D(-m) = D(m) (m_z enters squared), 0 for m_z = 0. With alpha_x = alpha_y = alpha it is D_ggx(m_z, alpha),
 /// written as 1/(pi alpha^2 (cos^2 + sin^2/alpha^2)^2) with sin^2 = m_x^2 + m_y^2: taken
 /// from the tangent components, sin^2 keeps full relative precision near the peak, where
 /// 1 - cos^2 is lost to the rounding of cos (in float, cos(1e-3) carries an error up to
@@ -89,12 +91,13 @@ template <std::floating_point T>
 ///
 /// evaluated without cancellation as q / (2 c (c + sqrt(c^2 + q))), c = w_z,
 /// q = alpha_x^2 w_x^2 + alpha_y^2 w_y^2 (multiply and divide by sqrt(c^2 + q) + c).
-/// Returns Lambda >= 0 (dimensionless); 0 at w = n; +infinity for w_z <= 0 (then
-/// G1 = 1/(1 + Lambda) = 0).
+/// Returns Lambda >= 0 (dimensionless); 0 at w = n. Two-sided: c = |w_z|, so a direction
+/// below the surface has the Lambda of its mirror image (the microsurface seen from the
+/// other side); +infinity on the horizon, w_z = 0 (then G1 = 1/(1 + Lambda) = 0).
 template <std::floating_point T>
 [[nodiscard]] inline T Lambda_ggx(const vec3<T>& w, T alpha_x, T alpha_y) noexcept {
-    if (!(w.z > T(0))) return infinity<T>;
-    const T c = w.z;
+    const T c = std::abs(w.z);
+    if (!(c > T(0))) return infinity<T>;
     const T q = sqr(alpha_x * w.x) + sqr(alpha_y * w.y);
     return q / (T(2) * c * (c + std::sqrt(c * c + q)));
 }
@@ -104,11 +107,13 @@ template <std::floating_point T>
 /// Walter et al. 2007 (EGSR), eq. 34: G1 = 2 / (1 + sqrt(1 + alpha^2 tan^2(theta))),
 /// evaluated as the equal 2 c / (c + sqrt(c^2 + alpha^2 (1 - c^2))) with c = cos(theta), which
 /// needs no tangent and goes smoothly to 0 as c -> 0 (the tan form overflows there).
-/// Returns G1 in [0, 1]; 0 for n_dot_w <= 0, 1 at n_dot_w = 1.
+/// Returns G1 in [0, 1]; 1 at n_dot_w = 1; two-sided, G1(-n_dot_w) = G1(n_dot_w) (c = |n·w|),
+/// 0 on the horizon. (The side test of a microfacet normal m, chi+((w·m)/(w·n)), is
+/// ggx::G1(w, m)'s.)
 template <std::floating_point T>
 [[nodiscard]] inline T G1_smith_ggx(T n_dot_w, T alpha) noexcept {
-    if (!(n_dot_w > T(0))) return T(0);
-    const T c = glm::min(n_dot_w, T(1));
+    const T c = glm::min(std::abs(n_dot_w), T(1));
+    if (!(c > T(0))) return T(0);
     const T s2 = (T(1) - c) * (T(1) + c);
     return T(2) * c / (c + std::sqrt(c * c + alpha * alpha * s2));
 }
@@ -116,11 +121,12 @@ template <std::floating_point T>
 /// Smith masking for the anisotropic GGX distribution, direction w in the local frame:
 /// Smith's G1 = 1 / (1 + Lambda_ggx(w)) (Heitz 2014, JCGT 3(2), sec. 5, with Lambda of
 /// eq. 86), evaluated as 2 c / (c + sqrt(c^2 + q)) with c and q as in Lambda_ggx (no
-/// cancellation, no tangent). Returns G1 in [0, 1]; 0 for w_z <= 0.
+/// cancellation, no tangent). Returns G1 in [0, 1]; two-sided as Lambda_ggx (c = |w_z|),
+/// 0 on the horizon.
 template <std::floating_point T>
 [[nodiscard]] inline T G1_smith_ggx(const vec3<T>& w, T alpha_x, T alpha_y) noexcept {
-    if (!(w.z > T(0))) return T(0);
-    const T c = w.z;
+    const T c = std::abs(w.z);
+    if (!(c > T(0))) return T(0);
     const T q = sqr(alpha_x * w.x) + sqr(alpha_y * w.y);
     return T(2) * c / (c + std::sqrt(c * c + q));
 }
@@ -171,8 +177,13 @@ public:
     /// Smith's Lambda of the local direction w (see Lambda_ggx).
     [[nodiscard]] T Lambda(const vec3<T>& w) const noexcept { return Lambda_ggx(w, alpha_x_, alpha_y_); }
 
-    /// Smith masking G1(w) = 1/(1 + Lambda(w)) of the local direction w, in [0, 1].
+    /// Smith masking G1(w) = 1/(1 + Lambda(w)) of the local direction w, in [0, 1] (either
+    /// side: the value of |w_z|).
     [[nodiscard]] T G1(const vec3<T>& w) const noexcept { return G1_smith_ggx(w, alpha_x_, alpha_y_); }
+
+    /// Smith masking of the microfacet normal m seen from w, either side (see
+    /// shade::detail::G1_of_normal): G1(w) when w·m has the sign of w_z, else 0. In [0, 1].
+    [[nodiscard]] T G1(const vec3<T>& w, const vec3<T>& m) const noexcept { return detail::G1_of_normal(*this, w, m); }
 
     /// The largest value of D over all m: max(alpha_x, alpha_y, 1)^4 / (pi alpha_x alpha_y).
     /// (D's denominator holds the quadratic form m_x^2/alpha_x^2 + m_y^2/alpha_y^2 + m_z^2,

@@ -14,7 +14,15 @@
 // shading frame (n = +z) and v_dot_h = v·h = l·h, or, for isotropic terms written against
 // the cosine-only contract, `G(d, n·l, n·v, n·h, v·h)`; shade::cook_torrance uses the first
 // when it exists. The terms shipped here have both.
+//
+// The Smith terms are two-sided, as the distributions' Lambda and G1 are
+// (shade/brdf/microfacet/distribution.hpp): l or v below the surface gives the value of its
+// mirror image, 0 on the horizon. Whether the microfacet normal faces l and v (the
+// chi+ factors of Walter et al. 2007, eq. 7) is the caller's test (it holds for a reflection
+// half vector of l and v above the surface); G1(w, m) of ggx and beckmann carries it. The
+// V-groove term is a reflection term above the surface only: 0 unless n·l, n·v, n·h, v·h > 0.
 
+#include <cmath>
 #include <concepts>
 
 #include <glm/common.hpp>
@@ -82,7 +90,8 @@ struct smith_beckmann {
 
     /// G = G1(l) G1(v) in [0, 1] for local l, v; anisotropic: the rational G1 of
     /// a = w_z / sqrt(m_x^2 w_x^2 + m_y^2 w_y^2) (the projected slope of Heitz 2014, JCGT
-    /// 3(2), eq. 80). 0 if l or v is not above the surface.
+    /// 3(2), eq. 80). Two-sided (l or v below: the value of its mirror image); 0 on the
+    /// horizon.
     [[nodiscard]] static T G(const beckmann<T>& distribution, const vec3<T>& l, const vec3<T>& v,
                              const vec3<T>& /*h*/, T /*v_dot_h*/) noexcept {
         return G1(distribution, l) * G1(distribution, v);
@@ -90,7 +99,7 @@ struct smith_beckmann {
 
 private:
     [[nodiscard]] static T G1(const beckmann<T>& d, const vec3<T>& w) noexcept {
-        if (!(w.z > T(0))) return T(0);
+        if (!(std::abs(w.z) > T(0))) return T(0);
         return detail::G1_beckmann_rational_of_a(detail::beckmann_a(w, d.m_x(), d.m_y()));
     }
 };
@@ -145,7 +154,7 @@ struct smith_separable {
 /// reflection half vector). A microfacet that is high on the surface is both less masked and
 /// less shadowed; this form accounts for that correlation, so G2 >= the separable
 /// G1(l) G1(v) (as (1 + a)(1 + b) >= 1 + a + b for a, b >= 0). Returns G2 in [0, 1]; 0 if
-/// l or v is not above the surface (Lambda = +infinity there).
+/// l or v lies on the horizon (Lambda = +infinity there); two-sided as Lambda.
 template <std::floating_point T>
 struct smith_height_correlated {
     using scalar_type = T;
