@@ -4,7 +4,7 @@
 // the energy check with the model's own sampler. tests/check/test_sampled_models.cpp runs
 // the same checks at a few points in every script/test; this sweep covers the parameter
 // ranges (roughness 0.01 to 1 and anisotropy, Phong exponents 1 to 10000, Oren-Nayar sigma
-// 0 to 1 in both forms, measured metals, compensated lobes, plastics) and views from the
+// 0 to 1 in both forms, measured metals, compensated lobes, plastics, sheen) and views from the
 // normal to 89.5 degrees, so it runs only in script/test --all (tests/sweep/CMakeLists.txt).
 //
 // Verdicts: every sampling check and positivity/reciprocity must pass. The energy check must
@@ -32,6 +32,7 @@
 #include <shade/brdf/eon.hpp>
 #include <shade/brdf/oren_nayar.hpp>
 #include <shade/brdf/phong.hpp>
+#include <shade/brdf/sheen.hpp>
 #include <shade/check/doctest.hpp>
 #include <shade/check/properties.hpp>
 #include <shade/shading/checker.hpp>
@@ -166,6 +167,18 @@ TEST_CASE_TEMPLATE("Lambert, Oren-Nayar (sigma 0 to 1, both forms), EON and FON 
         sweep(eon<T, eon_albedo::approximate>(rgb<T>(1), T(r)), "eon (fitted albedo) rho = 1, roughness = " + number(r),
               energy::conserving, tally);
         sweep(fujii_oren_nayar<T>(rgb<T>(T(0.8)), T(r)), "fujii oren-nayar rho = 0.8, roughness = " + number(r),
+              energy::conserving, tally);
+    }
+    CHECK(tally.passed > 0);
+}
+
+TEST_CASE_TEMPLATE("Zeltner sheen (not reciprocal) and its reciprocal variant, roughness 0 to 1", T, float, double) {
+    using namespace shade;
+    energy_tally tally;
+    for (const double r : {0.0, 0.05, 0.1, 0.3, 0.5, 1.0}) {
+        sweep(zeltner_sheen<T>(rgb<T>(1), T(r)), "zeltner sheen F = 1, roughness = " + number(r), energy::conserving,
+              tally, reciprocal::no);
+        sweep(zeltner_sheen_reciprocal<T>(rgb<T>(1), T(r)), "zeltner sheen reciprocal F = 1, roughness = " + number(r),
               energy::conserving, tally);
     }
     CHECK(tally.passed > 0);
