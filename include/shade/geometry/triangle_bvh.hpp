@@ -160,7 +160,8 @@ public:
             }
             return false;
         };
-        detail::bvh_traverse<false>(tree_, r, r.t_max, leaf);
+        // Nearest child first, as for closest hits: a blocker is found after fewer nodes.
+        detail::bvh_traverse<true>(tree_, r, r.t_max, leaf);
         return found;
     }
 
