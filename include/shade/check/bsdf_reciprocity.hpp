@@ -37,29 +37,6 @@ template <std::floating_point T>
     return sizeof(T) <= 4 ? 1e-3 : 1e-7;
 }
 
-/// Returns `count` pairs of unit directions over the whole sphere around at.shading: the
-/// pairs of hemisphere_pairs (hard cases first), each placed in turn on the four
-/// combinations of sides (l and v outside; l inside; v inside; both inside) by negating
-/// the local z of l, of v or of both, so that reflection from outside, transmission both
-/// ways and reflection from inside are tried equally often. Deterministic for a seed.
-template <std::floating_point T>
-std::vector<direction_pair<T>> sphere_pairs(const surface_point<T>& at, std::size_t count, std::uint64_t seed) {
-    const std::vector<direction_pair<T>> upper = hemisphere_pairs(at, (count + 3) / 4, seed);
-    const vec3<T> n = at.n();
-    // w mirrored through the tangent plane: its local z negated.
-    const auto below = [&](const vec3<T>& w) { return w - T(2) * glm::dot(w, n) * n; };
-    std::vector<direction_pair<T>> out;
-    out.reserve(count);
-    for (const auto& p : upper) {
-        out.push_back(p);
-        out.push_back({below(p.l), p.v});
-        out.push_back({p.l, below(p.v)});
-        out.push_back({below(p.l), below(p.v)});
-    }
-    out.resize(std::min(out.size(), count));
-    return out;
-}
-
 /// Checks Veach's eq. 5.14 for `model` in radiance mode, f(l, v) eta_l^2 = f(v, l) eta_v^2
 /// (the same equation multiplied by eta_l^2 eta_v^2), on options.pairs pairs of
 /// sphere_pairs at `at`, with eta 1 on the side at.n() points to and eta_inside on the

@@ -1,6 +1,7 @@
 #pragma once
-// The direction pairs the pointwise property checks evaluate a BRDF on: seeded random pairs
-// over the upper hemisphere plus the configurations where models typically break.
+// The direction pairs the pointwise property checks evaluate a model on: seeded random pairs
+// over the upper hemisphere plus the configurations where models typically break, and the
+// same placed on both sides of the surface for a BSDF.
 
 #include <cmath>
 #include <concepts>
@@ -72,6 +73,29 @@ std::vector<direction_pair<T>> hemisphere_pairs(const surface_point<T>& at, std:
         world.push_back({glm::normalize(at.shading.to_world(p.l)),
                          glm::normalize(at.shading.to_world(p.v))});
     return world;
+}
+
+/// Returns `count` pairs of unit directions over the whole sphere around at.shading: the
+/// pairs of hemisphere_pairs (hard cases first), each placed in turn on the four
+/// combinations of sides (l and v outside; l inside; v inside; both inside) by negating
+/// the local z of l, of v or of both, so that reflection from outside, transmission both
+/// ways and reflection from inside are tried equally often. Deterministic for a seed.
+template <std::floating_point T>
+std::vector<direction_pair<T>> sphere_pairs(const surface_point<T>& at, std::size_t count, std::uint64_t seed) {
+    const std::vector<direction_pair<T>> upper = hemisphere_pairs(at, (count + 3) / 4, seed);
+    const vec3<T> n = at.n();
+    // w mirrored through the tangent plane: its local z negated.
+    const auto below = [&](const vec3<T>& w) { return w - T(2) * glm::dot(w, n) * n; };
+    std::vector<direction_pair<T>> out;
+    out.reserve(count);
+    for (const auto& p : upper) {
+        out.push_back(p);
+        out.push_back({below(p.l), p.v});
+        out.push_back({p.l, below(p.v)});
+        out.push_back({below(p.l), below(p.v)});
+    }
+    if (out.size() > count) out.resize(count);
+    return out;
 }
 
 } // namespace shade::check

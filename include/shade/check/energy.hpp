@@ -17,6 +17,7 @@
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/brdf.hpp>
+#include <shade/bsdf/bsdf.hpp>
 #include <shade/check/detail/model_ref.hpp>
 #include <shade/check/result.hpp>
 #include <shade/core/error.hpp>
@@ -229,7 +230,14 @@ albedo_sample<T> run_sampled_albedo(const model_ref<T>& model, const vec3<T>& v,
 /// visible-normal microfacet sampler the weight is F G2/G1 <= F, so sharp lobes need no
 /// more samples than rough ones. The standard error is the collapsed-strata estimate of
 /// detail::stratified_estimate, as for directional_albedo.
-template <sampled_brdf B>
+///
+/// For a BSDF with its own sampler (shade::bsdf_sampler) v may be on either side and the
+/// estimate is ∫ f(l, v) |n·l| dl over the whole sphere in radiance mode (the mean
+/// radiance-mode weight, delta lobes included through their weight): a transmission's
+/// weight carries (eta_v / eta_l)^2, so from inside glass the estimate may exceed 1 for a
+/// model that creates no energy. The energy a surface sends to each side is
+/// shade::check::bsdf_albedo (shade/check/bsdf_energy.hpp, importance mode).
+template <sampled_bsdf B>
 albedo_sample<scalar_of<B>> sampled_albedo(const B& model, const vec3<scalar_of<B>>& v,
                                            const surface_point<scalar_of<B>>& at, std::size_t strata = 256,
                                            std::uint64_t seed = 1) {

@@ -1,7 +1,7 @@
 #pragma once
 // All BRDF property checks: positivity, Helmholtz reciprocity and energy conservation,
 // for any type satisfying shade::brdf, and the sampling checks (chi-square goodness of fit,
-// sample consistency, pdf normalization and coverage) for any shade::sampled_brdf.
+// sample consistency, pdf normalization and coverage) for any shade::sampled_bsdf.
 // Framework-neutral: each returns a shade::check::result that converts to bool, carries a
 // pass / fail / inconclusive verdict and prints as a sentence.
 //

@@ -1,11 +1,10 @@
 #pragma once
-// Checks of a BRDF's sampler (shade::sampled_brdf): that sample() draws directions with
-// the density pdf() reports (chi-square goodness of fit), that the sample it returns agrees
-// with f and pdf at its direction, that pdf integrates to at most 1 over the sphere, and
-// that pdf covers f (no direction where f > 0 has pdf = 0). Each works on any type
-// satisfying shade::sampled_brdf, and each returns a shade::check::result. The chi-square
-// test and the pdf integral also take a BSDF with its own sampler (shade::bsdf_sampler),
-// over the whole sphere with v on either side.
+// Checks of a model's sampler: that sample() draws directions with the density pdf()
+// reports (chi-square goodness of fit), that the sample it returns agrees with f and pdf at
+// its direction, that pdf integrates to at most 1 over the sphere, and that pdf covers f
+// (no direction where f > 0 has pdf = 0). Each works on any shade::sampled_bsdf (a
+// shade::sampled_brdf, or a BSDF with its own sampler, shade::bsdf_sampler, checked over
+// the whole sphere with v on either side), and each returns a shade::check::result.
 
 #include <algorithm>
 #include <cmath>
@@ -18,6 +17,8 @@
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/brdf.hpp>
+#include <shade/bsdf/bsdf.hpp>
+#include <shade/bsdf/refract.hpp>
 #include <shade/check/chi2.hpp>
 #include <shade/check/detail/model_ref.hpp>
 #include <shade/check/directions.hpp>
@@ -437,14 +438,27 @@ struct sample_options {
     double relative_tolerance = -1;
     std::uint64_t seed = 1;             ///< seed of the views and the draws
     std::string model = "BRDF";         ///< name used in the message
+    /// For a BSDF with its own sampler: the relative index n_inside / n_outside its
+    /// transmissions must cross (a sample's eta is eta_inside seen from outside, 1 /
+    /// eta_inside from inside; 1 for a thin pane with the same medium on both sides). 0:
+    /// not given, and the transmissions need only agree with each other (the first one
+    /// drawn sets the value). Not used for a BRDF.
+    double eta_inside = 0;
 };
 
 namespace detail {
+
+/// The body of sample_consistency (see there) for a BSDF with its own sampler
+/// (model_ref::two_sided): views from both sides, both transport modes.
+template <std::floating_point T>
+result<T> run_bsdf_sample_consistency(const model_ref<T>& model, const surface_point<T>& at,
+                                      const sample_options& options);
 
 /// The body of sample_consistency (see there), on the type-erased model.
 template <std::floating_point T>
 result<T> run_sample_consistency(const model_ref<T>& model, const surface_point<T>& at,
                                  const sample_options& options) {
+    if (model.two_sided()) return run_bsdf_sample_consistency(model, at, options);
     result<T> r;
     r.property = "sample consistency";
     r.model = options.model;
@@ -519,6 +533,171 @@ result<T> run_sample_consistency(const model_ref<T>& model, const surface_point<
     return r;
 }
 
+template <std::floating_point T>
+result<T> run_bsdf_sample_consistency(const model_ref<T>& model, const surface_point<T>& at,
+                                      const sample_options& options) {
+    if (options.eta_inside != 0) require_in_range("eta_inside", options.eta_inside, 1e-4, 1e4);
+    result<T> r;
+    r.property = "sample consistency (BSDF)";
+    r.model = options.model;
+    r.at = at;
+    r.tolerance = options.relative_tolerance >= 0 ? options.relative_tolerance : (sizeof(T) <= 4 ? 1e-3 : 1e-6);
+    const vec3<T> n = at.n();
+    std::string worst_what = "nothing";
+    const auto relative = [](double a, double b) {
+        const double scale = std::max(std::abs(a), std::abs(b));
+        return scale > 0 ? std::abs(a - b) / scale : 0.0;
+    };
+    const auto record = [&](double measure, const char* what, const vec3<T>& l, const vec3<T>& v) {
+        if (!(measure <= r.tolerance)) ++r.failures;
+        if (!(measure <= r.worst)) { // NaN and the first violation both land here
+            r.worst = std::isnan(measure) ? std::numeric_limits<double>::infinity() : measure;
+            worst_what = what;
+            r.l = l;
+            r.v = v;
+        }
+    };
+    const auto infinite = std::numeric_limits<double>::infinity();
+    // eta_inside as given, or as the first transmission sets it (0 until then).
+    double eta_inside = options.eta_inside;
+    const auto kinds = bsdf_flags::diffuse | bsdf_flags::glossy | bsdf_flags::specular;
+    const auto single_bit = [](bsdf_flags f) {
+        const auto bits = static_cast<unsigned>(f);
+        return bits != 0 && (bits & (bits - 1)) == 0;
+    };
+    // Checks one draw s (in `mode`) for the view v; true when it is fit for the comparisons
+    // of the two modes.
+    const auto check = [&](const bsdf_sample<T>& s, const vec3<T>& v, transport_mode mode) {
+        const vec3<T> l = s.l;
+        if (!is_finite(l) || std::abs(double(glm::length(l)) - 1) > r.tolerance) {
+            record(infinite, "|l| = 1", l, v);
+            return false;
+        }
+        const bool reflection = is_reflection(s.flags);
+        if (reflection == is_transmission(s.flags)) {
+            record(infinite, "flags: exactly one of reflection and transmission", l, v);
+            return false;
+        }
+        if (!single_bit(s.flags & kinds)) {
+            record(infinite, "flags: exactly one of diffuse, glossy and specular", l, v);
+            return false;
+        }
+        const double n_dot_v = double(glm::dot(n, v));
+        const double n_dot_l = double(glm::dot(n, l));
+        if (reflection ? !(n_dot_l * n_dot_v > 0) : !(n_dot_l * n_dot_v < 0)) {
+            record(infinite, reflection ? "a reflection's l on v's side" : "a transmission's l on the other side", l,
+                   v);
+            return false;
+        }
+        if (!(s.eta > T(0)) || !std::isfinite(s.eta)) {
+            record(infinite, "eta finite and > 0", l, v);
+            return false;
+        }
+        if (reflection) {
+            record(relative(double(s.eta), 1.0), "eta = 1 for a reflection", l, v);
+        } else {
+            const double eta_v_side = n_dot_v > 0 ? double(s.eta) : 1 / double(s.eta);
+            if (eta_inside == 0) eta_inside = eta_v_side;
+            record(relative(eta_v_side, eta_inside),
+                   options.eta_inside != 0 ? "eta = eta_inside (v outside) or 1 / eta_inside (v inside)"
+                                           : "the same eta_inside for every transmission",
+                   l, v);
+        }
+        if (!(s.pdf > T(0)) || !std::isfinite(s.pdf)) {
+            record(infinite, "pdf finite and > 0", l, v);
+            return false;
+        }
+        const bool specular = is_specular(s.flags);
+        const double abs_n_dot_l = std::abs(n_dot_l);
+        if (specular) {
+            if (!(s.pdf <= T(1))) record(infinite, "a specular sample's pdf (a probability) <= 1", l, v);
+            // The delta direction: the mirror image of v, or its refraction with the
+            // sample's eta (shade::refract, Snell's law).
+            const glm::dvec3 vd(v);
+            const glm::dvec3 n_v = n_dot_v > 0 ? glm::dvec3(n) : -glm::dvec3(n);
+            glm::dvec3 expected = 2 * glm::dot(n_v, vd) * n_v - vd;
+            if (!reflection) {
+                const auto t = refract(vd, n_v, double(s.eta));
+                expected = t ? *t : glm::dvec3(std::numeric_limits<double>::quiet_NaN());
+            }
+            record(glm::length(glm::dvec3(l) - expected),
+                   reflection ? "a specular reflection's l = 2 (n.v) n - v" : "a specular transmission's l = refract(v, n, eta)",
+                   l, v);
+        } else {
+            record(relative(double(s.pdf), double(model.pdf(l, v, at))), "pdf = pdf(l, v)", l, v);
+            const rgb<T> f = mode == transport_mode::radiance ? model.f(l, v, at) : model.f(v, l, at);
+            for (int c = 0; c < 3; ++c)
+                record(relative(double(s.f[c]), double(f[c])),
+                       mode == transport_mode::radiance ? "f = f(l, v)" : "f = f(v, l) in importance mode", l, v);
+        }
+        // A delta lobe's f is its throughput / max(|n.l|, epsilon) (shade/bsdf/bsdf.hpp).
+        const double cosine = specular ? std::max(abs_n_dot_l, double(std::numeric_limits<T>::epsilon())) : abs_n_dot_l;
+        for (int c = 0; c < 3; ++c) {
+            if (!(s.f[c] >= T(0)) || !std::isfinite(s.f[c]) || !(s.weight[c] >= T(0)) || !std::isfinite(s.weight[c]))
+                record(infinite, "f and weight finite and >= 0", l, v);
+            record(relative(double(s.weight[c]), double(s.f[c]) * cosine / double(s.pdf)), "weight = f |n.l| / pdf",
+                   l, v);
+        }
+        return true;
+    };
+    rng random(options.seed ^ 0x5851f42d4c957f2dULL);
+    for (const auto& pair : hemisphere_pairs(at, options.views, options.seed)) {
+        for (const vec3<T>& v : {pair.v, vec3<T>(glm::normalize(pair.v - T(2) * glm::dot(n, pair.v) * n))}) {
+            for (std::size_t i = 0; i < options.samples_per_view; ++i) {
+                const T uc = random.uniform<T>();
+                const vec2<T> u(random.uniform<T>(), random.uniform<T>());
+                const auto radiance = model.sample(v, uc, u, at, transport_mode::radiance);
+                const auto importance = model.sample(v, uc, u, at, transport_mode::importance);
+                ++r.tried;
+                if (!radiance || !importance) {
+                    if (radiance || importance)
+                        record(infinite, "nullopt in both transport modes or in neither",
+                               radiance ? radiance->l : importance->l, v);
+                    continue;
+                }
+                const bool fit = check(*radiance, v, transport_mode::radiance);
+                if (!check(*importance, v, transport_mode::importance) || !fit) continue;
+                // The mode changes the weight, never the choice (shade/bsdf/bsdf.hpp).
+                const vec3<T> l = radiance->l;
+                if (importance->flags != radiance->flags || importance->eta != radiance->eta ||
+                    glm::length(glm::dvec3(importance->l) - glm::dvec3(l)) > r.tolerance) {
+                    record(infinite, "the same l, flags and eta in both transport modes", l, v);
+                    continue;
+                }
+                record(relative(double(importance->pdf), double(radiance->pdf)), "the same pdf in both transport modes",
+                       l, v);
+                if (!is_specular(radiance->flags)) continue;
+                // A delta lobe: its throughput carries (eta_v / eta_l)^2 = 1 / eta^2 in
+                // radiance mode only, and in importance mode it is a fraction of energy.
+                const double eta2 = double(radiance->eta) * double(radiance->eta);
+                for (int c = 0; c < 3; ++c) {
+                    const double carried = double(importance->weight[c]) * double(importance->pdf);
+                    record(carried <= 1 + r.tolerance ? 0 : carried - 1,
+                           "a specular sample's importance-mode throughput weight pdf <= 1", l, v);
+                    record(relative(double(radiance->weight[c]) * eta2, double(importance->weight[c])),
+                           "a specular sample's radiance weight = importance weight / eta^2", l, v);
+                }
+            }
+        }
+    }
+    r.decide(r.failures == 0 ? verdict::pass : verdict::fail);
+    const std::string eta_text =
+        eta_inside == 0 ? "no transmission drawn" : "eta_inside " + detail::number(eta_inside);
+    if (r.passed) {
+        r.message = "sample consistency holds for " + r.model + ": " + std::to_string(r.tried) +
+                    " draws from both sides in both transport modes agree with f, pdf, their flags and eta (" +
+                    eta_text + "), weight = f |n.l| / pdf, within " + detail::number(r.tolerance) + " (worst " +
+                    detail::number(r.worst, 3) + ").";
+    } else {
+        r.message = "sample consistency FAILS for " + r.model + ": " + std::to_string(r.failures) + " checks of " +
+                    std::to_string(r.tried) + " draws failed, the worst the rule '" + worst_what + "' (" + eta_text +
+                    "); worst relative error " + detail::number(r.worst, 3) + " for " + detail::where(r.l, r.v, at) +
+                    ". A bsdf_sample must hold what f and pdf return at its direction, or for a delta lobe its "
+                    "direction and throughput, with the flags and eta of the side l is on.";
+    }
+    return r;
+}
+
 } // namespace detail
 
 /// Checks, for options.views views (world space, above the surface) times
@@ -528,7 +707,23 @@ result<T> run_sample_consistency(const model_ref<T>& model, const surface_point<
 /// relative to the larger magnitude, within options.relative_tolerance); and that for views
 /// below the surface sample() returns nullopt. result::worst is the largest relative
 /// discrepancy found (+inf for a broken rule that has no size), and l, v the draw.
-template <sampled_brdf B>
+///
+/// For a BSDF with its own sampler (shade::bsdf_sampler, shade/bsdf/bsdf.hpp) each view is
+/// also mirrored to the inside, and each draw is made in both transport modes with the
+/// same (uc, u). Every sample must have a unit l; flags with exactly one of reflection and
+/// transmission and one of diffuse, glossy and specular; l on v's side for a reflection
+/// and on the other for a transmission; eta 1 for a reflection, and for a transmission
+/// options.eta_inside seen from outside and 1 / options.eta_inside from inside (when
+/// options.eta_inside is 0, the value of the first transmission, the same for all); pdf
+/// finite and > 0; f and weight finite and >= 0 with weight = f |n·l| / pdf. A sample with
+/// a density (not specular) must hold pdf(l, v) and f(l, v) (radiance mode) or the adjoint
+/// f(v, l) (importance mode). A delta-lobe sample (specular) is checked through what it
+/// carries: its pdf is a probability (<= 1), its l is the mirror image of v or the
+/// refraction of v with its eta (shade::refract), |n·l| is floored at machine epsilon in
+/// weight = f |n·l| / pdf, its importance-mode throughput weight·pdf is at most 1, and its
+/// radiance-mode weight is the importance-mode one divided by eta^2. The two modes must
+/// draw the same l with the same flags, eta and pdf (or both nullopt).
+template <sampled_bsdf B>
 result<scalar_of<B>> sample_consistency(const B& model, const surface_point<scalar_of<B>>& at,
                                         const sample_options& options = {}) {
     return detail::run_sample_consistency(detail::model_ref<scalar_of<B>>(model), at, options);
@@ -544,13 +739,15 @@ result<T> run_pdf_coverage(const model_ref<T>& model, const surface_point<T>& at
     r.model = options.model;
     r.at = at;
     const vec3<T> n = at.n();
-    for (const auto& [l, v] : hemisphere_pairs(at, options.pairs, options.seed)) {
+    const auto pairs = model.two_sided() ? sphere_pairs(at, options.pairs, options.seed)
+                                         : hemisphere_pairs(at, options.pairs, options.seed);
+    for (const auto& [l, v] : pairs) {
         const rgb<T> f = model.f(l, v, at);
         ++r.tried;
         const double top = double(std::max(f.x, std::max(f.y, f.z)));
         if (!(top > 0) || model.pdf(l, v, at) > T(0)) continue;
         ++r.failures;
-        const double missed = top * double(glm::dot(n, l));
+        const double missed = top * std::abs(double(glm::dot(n, l)));
         if (r.failures == 1 || missed > r.worst) {
             r.worst = missed;
             r.l = l;
@@ -573,12 +770,13 @@ result<T> run_pdf_coverage(const model_ref<T>& model, const surface_point<T>& at
 
 } // namespace detail
 
-/// Checks that pdf covers f: for options.pairs direction pairs (hemisphere_pairs), wherever
+/// Checks that pdf covers f: for options.pairs direction pairs (hemisphere_pairs; for a
+/// BSDF with its own sampler, shade::bsdf_sampler, sphere_pairs over both sides), wherever
 /// some channel of f(l, v) is > 0, pdf(l, v) > 0. A sampler that never draws where f
 /// reflects light makes every estimator built on it biased low, which no chi-square test
 /// of sample against pdf can see. result::worst is the largest f(l, v) |n·l| (any channel)
 /// found where pdf(l, v) = 0, and l, v that pair.
-template <sampled_brdf B>
+template <sampled_bsdf B>
 result<scalar_of<B>> pdf_coverage(const B& model, const surface_point<scalar_of<B>>& at,
                                   const pair_options& options = {}) {
     return detail::run_pdf_coverage(detail::model_ref<scalar_of<B>>(model), at, options);

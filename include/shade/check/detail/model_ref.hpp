@@ -18,12 +18,13 @@
 namespace shade::check::detail {
 
 /// A non-owning reference to a BRDF or BSDF of scalar type T: f, and sample and pdf when
-/// the referenced type is a shade::sampled_brdf or has a BSDF's own sampler
-/// (shade::bsdf_sampler; its radiance-mode samples are seen as brdf_samples, l, f, pdf and
-/// weight kept, and two_sided() is true). sampled() says whether it samples. It refers to the model,
-/// so the model must outlive it; the kit makes one per call and drops it on return.
-/// Calling sample or pdf when sampled() is false is a precondition violation (the public
-/// checks that sample require shade::sampled_brdf at compile time).
+/// the referenced type is a shade::sampled_bsdf (a shade::sampled_brdf, or a BSDF with its
+/// own sampler, shade::bsdf_sampler, for which two_sided() is true). Samples are
+/// bsdf_samples as shade::sample_bsdf returns them (a BRDF's with flags glossy_reflection
+/// and eta 1). sampled() says whether it samples. It refers to the model, so the model
+/// must outlive it; the kit makes one per call and drops it on return. Calling sample or
+/// pdf when sampled() is false is a precondition violation (the public checks that sample
+/// require shade::sampled_bsdf at compile time).
 template <std::floating_point T>
 class model_ref {
 public:
@@ -32,13 +33,10 @@ public:
     template <brdf B>
         requires(!std::same_as<B, model_ref> && std::same_as<scalar_of<B>, T>)
     explicit model_ref(const B& model) noexcept : model_(&model), f_(&call_f<B>) {
-        if constexpr (sampled_brdf<B>) {
+        if constexpr (sampled_bsdf<B>) {
             sample_ = &call_sample<B>;
             pdf_ = &call_pdf<B>;
-        } else if constexpr (bsdf_sampler<B>) {
-            sample_ = &call_bsdf_sample<B>;
-            pdf_ = &call_pdf<B>;
-            two_sided_ = true;
+            two_sided_ = !sampled_brdf<B>;
         }
     }
 
@@ -47,10 +45,12 @@ public:
         return f_(model_, l, v, at);
     }
 
-    /// The model's sample(v, uc, u, at). Requires sampled().
-    [[nodiscard]] std::optional<brdf_sample<T>> sample(const vec3<T>& v, T uc, const vec2<T>& u,
-                                                       const surface_point<T>& at) const {
-        return sample_(model_, v, uc, u, at);
+    /// shade::sample_bsdf(model, v, uc, u, at, mode): the model's own sample in that mode,
+    /// or for a BRDF its sample(v, uc, u, at) as a bsdf_sample. Requires sampled().
+    [[nodiscard]] std::optional<bsdf_sample<T>> sample(const vec3<T>& v, T uc, const vec2<T>& u,
+                                                       const surface_point<T>& at,
+                                                       transport_mode mode = transport_mode::radiance) const {
+        return sample_(model_, v, uc, u, at, mode);
     }
 
     /// The model's pdf(l, v, at) (1/sr). Requires sampled().
@@ -58,11 +58,12 @@ public:
         return pdf_(model_, l, v, at);
     }
 
-    /// True when the referenced model is a shade::sampled_brdf or a shade::bsdf_sampler.
+    /// True when the referenced model is a shade::sampled_bsdf.
     [[nodiscard]] bool sampled() const noexcept { return sample_ != nullptr; }
 
-    /// True when the referenced model is a shade::bsdf_sampler: v may be on either side,
-    /// and sample draws over the whole sphere.
+    /// True when the referenced model has a BSDF's own sampler (shade::bsdf_sampler) and is
+    /// not a shade::sampled_brdf: v may be on either side, and sample draws over the whole
+    /// sphere.
     [[nodiscard]] bool two_sided() const noexcept { return two_sided_; }
 
 private:
@@ -71,17 +72,9 @@ private:
         return static_cast<const B*>(model)->f(l, v, at);
     }
     template <class B>
-    static std::optional<brdf_sample<T>> call_sample(const void* model, const vec3<T>& v, T uc, const vec2<T>& u,
-                                                     const surface_point<T>& at) {
-        return static_cast<const B*>(model)->sample(v, uc, u, at);
-    }
-    template <class B>
-    static std::optional<brdf_sample<T>> call_bsdf_sample(const void* model, const vec3<T>& v, T uc,
-                                                          const vec2<T>& u, const surface_point<T>& at) {
-        const std::optional<bsdf_sample<T>> s =
-            static_cast<const B*>(model)->sample(v, uc, u, at, transport_mode::radiance);
-        if (!s) return std::nullopt;
-        return brdf_sample<T>{s->l, s->f, s->pdf, s->weight};
+    static std::optional<bsdf_sample<T>> call_sample(const void* model, const vec3<T>& v, T uc, const vec2<T>& u,
+                                                     const surface_point<T>& at, transport_mode mode) {
+        return sample_bsdf(*static_cast<const B*>(model), v, uc, u, at, mode);
     }
     template <class B>
     static T call_pdf(const void* model, const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) {
@@ -90,8 +83,8 @@ private:
 
     const void* model_;
     rgb<T> (*f_)(const void*, const vec3<T>&, const vec3<T>&, const surface_point<T>&);
-    std::optional<brdf_sample<T>> (*sample_)(const void*, const vec3<T>&, T, const vec2<T>&,
-                                             const surface_point<T>&) = nullptr;
+    std::optional<bsdf_sample<T>> (*sample_)(const void*, const vec3<T>&, T, const vec2<T>&,
+                                             const surface_point<T>&, transport_mode) = nullptr;
     T (*pdf_)(const void*, const vec3<T>&, const vec3<T>&, const surface_point<T>&) = nullptr;
     bool two_sided_ = false;
 };
