@@ -11,6 +11,7 @@
 #include <doctest/doctest.h>
 #include <glm/geometric.hpp>
 
+#include <shade/brdf/cook_torrance.hpp>
 #include <shade/brdf/lambert.hpp>
 #include <shade/brdf/metals.hpp>
 #include <shade/brdf/microfacet.hpp>
