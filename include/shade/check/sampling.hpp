@@ -51,6 +51,12 @@ struct chi2_options {
     double quadrature_tolerance = 1e-6;
     double quadrature_relative = 1e-4; ///< see quadrature_tolerance
     double normalization_tolerance = 1e-3; ///< pdf_normalization passes when ∫pdf <= 1 + this
+    /// The zoomed grid for sharp lobes (see chi2_goodness_of_fit) runs when a lobe's pilot
+    /// draws lie within this angle of its centre (zoom_share of them; degrees). 0 turns it off.
+    double zoom_below_degrees = 20;
+    double zoom_share = 0.9;        ///< share of a lobe's pilot draws that decides it is sharp, in (0, 1)
+    std::size_t zoom_rings = 10;    ///< rings of each side's bins in the zoomed grid (pilot quantiles)
+    std::size_t zoom_sectors = 16;  ///< azimuth sectors of each side's bins around its lobe
     std::uint64_t seed = 1;        ///< seed of the pilot and of the tested samples
     std::string model = "BRDF";    ///< name used in the message
 };
@@ -68,8 +74,14 @@ struct chi2_result : result<T> {
     std::size_t samples = 0;       ///< directions drawn
     std::size_t lost = 0;          ///< draws that returned nullopt (expected: N (1 - ∫pdf))
     std::size_t invalid = 0;       ///< draws with a non-finite direction or pdf
-    double pdf_integral = 0;       ///< ∫ pdf over the sphere, by quadrature
+    double pdf_integral = 0;       ///< ∫ pdf over the sphere, by quadrature (on the zoomed grid when zoomed)
     double integration_error = 0;  ///< the quadrature's error estimate of that integral
+    /// True when a lobe was sharp and the zoomed grid ran (see chi2_goodness_of_fit).
+    bool zoomed = false;
+    double zoom_statistic = 0;     ///< Pearson's chi-square of the zoomed grid
+    std::size_t zoom_dof = 0;      ///< its degrees of freedom
+    double zoom_p_value = 1;       ///< its p-value (p_value is the smaller of the two)
+    std::size_t zoom_bins = 0;     ///< its bins after pooling
 };
 
 namespace detail {
@@ -167,6 +179,10 @@ struct sphere_bins {
     }
 };
 
+/// The side of the surface w is on: +1 where n·w > 0, else -1 (the surface itself counted
+/// inside, a set of measure 0).
+inline int side_of(const glm::dvec3& n, const glm::dvec3& w) { return glm::dot(n, w) > 0 ? 1 : -1; }
+
 /// The mirror direction of v about the normal of `at`, in double: the axis the bins are
 /// built around (every shipped lobe peaks on or near it; a diffuse lobe is smooth around
 /// any axis).
@@ -177,26 +193,34 @@ glm::dvec3 lobe_axis(const vec3<T>& v, const surface_point<T>& at) {
     return glm::normalize(2 * glm::dot(n, vd) * n - vd);
 }
 
-/// Bins whose rings hold about equal shares of `pilot` draws of the sampler (quantiles of
-/// c = cos(angle to the axis)); uniform rings when the pilot draws nothing. The pilot is
-/// independent of the tested samples, so the bins do not depend on the data they test.
+/// `pilot` unit directions drawn by the sampler for v (finite ones only), from a stream of
+/// their own: independent of the tested draws, so bins built from them do not depend on
+/// the data they test.
 template <std::floating_point T>
-sphere_bins pilot_bins(const model_ref<T>& model, const vec3<T>& v, const surface_point<T>& at,
-                       std::size_t rings, std::size_t sectors, std::size_t pilot, std::uint64_t seed) {
-    sphere_bins bins{frame<double>::from_normal(lobe_axis(v, at)), {}, sectors};
-    std::vector<double> c;
-    c.reserve(pilot);
-    rng random(seed, 0x9e3779b97f4a7c15ULL); // its own stream: independent of the tested draws
+std::vector<glm::dvec3> pilot_draws(const model_ref<T>& model, const vec3<T>& v, const surface_point<T>& at,
+                                    std::size_t pilot, std::uint64_t seed) {
+    std::vector<glm::dvec3> draws;
+    draws.reserve(pilot);
+    rng random(seed, 0x9e3779b97f4a7c15ULL);
     for (std::size_t i = 0; i < pilot; ++i) {
         const T uc = random.uniform<T>();
         const vec2<T> u(random.uniform<T>(), random.uniform<T>());
         const auto s = model.sample(v, uc, u, at);
-        if (s && is_finite(s->l)) c.push_back(glm::dot(glm::dvec3(s->l), bins.axis.n));
+        if (s && is_finite(s->l)) draws.push_back(glm::normalize(glm::dvec3(s->l)));
     }
+    return draws;
+}
+
+/// Bins around `axis` with rings from c = `lowest` to 1 (c = cos(angle to the axis))
+/// holding about equal shares of the values c (quantiles; uniform rings when c is empty).
+inline sphere_bins quantile_bins(const glm::dvec3& axis, double lowest, std::vector<double> c, std::size_t rings,
+                                 std::size_t sectors) {
+    sphere_bins bins{frame<double>::from_normal(axis), {}, sectors};
     std::sort(c.begin(), c.end());
-    bins.edges.push_back(-1);
+    bins.edges.push_back(lowest);
     for (std::size_t k = 1; k < rings; ++k) {
-        const double edge = c.empty() ? -1 + 2 * double(k) / double(rings) : c[k * c.size() / rings];
+        const double edge =
+            c.empty() ? lowest + (1 - lowest) * double(k) / double(rings) : c[k * c.size() / rings];
         // Equal quantiles (a sampler that repeats a direction) would make empty rings.
         if (edge > bins.edges.back() + 1e-12 && edge < 1 - 1e-12) bins.edges.push_back(edge);
     }
@@ -204,13 +228,85 @@ sphere_bins pilot_bins(const model_ref<T>& model, const vec3<T>& v, const surfac
     return bins;
 }
 
+/// Bins over the whole sphere around the mirror direction of v whose rings hold about
+/// equal shares of the pilot draws.
+template <std::floating_point T>
+sphere_bins pilot_bins(const std::vector<glm::dvec3>& draws, const vec3<T>& v, const surface_point<T>& at,
+                       std::size_t rings, std::size_t sectors) {
+    const glm::dvec3 axis = lobe_axis(v, at);
+    std::vector<double> c;
+    c.reserve(draws.size());
+    for (const auto& w : draws) c.push_back(glm::dot(w, axis));
+    return quantile_bins(axis, -1, std::move(c), rings, sectors);
+}
+
+/// The zoomed grid: one set of bins for each side of the surface, around the centre of the
+/// lobe drawn to that side (the mirror direction of v on v's side; on the other side the
+/// mean direction of the pilot draws there, the centre of a refraction lobe), with rings
+/// at quantiles of the pilot draws on that side (options.zoom_rings) and
+/// options.zoom_sectors sectors. A direction falls in the bins of its side only (side_of),
+/// so the two sets partition the sphere. Empty when neither lobe is sharp: a side's lobe
+/// is sharp when it holds at least 5 % of the draws and 200 of them, and
+/// options.zoom_share of them lie within options.zoom_below_degrees of its centre.
+template <std::floating_point T>
+std::vector<sphere_bins> zoom_grid(const std::vector<glm::dvec3>& draws, const vec3<T>& v, const surface_point<T>& at,
+                                   const chi2_options& options) {
+    std::vector<sphere_bins> grid;
+    if (!(options.zoom_below_degrees > 0) || options.zoom_rings < 1 || options.zoom_sectors < 1) return grid;
+    const glm::dvec3 n(at.n());
+    const int side_v = side_of(n, glm::dvec3(v));
+    bool sharp = false;
+    for (const int side : {side_v, -side_v}) {
+        std::vector<glm::dvec3> group;
+        glm::dvec3 sum(0);
+        for (const auto& w : draws) {
+            if (side_of(n, w) != side) continue;
+            group.push_back(w);
+            sum += w;
+        }
+        const glm::dvec3 mirror = lobe_axis(v, at);
+        // With few draws on the other side (a BRDF: none), its bins are centred on the
+        // mirror image of the mirror direction, and uniform.
+        const bool enough =
+            group.size() >= 200 && double(group.size()) >= 0.05 * double(draws.size()) && glm::length(sum) > 0;
+        const glm::dvec3 axis = side == side_v ? mirror
+                                : enough       ? glm::normalize(sum)
+                                               : mirror - 2 * glm::dot(mirror, n) * n;
+        std::vector<double> c;
+        c.reserve(group.size());
+        for (const auto& w : group) c.push_back(glm::dot(w, axis));
+        if (enough) {
+            std::vector<double> sorted = c;
+            std::sort(sorted.begin(), sorted.end());
+            const auto k = std::size_t((1 - options.zoom_share) * double(sorted.size()));
+            const double width = std::acos(std::clamp(sorted[std::min(k, sorted.size() - 1)], -1.0, 1.0));
+            if (width * 180 / pi<double> < options.zoom_below_degrees) sharp = true;
+        } else {
+            c.clear();
+        }
+        grid.push_back(quantile_bins(axis, -1, std::move(c), options.zoom_rings, options.zoom_sectors));
+    }
+    if (!sharp) grid.clear();
+    return grid;
+}
+
+/// The index of the zoomed grid's cell holding w: the bins of grid[0] (v's side) for w on
+/// v's side, else those of grid[1] after them.
+inline std::size_t zoom_index(const std::vector<sphere_bins>& grid, int side_v, const glm::dvec3& n,
+                              const glm::dvec3& w) {
+    return side_of(n, w) == side_v ? grid[0].index(w) : grid[0].count() + grid[1].index(w);
+}
+
 /// ∫ pdf(l, v) dl over each bin, by nested adaptive Simpson quadrature in (c, phi) around
 /// the bins' axis, where dl = dc dphi (the solid angle in those coordinates). The absolute
 /// tolerance is shared out among the bins; the relative one applies to each.
+/// With side = +1 or -1, only the directions on that side (side_of) count: the integrand
+/// is 0 on the other.
 template <std::floating_point T>
 std::vector<integral_estimate> integrate_pdf(const model_ref<T>& model, const vec3<T>& v,
                                              const surface_point<T>& at, const sphere_bins& bins,
-                                             quadrature_tolerance tolerance) {
+                                             quadrature_tolerance tolerance, int side = 0) {
+    const glm::dvec3 normal(at.n());
     std::vector<integral_estimate> cells(bins.count());
     const double sector_width = 2 * pi<double> / double(bins.sectors);
     const double cell_tolerance = tolerance.absolute / double(bins.count());
@@ -224,6 +320,7 @@ std::vector<integral_estimate> integrate_pdf(const model_ref<T>& model, const ve
                 const double s = std::sqrt(std::max(0.0, (1 - c) * (1 + c)));
                 const auto density = [&](double phi) {
                     const glm::dvec3 w = bins.axis.to_world(glm::dvec3(s * std::cos(phi), s * std::sin(phi), c));
+                    if (side != 0 && side_of(normal, w) != side) return integral_estimate{0, 0};
                     const vec3<T> l = glm::normalize(vec3<T>(w));
                     return integral_estimate{double(model.pdf(l, v, at)), 0};
                 };
@@ -235,6 +332,20 @@ std::vector<integral_estimate> integrate_pdf(const model_ref<T>& model, const ve
                 adaptive_simpson(over_phi, c0, c1, {0.5 * cell_tolerance, 0.5 * tolerance.relative});
         }
     }
+    return cells;
+}
+
+/// ∫ pdf over each cell of the zoomed grid (zoom_grid, in zoom_index order): each side on
+/// the bins of its own lobe.
+template <std::floating_point T>
+std::vector<integral_estimate> integrate_zoomed(const model_ref<T>& model, const vec3<T>& v,
+                                                const surface_point<T>& at, const std::vector<sphere_bins>& grid,
+                                                quadrature_tolerance tolerance) {
+    tolerance.absolute /= 2;
+    const int side_v = side_of(glm::dvec3(at.n()), glm::dvec3(v));
+    std::vector<integral_estimate> cells = integrate_pdf(model, v, at, grid[0], tolerance, side_v);
+    const auto other = integrate_pdf(model, v, at, grid[1], tolerance, -side_v);
+    cells.insert(cells.end(), other.begin(), other.end());
     return cells;
 }
 
@@ -278,9 +389,14 @@ chi2_result<T> run_chi2_goodness_of_fit(const model_ref<T>& model, const vec3<T>
     r.significance = sidak_significance(options.alpha, options.tests);
     r.tolerance = r.significance;
     const std::size_t pilot = std::clamp<std::size_t>(options.samples / 10, 1000, 20000);
-    const detail::sphere_bins bins = detail::pilot_bins(model, v, at, options.rings, options.sectors, pilot,
-                                                        options.seed);
+    const auto draws = detail::pilot_draws(model, v, at, pilot, options.seed);
+    const detail::sphere_bins bins = detail::pilot_bins(draws, v, at, options.rings, options.sectors);
+    const std::vector<detail::sphere_bins> grid = detail::zoom_grid(draws, v, at, options);
+    const bool zoom = !grid.empty();
+    const glm::dvec3 normal(at.n());
+    const int side_v = detail::side_of(normal, glm::dvec3(v));
     std::vector<double> observed(bins.count() + 1, 0.0);
+    std::vector<double> zoom_observed(zoom ? grid[0].count() + grid[1].count() + 1 : 0, 0.0);
     rng random(options.seed);
     for (std::size_t i = 0; i < options.samples; ++i) {
         const T uc = random.uniform<T>();
@@ -292,11 +408,14 @@ chi2_result<T> run_chi2_goodness_of_fit(const model_ref<T>& model, const vec3<T>
             ++r.invalid;
             r.l = s->l;
         } else {
-            observed[bins.index(glm::normalize(glm::dvec3(s->l)))] += 1;
+            const glm::dvec3 w = glm::normalize(glm::dvec3(s->l));
+            observed[bins.index(w)] += 1;
+            if (zoom) zoom_observed[detail::zoom_index(grid, side_v, normal, w)] += 1;
         }
     }
     r.samples = options.samples;
     observed.back() = double(r.lost);
+    if (zoom) zoom_observed.back() = double(r.lost);
     const auto cells = detail::integrate_pdf(model, v, at, bins,
                                              {options.quadrature_tolerance, options.quadrature_relative});
     std::vector<double> expected(cells.size() + 1, 0.0);
@@ -314,21 +433,51 @@ chi2_result<T> run_chi2_goodness_of_fit(const model_ref<T>& model, const vec3<T>
     r.pooled = s.pooled;
     r.tried = r.samples;
     r.p_value = r.dof > 0 ? chi2_p_value(r.statistic, double(r.dof)) : 1.0;
+    std::string zoom_numbers;
+    if (zoom) {
+        // The zoomed grid: a second test of the same draws, so each of the two rejects at
+        // the Šidák level of a family twice as large.
+        r.zoomed = true;
+        r.significance = sidak_significance(options.alpha, 2 * options.tests);
+        r.tolerance = r.significance;
+        const auto zoomed =
+            detail::integrate_zoomed(model, v, at, grid, {options.quadrature_tolerance, options.quadrature_relative});
+        std::vector<double> zoom_expected(zoomed.size() + 1, 0.0);
+        double total = 0, error = 0;
+        for (std::size_t k = 0; k < zoomed.size(); ++k) {
+            zoom_expected[k] = n * zoomed[k].value;
+            total += zoomed[k].value;
+            error += zoomed[k].error;
+        }
+        zoom_expected.back() = n * std::max(0.0, 1 - total);
+        // The zoomed quadrature resolves the sharp lobes: its integral is the one reported.
+        r.pdf_integral = total;
+        r.integration_error = error;
+        const chi2_statistic z = pearson_chi2(zoom_observed, zoom_expected, options.min_expected);
+        r.zoom_statistic = z.statistic;
+        r.zoom_dof = z.dof;
+        r.zoom_bins = z.bins;
+        r.zoom_p_value = z.dof > 0 ? chi2_p_value(z.statistic, double(z.dof)) : 1.0;
+        r.p_value = std::min(r.p_value, r.zoom_p_value);
+        zoom_numbers = "; zoomed grid (each side around its lobe): chi2 = " + detail::number(z.statistic) + " with " +
+                       std::to_string(z.dof) + " dof, p = " + detail::number(r.zoom_p_value, 3) + ", " +
+                       std::to_string(z.bins) + " bins";
+    }
     r.worst = r.p_value;
     const std::string numbers = "chi2 = " + detail::number(r.statistic) + " with " + std::to_string(r.dof) +
                                 " dof, p = " + detail::number(r.p_value, 3) + " (level " +
                                 detail::number(r.significance, 3) + "), " + std::to_string(r.samples) +
                                 " draws into " + std::to_string(r.bins) + " bins (" + std::to_string(r.pooled) +
-                                " pooled), " + std::to_string(r.lost) + " nullopt, integral of pdf " +
-                                detail::number(r.pdf_integral) + " +- " + detail::number(r.integration_error, 2) +
-                                ", at " + detail::view_text(v, at);
+                                " pooled), " + std::to_string(r.lost) + " nullopt" + zoom_numbers +
+                                ", integral of pdf " + detail::number(r.pdf_integral) + " +- " +
+                                detail::number(r.integration_error, 2) + ", at " + detail::view_text(v, at);
     if (r.invalid > 0) {
         r.failures = r.invalid;
         r.decide(verdict::fail);
         r.message = "sampling FAILS for " + r.model + ": " + std::to_string(r.invalid) +
                     " draws returned a non-finite direction or pdf (e.g. l = " + shade::detail::to_text(r.l) +
                     ") at " + detail::view_text(v, at) + ".";
-    } else if (r.dof == 0) {
+    } else if (r.dof == 0 && r.zoom_dof == 0) {
         r.decide(verdict::inconclusive);
         r.message = "sampling is INCONCLUSIVE for " + r.model + ": too few bins left after pooling to test; " +
                     numbers + ". Raise samples.";
@@ -365,6 +514,18 @@ chi2_result<T> run_chi2_goodness_of_fit(const model_ref<T>& model, const vec3<T>
 /// with its own sampler (shade::bsdf_sampler, radiance mode), v may be on either side and
 /// the bins cover the whole sphere, transmission included; a model whose lobes are all
 /// delta lobes has no density to test (pdf = 0) and fails.
+///
+/// Sharp lobes (zoom_grid: options.zoom_share of a lobe's pilot draws within
+/// options.zoom_below_degrees of its centre) get a second test of the same draws on a
+/// zoomed grid: each side of the surface binned around the centre of the lobe drawn to it
+/// (the mirror direction of v, the mean direction of the pilot's refractions), in
+/// options.zoom_rings rings at quantiles of that side's pilot draws times
+/// options.zoom_sectors sectors, plus the nullopt bin. The whole-sphere grid is centred on
+/// the mirror direction, so it cuts a narrow refraction lobe in bands and resolves it
+/// across them only through its sectors; the zoomed grid resolves it in both directions.
+/// Its expected counts come from the same quadrature on its own bins, each side's
+/// integrand 0 on the other side, and its ∫pdf is the one reported. The two tests then
+/// reject each at sidak_significance(alpha, 2 tests); p_value is the smaller p-value.
 template <sampled_bsdf B>
 chi2_result<scalar_of<B>> chi2_goodness_of_fit(const B& model, const vec3<scalar_of<B>>& v,
                                                const surface_point<scalar_of<B>>& at,
@@ -387,10 +548,13 @@ result<T> run_pdf_normalization(const model_ref<T>& model, const vec3<T>& v, con
     r.l = v;
     r.tolerance = require_non_negative("normalization_tolerance", options.normalization_tolerance);
     const std::size_t pilot = std::clamp<std::size_t>(options.samples / 10, 1000, 20000);
-    const auto bins = detail::pilot_bins(model, v, at, std::max<std::size_t>(options.rings, 1),
-                                         std::max<std::size_t>(options.sectors, 1), pilot, options.seed);
-    for (const auto& cell :
-         detail::integrate_pdf(model, v, at, bins, {options.quadrature_tolerance, options.quadrature_relative})) {
+    const auto draws = detail::pilot_draws(model, v, at, pilot, options.seed);
+    const auto bins = detail::pilot_bins(draws, v, at, std::max<std::size_t>(options.rings, 1),
+                                         std::max<std::size_t>(options.sectors, 1));
+    const auto grid = detail::zoom_grid(draws, v, at, options);
+    const detail::quadrature_tolerance tolerance{options.quadrature_tolerance, options.quadrature_relative};
+    for (const auto& cell : grid.empty() ? detail::integrate_pdf(model, v, at, bins, tolerance)
+                                         : detail::integrate_zoomed(model, v, at, grid, tolerance)) {
         r.worst += cell.value;
         r.error += cell.error;
     }
@@ -419,7 +583,7 @@ result<T> run_pdf_normalization(const model_ref<T>& model, const vec3<T>& v, con
 /// surface; for a shade::bsdf_sampler on either side) at `at`: a density may lose mass (a sampler may return nullopt) but never
 /// create it. The integral is computed by adaptive quadrature over the bins of
 /// chi2_goodness_of_fit (options.rings, options.sectors, pilot from options.seed, tolerance
-/// options.quadrature_tolerance). result::worst is the integral and result::error the
+/// options.quadrature_tolerance), on its zoomed grid when a lobe is sharp. result::worst is the integral and result::error the
 /// quadrature's error estimate; the verdict is decide_at_most(integral, error,
 /// 1 + options.normalization_tolerance, 1).
 template <sampled_bsdf B>
