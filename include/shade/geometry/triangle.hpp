@@ -144,8 +144,7 @@ template <std::floating_point T>
     const auto l1 = [](const vec3<T>& w) { return std::abs(w.x) + std::abs(w.y) + std::abs(w.z); };
     const vec3<T> e1 = tri.v1 - tri.v0;
     const vec3<T> e2 = tri.v2 - tri.v0;
-    const vec3<T> e1_x_e2 = glm::cross(e1, e2); // also gives the normal, as tri.normal() does
-    const vec3<T> c = glm::abs(e1_x_e2);
+    const vec3<T> c = glm::abs(glm::cross(e1, e2));
     const T e1_l1 = l1(e1), e2_l1 = l1(e2);
     const T longest = glm::max(glm::max(e1_l1, e2_l1), l1(tri.v2 - tri.v1));
     const T plane_error =
@@ -166,11 +165,11 @@ template <std::floating_point T>
     h.t = x.t;
     h.p = p;
     h.p_error = p_error;
-    h.n = detail::unit_normal_from_cross(e1_x_e2); // tri.normal(), from the same cross product
+    h.n = tri.normal();
     h.front_face = x.front_face;
     h.barycentric = b;
     h.uv = vec2<T>(b.y, b.z);
-    h.dpdu = e1;
+    h.dpdu = tri.v1 - tri.v0;
     return h;
 }
 
