@@ -1,5 +1,5 @@
-// The committed rough-dielectric albedo tables (shade/bsdf/detail/dielectric_albedo_data.hpp,
-// written by examples/dielectric_albedo_tables.cpp) against a coarse regeneration with
+// The committed rough-dielectric albedo tables (shade/bsdf/detail/dielectric_albedo_data.hpp
+// and beckmann_dielectric_albedo_data.hpp, written by examples/dielectric_albedo_tables.cpp) against a coarse regeneration with
 // shade::rough_dielectric's own sampler, so they cannot drift from the model; their E_avg
 // against the rows they average; the grid and interpolation of
 // shade/bsdf/dielectric_albedo_table.hpp.
@@ -13,6 +13,7 @@
 
 #include <shade/brdf/microfacet/beckmann.hpp>
 #include <shade/brdf/microfacet/ggx.hpp>
+#include <shade/bsdf/detail/beckmann_dielectric_albedo_data.hpp>
 #include <shade/bsdf/detail/dielectric_albedo_data.hpp>
 #include <shade/bsdf/dielectric_albedo_table.hpp>
 #include <shade/bsdf/rough_dielectric.hpp>
@@ -71,19 +72,25 @@ TEST_CASE("dielectric albedo tables: the committed GGX table agrees with a coars
     CHECK(count_drifted(d::ggx_rough_dielectric_albedo, make_ggx) == 0);
 }
 
+TEST_CASE("dielectric albedo tables: the committed Beckmann table agrees with a coarse regeneration by the model's sampler") {
+    CHECK(count_drifted(d::beckmann_rough_dielectric_albedo, make_beckmann) == 0);
+}
+
 TEST_CASE("dielectric albedo tables: the regeneration check catches a table that does not belong to its model") {
-    // The GGX table checked against Beckmann interfaces of the same roughness: the two
-    // lose different energy to masking at most rough nodes.
+    // Each table checked against the other distribution's interfaces of the same roughness:
+    // the two lose different energy to masking at most rough nodes.
     CHECK(count_drifted(d::ggx_rough_dielectric_albedo, make_beckmann) > 20);
+    CHECK(count_drifted(d::beckmann_rough_dielectric_albedo, make_ggx) > 20);
 }
 
 TEST_CASE("dielectric albedo tables: single scattering never creates energy, and a nearly smooth interface loses none") {
     // R + T <= 1 at every node (the nodes are estimates, so within 4 committed standard
     // errors), and >= 0.
-    for (std::size_t x = 0; x < grid.size(); ++x) {
-        CHECK(d::ggx_rough_dielectric_albedo[x] >= 0.0f);
-        CHECK(d::ggx_rough_dielectric_albedo[x] <= 1.0f + float(4 * committed_standard_error));
-    }
+    for (const float* table : {d::ggx_rough_dielectric_albedo, d::beckmann_rough_dielectric_albedo})
+        for (std::size_t x = 0; x < grid.size(); ++x) {
+            CHECK(table[x] >= 0.0f);
+            CHECK(table[x] <= 1.0f + float(4 * committed_standard_error));
+        }
     // alpha = 1e-4 (row 0): a smooth interface reflects F and transmits 1 - F (energy mode:
     // no 1/eta^2), R + T = 1 exactly; the masking of slopes ~1e-4 loses nothing measurable
     // for views more than ~1e-2 rad from grazing (Smith's Lambda of cot(theta) / alpha > 100

@@ -1,5 +1,5 @@
 #pragma once
-// shade::compensated_rough_dielectric: shade::rough_dielectric over GGX with the energy its
+// shade::compensated_rough_dielectric: shade::rough_dielectric over GGX or Beckmann with the energy its
 // single-scattering lobes lose to masking given back by a multiple-scattering lobe, so that
 // a lossless interface neither darkens nor creates energy, seen from either side.
 
@@ -14,8 +14,10 @@
 
 #include <shade/brdf/brdf.hpp>
 #include <shade/brdf/fresnel.hpp>
+#include <shade/brdf/microfacet/beckmann.hpp>
 #include <shade/brdf/microfacet/ggx.hpp>
 #include <shade/bsdf/bsdf.hpp>
+#include <shade/bsdf/detail/beckmann_dielectric_albedo_data.hpp>
 #include <shade/bsdf/detail/dielectric_albedo_data.hpp>
 #include <shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp>
 #include <shade/bsdf/dielectric_albedo_table.hpp>
@@ -59,9 +61,37 @@ template <std::floating_point T>
     return T(average < 0 ? 0 : (average > 1 ? 1 : average));
 }
 
+/// The albedo tables of the compensated rough dielectric over a distribution type, and its
+/// two roughnesses; defined for ggx and beckmann (Beckmann's m read as alpha, as its
+/// generator does). `anisotropic` says whether the anisotropic correction of
+/// shade/bsdf/dielectric_anisotropic_albedo_table.hpp is tabulated for it.
+template <class Distribution>
+struct dielectric_albedo_tables_of;
+
+template <std::floating_point T>
+struct dielectric_albedo_tables_of<ggx<T>> {
+    static constexpr const float* e = ggx_rough_dielectric_albedo;
+    static constexpr bool anisotropic = true;
+    static constexpr const float* delta = ggx_dielectric_anisotropic_delta;
+    static constexpr const float* delta_average = ggx_dielectric_anisotropic_delta_average;
+    [[nodiscard]] static T alpha_x(const ggx<T>& d) noexcept { return d.alpha_x(); }
+    [[nodiscard]] static T alpha_y(const ggx<T>& d) noexcept { return d.alpha_y(); }
+};
+
+template <std::floating_point T>
+struct dielectric_albedo_tables_of<beckmann<T>> {
+    static constexpr const float* e = beckmann_rough_dielectric_albedo;
+    static constexpr bool anisotropic = false;
+    static constexpr const float* delta = nullptr;
+    static constexpr const float* delta_average = nullptr;
+    [[nodiscard]] static T alpha_x(const beckmann<T>& d) noexcept { return d.m_x(); }
+    [[nodiscard]] static T alpha_y(const beckmann<T>& d) noexcept { return d.m_y(); }
+};
+
 } // namespace detail
 
-/// shade::rough_dielectric<ggx<T>> compensated for multiple scattering: the single-scattering
+/// shade::rough_dielectric<Distribution> (GGX by default, or Beckmann) compensated for
+/// multiple scattering: the single-scattering
 /// BSDF f_ss of rough_dielectric (unchanged) plus a lobe f_ms that returns the energy f_ss
 /// loses to masking, with Kulla and Conty's reciprocal product form extended to
 /// transmission.
@@ -101,6 +131,7 @@ template <std::floating_point T>
 /// give R + T = 1 as well but not the adjoint relation; hence Kulla and Conty's product.
 /// A type of its own rather than a policy of rough_dielectric (as shade::kulla_conty is of
 /// cook_torrance), so that rough_dielectric's users do not compile the tables.
+/// One table per distribution (GGX and Beckmann, Beckmann's m read as alpha).
 /// The tables cover alpha in [1e-4, 1] and eta_hat = max(eta, 1 / eta) in [1.05, 3];
 /// outside that range the nearest end is read, so the compensation is approximate there
 /// (and partial for alpha > 1).
@@ -115,7 +146,9 @@ template <std::floating_point T>
 /// reciprocal) and returns 1 - E_s(v) at every view. The correction covers anisotropy up to
 /// detail::dielectric_anisotropic_ratio_max (20:1); beyond, the 20:1 correction is read and
 /// the compensation is approximate. Isotropic interfaces read no correction (the values are
-/// those of the isotropic tables alone).
+/// those of the isotropic tables alone). Anisotropic Beckmann has no correction table: it
+/// reads the isotropic table at sqrt(m_x m_y) whatever the azimuth, an approximation that
+/// departs from R + T = 1 both ways as anisotropic GGX did before its correction.
 ///
 /// Sampling: with probability E_s(mu_v) rough_dielectric's own sampler (uc rescaled), else
 /// the multiple-scattering lobe, a cosine-weighted direction on the far side with
@@ -123,18 +156,22 @@ template <std::floating_point T>
 /// Flags glossy reflection or glossy transmission.
 ///
 /// Parameters as rough_dielectric: eta = n_inside / n_outside in [1e-4, 1e4], not 1.
-template <std::floating_point T>
+template <std::floating_point T, class Distribution = ggx<T>>
 class compensated_rough_dielectric {
+    using tables = detail::dielectric_albedo_tables_of<Distribution>;
+    static_assert(std::same_as<scalar_of<Distribution>, T>, "the distribution's scalar must be T");
+
 public:
     using scalar_type = T;
-    using single_scattering_type = rough_dielectric<ggx<T>>;
+    using distribution_type = Distribution;
+    using single_scattering_type = rough_dielectric<Distribution>;
 
     /// A compensated interface. Throws shade::invalid_parameter naming "eta" unless eta
     /// lies in [1e-4, 1e4] and is not 1 (as rough_dielectric).
-    compensated_rough_dielectric(const ggx<T>& distribution, T eta) : single_(distribution, eta) { prepare(); }
+    compensated_rough_dielectric(const Distribution& distribution, T eta) : single_(distribution, eta) { prepare(); }
 
     /// Unchecked: the caller guarantees eta in [1e-4, 1e4], eta != 1.
-    compensated_rough_dielectric(unchecked_t, const ggx<T>& distribution, T eta) noexcept
+    compensated_rough_dielectric(unchecked_t, const Distribution& distribution, T eta) noexcept
         : single_(unchecked, distribution, eta) {
         prepare();
     }
@@ -142,7 +179,7 @@ public:
     /// The single-scattering model this compensates.
     [[nodiscard]] constexpr const single_scattering_type& single_scattering() const noexcept { return single_; }
     /// The distribution of microfacet normals.
-    [[nodiscard]] constexpr const ggx<T>& distribution() const noexcept { return single_.distribution(); }
+    [[nodiscard]] constexpr const Distribution& distribution() const noexcept { return single_.distribution(); }
     /// The relative index of refraction n_inside / n_outside.
     [[nodiscard]] constexpr T eta() const noexcept { return single_.eta(); }
 
@@ -235,20 +272,22 @@ private:
     void prepare() noexcept {
         const detail::dielectric_albedo_grid grid{};
         const T eta = single_.eta();
-        const T alpha_x = single_.distribution().alpha_x(), alpha_y = single_.distribution().alpha_y();
+        const T alpha_x = tables::alpha_x(single_.distribution()), alpha_y = tables::alpha_y(single_.distribution());
         const T alpha = std::sqrt(alpha_x * alpha_y);
-        anisotropic_ = alpha_x != alpha_y;
-        if (anisotropic_) anisotropic_cell_ = detail::dielectric_anisotropic_locate(alpha_x, alpha_y, eta);
+        anisotropic_ = tables::anisotropic && alpha_x != alpha_y;
+        if constexpr (tables::anisotropic)
+            if (anisotropic_) anisotropic_cell_ = detail::dielectric_anisotropic_locate(alpha_x, alpha_y, eta);
         for (std::size_t s = 0; s < 2; ++s) {
             side_[s].eta_s = s == 0 ? eta : T(1) / eta;
             side_[s].cell = detail::dielectric_albedo_locate(grid, alpha, side_[s].eta_s);
-            side_[s].e_avg = detail::dielectric_albedo_average(detail::ggx_rough_dielectric_albedo, grid, side_[s].cell);
+            side_[s].e_avg = detail::dielectric_albedo_average(tables::e, grid, side_[s].cell);
             // The average of the corrected E_s(w): the isotropic average plus Delta_s,avg.
-            if (anisotropic_)
-                side_[s].e_avg = glm::clamp(side_[s].e_avg + detail::dielectric_anisotropic_delta_average(
-                                                                 detail::ggx_dielectric_anisotropic_delta_average,
-                                                                 anisotropic_cell_, side_[s].cell.side),
-                                            T(0), T(1));
+            if constexpr (tables::anisotropic)
+                if (anisotropic_) {
+                    const T delta_average =
+                        detail::dielectric_anisotropic_delta_average(tables::delta_average, anisotropic_cell_, side_[s].cell.side);
+                    side_[s].e_avg = glm::clamp(side_[s].e_avg + delta_average, T(0), T(1));
+                }
         }
         const T loss[2] = {T(1) - side_[0].e_avg, T(1) - side_[1].e_avg};
         if (!(loss[0] > T(detail::dielectric_compensation_min_loss)) ||
@@ -282,11 +321,9 @@ private:
     /// needs 1 - E_s >= 0).
     [[nodiscard]] T albedo(std::size_t s, const vec3<T>& w) const noexcept {
         const T mu = std::abs(w.z);
-        T e = detail::dielectric_albedo_lookup(detail::ggx_rough_dielectric_albedo, detail::dielectric_albedo_grid{},
-                                               side_[s].cell, mu);
-        if (anisotropic_)
-            e += detail::dielectric_anisotropic_delta(detail::ggx_dielectric_anisotropic_delta, anisotropic_cell_,
-                                                      side_[s].cell.side, w.x, w.y, mu);
+        T e = detail::dielectric_albedo_lookup(tables::e, detail::dielectric_albedo_grid{}, side_[s].cell, mu);
+        if constexpr (tables::anisotropic)
+            if (anisotropic_) e += detail::dielectric_anisotropic_delta(tables::delta, anisotropic_cell_, side_[s].cell.side, w.x, w.y, mu);
         return glm::clamp(e, T(0), T(1));
     }
 

@@ -5,6 +5,10 @@
 //
 //   examples/dielectric_albedo_tables --out include/shade/bsdf/detail/dielectric_albedo_data.hpp
 //
+// (GGX), and for Beckmann (its m read as alpha) into beckmann_dielectric_albedo_data.hpp by
+//
+//   examples/dielectric_albedo_tables --beckmann --strata 256 --out include/shade/bsdf/detail/beckmann_dielectric_albedo_data.hpp
+//
 // A table holds, for a view cosine mu = |n·v|, a roughness alpha and the relative index
 // eta_s = n_far / n_v of the side v is on, the total albedo of the single-scattering rough
 // dielectric in importance mode (the energy that arrives along v and leaves, reflected
