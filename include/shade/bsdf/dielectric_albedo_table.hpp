@@ -159,9 +159,10 @@ template <std::floating_point T>
 
 /// catmull_rom in cell i (between nodes i and i + 1) of an axis whose nodes lo..hi form one
 /// smooth piece: node(i - 1 .. i + 2), with a neighbour outside [lo, hi] extrapolated
-/// linearly (2 p_lo - p_lo+1 below, 2 p_hi - p_hi-1 above), so the end cells of the piece
-/// are interpolated by the parabola through their three nodes and no value from across
-/// the piece's ends is used.
+/// linearly (2 p_lo - p_lo+1 below, 2 p_hi - p_hi-1 above), so the tangent at an end node
+/// of the piece is the secant of its cell (the end cells are not the parabola through their
+/// three nodes: for p_k = k^2 the first cell reads 0.375 at its middle, not 0.25) and no
+/// value from across the piece's ends is used.
 template <std::floating_point T, class Node>
 [[nodiscard]] inline T catmull_rom_axis(const Node& node, std::size_t i, std::size_t lo, std::size_t hi, T t) noexcept {
     const T p1 = node(i);
