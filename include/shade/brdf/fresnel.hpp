@@ -25,6 +25,7 @@
 #include <shade/brdf/brdf.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
+#include <shade/core/quadrature.hpp>
 #include <shade/core/types.hpp>
 
 namespace shade {
@@ -115,6 +116,21 @@ template <std::floating_point T>
 template <std::floating_point T>
 [[nodiscard]] inline T F_dielectric_two_sided(T cos_theta, T eta) noexcept {
     return cos_theta >= T(0) ? F_dielectric(cos_theta, eta) : F_dielectric(-cos_theta, T(1) / eta);
+}
+
+/// The hemispherical (cosine-weighted) average of the exact dielectric Fresnel reflectance,
+/// E_F(eta) = 2 integral_0^1 F_dielectric(mu, eta) mu dmu, for any eta > 0. For eta >= 1 by
+/// 5-point Gauss-Legendre quadrature on 16 equal intervals (shade/core/quadrature.hpp; F is
+/// smooth there: no total internal reflection from the rarer side); for eta < 1 by the
+/// relation E_F(eta) = 1 - eta^2 (1 - E_F(1 / eta)) (the light the denser side lets out is
+/// what the rarer side lets in, scaled by the solid-angle compression eta^2; e.g. d'Eon 2021,
+/// "A Hitchhiker's Guide to Multiple Scattering"). Dimensionless, in [0, 1].
+template <std::floating_point T>
+[[nodiscard]] inline T dielectric_fresnel_average(T eta) noexcept {
+    const double e = double(eta) >= 1 ? double(eta) : 1 / double(eta);
+    const double above = gauss_legendre_integral([e](double mu) { return 2 * mu * F_dielectric(mu, e); }, 0, 1, 16);
+    const double average = double(eta) >= 1 ? above : 1 - double(eta) * double(eta) * (1 - above);
+    return T(glm::clamp(average, 0.0, 1.0));
 }
 
 /// The exact Fresnel reflectance of a conductor (complex index of refraction) for

@@ -31,6 +31,7 @@
 #include <shade/brdf/microfacet/ggx.hpp>
 #include <shade/brdf/microfacet/masking.hpp>
 #include <shade/core/math.hpp>
+#include <shade/core/quadrature.hpp>
 #include <shade/core/types.hpp>
 
 namespace shade {
@@ -101,20 +102,9 @@ struct albedo_tables_of<beckmann<T>> {
 /// Returns values in [0, 1].
 template <std::floating_point T, class Fresnel>
 [[nodiscard]] rgb<T> fresnel_average(const Fresnel& fresnel) noexcept {
-    constexpr double node[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
-                                0.9061798459386640};
-    constexpr double weight[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                                  0.4786286704993665, 0.2369268850561891};
-    constexpr int intervals = 8;
-    glm::dvec3 sum(0);
-    for (int i = 0; i < intervals; ++i) {
-        for (int k = 0; k < 5; ++k) {
-            const double mu = (double(i) + 0.5 * (1.0 + node[k])) / intervals;
-            sum += glm::dvec3(fresnel.F(T(mu))) * (weight[k] * mu);
-        }
-    }
-    // sum * (half-width 0.5 / intervals) * 2.
-    return rgb<T>(glm::clamp(sum / double(intervals), glm::dvec3(0), glm::dvec3(1)));
+    const glm::dvec3 average = gauss_legendre_integral(
+        [&fresnel](double mu) { return glm::dvec3(fresnel.F(T(mu))) * (2 * mu); }, 0, 1, 8);
+    return rgb<T>(glm::clamp(average, glm::dvec3(0), glm::dvec3(1)));
 }
 
 /// F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) per channel (Kulla, Conty 2017, the

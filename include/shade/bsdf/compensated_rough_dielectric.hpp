@@ -38,29 +38,6 @@ namespace detail {
 /// only amplify the float rounding of the table.
 inline constexpr double dielectric_compensation_min_loss = 1e-6;
 
-/// The cosine-weighted hemispherical average of the exact dielectric Fresnel reflectance
-/// seen from the rarer side, 2 integral_0^1 F(mu, eta_hat) mu dmu for eta_hat > 1, by
-/// 5-point Gauss-Legendre quadrature on 8 equal intervals (Abramowitz, Stegun 1964,
-/// "Handbook of Mathematical Functions", 25.4.29; F is smooth there: no total internal
-/// reflection from the rarer side). Dimensionless, in [0, 1].
-template <std::floating_point T>
-[[nodiscard]] inline T dielectric_fresnel_average(T eta_hat) noexcept {
-    constexpr double node[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
-                                0.9061798459386640};
-    constexpr double weight[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                                  0.4786286704993665, 0.2369268850561891};
-    constexpr int intervals = 8;
-    double sum = 0;
-    for (int i = 0; i < intervals; ++i)
-        for (int k = 0; k < 5; ++k) {
-            const double mu = (double(i) + 0.5 * (1.0 + node[k])) / intervals;
-            sum += weight[k] * mu * F_dielectric(mu, double(eta_hat));
-        }
-    // sum * (half-width 0.5 / intervals) * 2.
-    const double average = sum / intervals;
-    return T(average < 0 ? 0 : (average > 1 ? 1 : average));
-}
-
 /// The albedo tables of the compensated rough dielectric over a distribution type, and its
 /// two roughnesses; defined for ggx and beckmann (Beckmann's m read as alpha, as its
 /// generator does). `anisotropic` says whether the anisotropic correction of
@@ -301,7 +278,7 @@ private:
         const std::size_t r = eta > T(1) ? 0 : 1;
         const std::size_t d = 1 - r;
         const T eta_hat2 = sqr(side_[r].eta_s);
-        T tau_r = T(1) - detail::dielectric_fresnel_average(side_[r].eta_s);
+        T tau_r = T(1) - dielectric_fresnel_average(side_[r].eta_s);
         T tau_d = tau_r * loss[r] / (eta_hat2 * loss[d]);
         if (tau_d > T(1)) {
             tau_d = T(1);

@@ -44,6 +44,7 @@
 #include <glm/common.hpp>
 
 #include <shade/brdf/microfacet/albedo_table.hpp>
+#include <shade/core/quadrature.hpp>
 
 namespace shade::detail {
 
@@ -209,19 +210,9 @@ template <std::floating_point T>
 template <std::floating_point T>
 [[nodiscard]] inline T dielectric_albedo_average(const float* table, const dielectric_albedo_grid& g,
                                                  const dielectric_albedo_cell<T>& cell) noexcept {
-    constexpr double node[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
-                                0.9061798459386640};
-    constexpr double weight[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                                  0.4786286704993665, 0.2369268850561891};
-    constexpr int intervals = 8;
-    T sum = 0;
-    for (int i = 0; i < intervals; ++i)
-        for (int k = 0; k < 5; ++k) {
-            const T mu = T((double(i) + 0.5 * (1.0 + node[k])) / intervals);
-            sum += T(weight[k]) * mu * dielectric_albedo_lookup(table, g, cell, mu);
-        }
-    // sum * (half-width 0.5 / intervals) * 2.
-    return glm::clamp(sum / T(intervals), T(0), T(1));
+    const T average = T(gauss_legendre_integral(
+        [&](double mu) { return 2 * mu * double(dielectric_albedo_lookup(table, g, cell, T(mu))); }, 0, 1, 8));
+    return glm::clamp(average, T(0), T(1));
 }
 
 } // namespace shade::detail

@@ -59,6 +59,7 @@
 
 #include <shade/brdf/microfacet/albedo_table.hpp>
 #include <shade/bsdf/dielectric_albedo_table.hpp>
+#include <shade/core/quadrature.hpp>
 
 namespace shade::detail {
 
@@ -227,10 +228,8 @@ template <std::floating_point T>
 /// tests.
 [[nodiscard]] inline double dielectric_anisotropic_row_average(const float* row) noexcept {
     constexpr std::size_t nx = dielectric_anisotropic_mu_nodes;
-    constexpr double node[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
-                                0.9061798459386640};
-    constexpr double weight[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                                  0.4786286704993665, 0.2369268850561891};
+    constexpr const double* node = gauss_legendre_5_nodes;
+    constexpr const double* weight = gauss_legendre_5_weights;
     double sum = 0;
     for (std::size_t c = 0; c + 1 < nx; ++c)
         for (int q = 0; q < 5; ++q) {
@@ -255,10 +254,8 @@ template <std::floating_point T>
                                                             const dielectric_anisotropic_cell<T>& cell,
                                                             std::size_t side) noexcept {
     constexpr std::size_t nu = dielectric_anisotropic_azimuth_nodes;
-    constexpr double node[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
-                                0.9061798459386640};
-    constexpr double weight[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                                  0.4786286704993665, 0.2369268850561891};
+    constexpr const double* node = gauss_legendre_5_nodes;
+    constexpr const double* weight = gauss_legendre_5_weights;
     double r[nu] = {};
     for (int a = 0; a < 4; ++a)
         for (int b = 0; b < 4; ++b)

@@ -192,36 +192,11 @@ template <std::floating_point T>
     return glm::mix(r_b, widened, coat_weight);
 }
 
-/// The hemispherical albedo of the dielectric Fresnel factor, E_F(eta) = 2 integral_0^1
-/// F(mu, eta) mu dmu (the specification's footnote avg_fresnel), for any eta > 0: for eta >=
-/// 1 by 5-point Gauss-Legendre quadrature on 16 equal intervals (Abramowitz, Stegun 1964,
-/// 25.4.29; F is smooth there); for eta < 1 by the relation the footnote gives, E_F(eta) =
-/// 1 - eta^2 (1 - E_F(1 / eta)) (the light that the denser side lets out is what the rarer
-/// side lets in, scaled by the solid-angle compression eta^2). Dimensionless, in [0, 1].
-template <std::floating_point T>
-[[nodiscard]] inline T fresnel_hemispherical_albedo(T eta) noexcept {
-    const double e = double(eta) >= 1 ? double(eta) : 1 / double(eta);
-    constexpr double node[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
-                                0.9061798459386640};
-    constexpr double weight[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                                  0.4786286704993665, 0.2369268850561891};
-    constexpr int intervals = 16;
-    double sum = 0;
-    for (int i = 0; i < intervals; ++i)
-        for (int k = 0; k < 5; ++k) {
-            const double mu = (double(i) + 0.5 * (1.0 + node[k])) / intervals;
-            sum += weight[k] * mu * F_dielectric(mu, e);
-        }
-    const double above = sum / intervals; // 2 * (half-width 0.5 / intervals) * sum
-    const double albedo = double(eta) >= 1 ? above : 1 - double(eta) * double(eta) * (1 - above);
-    return T(glm::clamp(albedo, 0.0, 1.0));
-}
-
 /// Section "Coat", "Darkening", equations general_darkening_formula,
 /// internal_diffuse_reflection_coefficient_for_rough_base / _smooth_base / _general_base and
 /// modulated_darkening_factor: the factor the base's lobes are multiplied by under a coat,
 ///
-///     K_r = 1 - (1 - E_F(eta_c)) / eta_c^2,   K_s = F(mu_o, eta_c),   K = lerp(K_s, K_r, r_b)
+///     K_r = 1 - (1 - E_F(eta_c)) / eta_c^2,   E_F = dielectric_fresnel_average (footnote avg_fresnel),   K_s = F(mu_o, eta_c),   K = lerp(K_s, K_r, r_b)
 ///     Delta = (1 - K) / (1 - E_b K),          factor = lerp(1, Delta, C delta)
 ///
 /// with eta_c the coat's index relative to the ambient medium, mu_o the view cosine, r_b the
@@ -233,7 +208,7 @@ template <std::floating_point T>
 template <std::floating_point T>
 [[nodiscard]] inline rgb<T> coat_darkening_factor(const rgb<T>& base_albedo, T eta_c, T mu_o, T r_b, T coat_weight,
                                                   T coat_darkening) noexcept {
-    const T k_r = T(1) - (T(1) - fresnel_hemispherical_albedo(eta_c)) / (eta_c * eta_c);
+    const T k_r = T(1) - (T(1) - dielectric_fresnel_average(eta_c)) / (eta_c * eta_c);
     const T k_s = F_dielectric(mu_o, eta_c);
     const T k = glm::mix(k_s, k_r, r_b);
     const rgb<T> delta = rgb<T>(T(1) - k) / (rgb<T>(1) - base_albedo * k);
