@@ -612,6 +612,31 @@ struct sample_options {
 
 namespace detail {
 
+/// |a - b| / max(|a|, |b|), 0 when both are 0: the relative error of sample_consistency.
+inline double consistency_relative(double a, double b) {
+    const double scale = std::max(std::abs(a), std::abs(b));
+    return scale > 0 ? std::abs(a - b) / scale : 0.0;
+}
+
+/// The bookkeeping both sample_consistency bodies share: counts a measure above the
+/// result's tolerance as a failure and keeps the worst (NaN counts as infinite) with its
+/// rule and directions.
+template <std::floating_point T>
+struct consistency_tally {
+    result<T>& r;
+    std::string worst_what = "nothing"; ///< the rule of the worst measure
+
+    void record(double measure, const char* what, const vec3<T>& l, const vec3<T>& v) {
+        if (!(measure <= r.tolerance)) ++r.failures;
+        if (!(measure <= r.worst)) { // NaN and the first violation both land here
+            r.worst = std::isnan(measure) ? std::numeric_limits<double>::infinity() : measure;
+            worst_what = what;
+            r.l = l;
+            r.v = v;
+        }
+    }
+};
+
 /// The body of sample_consistency (see there) for a BSDF with its own sampler
 /// (model_ref::two_sided): views from both sides, both transport modes.
 template <std::floating_point T>
@@ -629,19 +654,10 @@ result<T> run_sample_consistency(const model_ref<T>& model, const surface_point<
     r.at = at;
     r.tolerance = options.relative_tolerance >= 0 ? options.relative_tolerance : (sizeof(T) <= 4 ? 1e-3 : 1e-6);
     const vec3<T> n = at.n();
-    std::string worst_what = "nothing";
-    const auto relative = [](double a, double b) {
-        const double scale = std::max(std::abs(a), std::abs(b));
-        return scale > 0 ? std::abs(a - b) / scale : 0.0;
-    };
-    const auto record = [&](double measure, const char* what, const vec3<T>& l, const vec3<T>& v) {
-        if (!(measure <= r.tolerance)) ++r.failures;
-        if (!(measure <= r.worst)) { // NaN and the first violation both land here
-            r.worst = std::isnan(measure) ? std::numeric_limits<double>::infinity() : measure;
-            worst_what = what;
-            r.l = l;
-            r.v = v;
-        }
+    consistency_tally<T> tally{r};
+    const auto relative = consistency_relative;
+    const auto record = [&tally](double measure, const char* what, const vec3<T>& l, const vec3<T>& v) {
+        tally.record(measure, what, l, v);
     };
     const auto infinite = std::numeric_limits<double>::infinity();
     rng random(options.seed ^ 0x5851f42d4c957f2dULL);
@@ -690,7 +706,7 @@ result<T> run_sample_consistency(const model_ref<T>& model, const surface_point<
                     " (worst " + detail::number(r.worst, 3) + ").";
     } else {
         r.message = "sample consistency FAILS for " + r.model + ": " + std::to_string(r.failures) + " of " +
-                    std::to_string(r.tried) + " checks broke the rule '" + worst_what + "'; worst relative error " +
+                    std::to_string(r.tried) + " checks broke the rule '" + tally.worst_what + "'; worst relative error " +
                     detail::number(r.worst, 3) + " for " + detail::where(r.l, r.v, at) +
                     ". A brdf_sample must hold exactly what f and pdf return at its direction.";
     }
@@ -707,19 +723,10 @@ result<T> run_bsdf_sample_consistency(const model_ref<T>& model, const surface_p
     r.at = at;
     r.tolerance = options.relative_tolerance >= 0 ? options.relative_tolerance : (sizeof(T) <= 4 ? 1e-3 : 1e-6);
     const vec3<T> n = at.n();
-    std::string worst_what = "nothing";
-    const auto relative = [](double a, double b) {
-        const double scale = std::max(std::abs(a), std::abs(b));
-        return scale > 0 ? std::abs(a - b) / scale : 0.0;
-    };
-    const auto record = [&](double measure, const char* what, const vec3<T>& l, const vec3<T>& v) {
-        if (!(measure <= r.tolerance)) ++r.failures;
-        if (!(measure <= r.worst)) { // NaN and the first violation both land here
-            r.worst = std::isnan(measure) ? std::numeric_limits<double>::infinity() : measure;
-            worst_what = what;
-            r.l = l;
-            r.v = v;
-        }
+    consistency_tally<T> tally{r};
+    const auto relative = consistency_relative;
+    const auto record = [&tally](double measure, const char* what, const vec3<T>& l, const vec3<T>& v) {
+        tally.record(measure, what, l, v);
     };
     const auto infinite = std::numeric_limits<double>::infinity();
     // eta_inside as given, or as the first transmission sets it (0 until then).
@@ -854,7 +861,7 @@ result<T> run_bsdf_sample_consistency(const model_ref<T>& model, const surface_p
                     detail::number(r.worst, 3) + ").";
     } else {
         r.message = "sample consistency FAILS for " + r.model + ": " + std::to_string(r.failures) + " checks of " +
-                    std::to_string(r.tried) + " draws failed, the worst the rule '" + worst_what + "' (" + eta_text +
+                    std::to_string(r.tried) + " draws failed, the worst the rule '" + tally.worst_what + "' (" + eta_text +
                     "); worst relative error " + detail::number(r.worst, 3) + " for " + detail::where(r.l, r.v, at) +
                     ". A bsdf_sample must hold what f and pdf return at its direction, or for a delta lobe its "
                     "direction and throughput, with the flags and eta of the side l is on.";
