@@ -181,8 +181,8 @@ RTCDevice device() {
     return d.device;
 }
 
-/// Embree's scene over s's mesh (default build quality, one thread), committed.
-RTCScene embree_build(const scene_data& s) {
+/// Embree's scene over s's mesh (default build quality, one thread), not yet committed.
+RTCScene embree_scene(const scene_data& s) {
     RTCScene scene = rtcNewScene(device());
     RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -194,6 +194,12 @@ RTCScene embree_build(const scene_data& s) {
     rtcCommitGeometry(geom);
     rtcAttachGeometry(scene, geom);
     rtcReleaseGeometry(geom);
+    return scene;
+}
+
+/// Embree's scene over s's mesh, committed (built).
+RTCScene embree_build(const scene_data& s) {
+    RTCScene scene = embree_scene(s);
     rtcCommitScene(scene);
     return scene;
 }
@@ -201,18 +207,8 @@ RTCScene embree_build(const scene_data& s) {
 /// The bytes Embree's scene over s holds after its commit beyond what it held before
 /// (the hierarchy and its leaves), and the most it held beyond that during the commit.
 std::pair<double, double> embree_memory_of(const scene_data& s) {
-    // As embree_build, with the monitor read around the commit.
-    RTCScene scene = rtcNewScene(device());
-    RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                           3 * sizeof(float), s.positions.size() / 3));
-    std::copy(s.positions.begin(), s.positions.end(), vb);
-    auto* ib = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), s.indices.size() / 3));
-    std::copy(s.indices.begin(), s.indices.end(), ib);
-    rtcCommitGeometry(geom);
-    rtcAttachGeometry(scene, geom);
-    rtcReleaseGeometry(geom);
+    // The monitor read around the commit.
+    RTCScene scene = embree_scene(s);
     const long long before = embree_bytes.held;
     embree_bytes.reset();
     rtcCommitScene(scene);
