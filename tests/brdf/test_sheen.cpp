@@ -15,6 +15,7 @@
 #include <shade/check/properties.hpp>
 #include <shade/core/random.hpp>
 
+#include "brdf/properties_support.hpp"
 #include "brdf/sampling.hpp"
 #include "brdf/support.hpp"
 
@@ -316,36 +317,10 @@ TEST_CASE_TEMPLATE("sheen: sample weight is F E exactly; sample and pdf agree an
 
 TEST_CASE_TEMPLATE("sheen: property kit (positivity, coverage, sampling, energy); not reciprocal", T, float,
                    double) {
-    namespace check = shade::check;
-    shade::surface_point<T> at;
-    at.shading = shade::frame<T>::from_normal_tangent(glm::normalize(shade::vec3<T>(T(0.2), T(0.3), T(1))), {1, 0, 0});
+    // The lobe belongs to v: f(l, v) != f(v, l), and the kit's reciprocity check must see it.
     for (const T roughness : {T(0.03), T(0.1), T(0.5), T(1)}) {
         CAPTURE(roughness);
-        const shade::zeltner_sheen<T> model(rgb<T>(1), roughness);
-        const std::string name = "zeltner_sheen";
-        check::pair_options pairs{.pairs = 4000};
-        pairs.model = name;
-        check::doctest_expect(check::positivity(model, at, pairs));
-        check::doctest_expect(check::pdf_coverage(model, at, pairs));
-        check::sample_options consistency{.views = 100, .samples_per_view = 20};
-        consistency.model = name;
-        check::doctest_expect(check::sample_consistency(model, at, consistency));
-        for (const double theta_deg : {0.0, 60.0, 87.0}) {
-            const auto v = glm::normalize(
-                at.shading.to_world(shade::spherical_direction(T(theta_deg * shade::pi<double> / 180), T(0.4))));
-            check::chi2_options chi2{.samples = 40000, .tests = 24};
-            chi2.model = name;
-            check::doctest_expect(check::chi2_goodness_of_fit(model, v, at, chi2));
-            check::doctest_expect(check::pdf_normalization(model, v, at, chi2));
-        }
-        check::albedo_options albedo{.strata = 128, .view_angles = 4, .azimuths = 1,
-                                     .estimator = check::albedo_estimator::own_sampler};
-        albedo.model = name;
-        check::doctest_expect(check::energy_conservation(model, at, albedo));
-        // The lobe belongs to v: f(l, v) != f(v, l). The kit's reciprocity check must see it.
-        const auto recip = check::reciprocity(model, at, pairs);
-        MESSAGE("roughness " << double(roughness) << ": worst relative reciprocity difference " << recip.worst);
-        CHECK_FALSE(recip.passed);
+        expect_every_property(shade::zeltner_sheen<T>(rgb<T>(1), roughness), "zeltner_sheen", 24, false);
     }
 }
 
@@ -511,33 +486,9 @@ TEST_CASE_TEMPLATE("sheen reciprocal: sampling is exact (weight F E'(n.v)), samp
 }
 
 TEST_CASE_TEMPLATE("sheen reciprocal: property kit, reciprocity included", T, float, double) {
-    namespace check = shade::check;
-    shade::surface_point<T> at;
-    at.shading = shade::frame<T>::from_normal_tangent(glm::normalize(shade::vec3<T>(T(0.2), T(0.3), T(1))), {1, 0, 0});
     for (const T roughness : {T(0.05), T(0.3), T(1)}) {
         CAPTURE(roughness);
-        const shade::zeltner_sheen_reciprocal<T> model(rgb<T>(1), roughness);
-        const std::string name = "zeltner_sheen_reciprocal";
-        check::pair_options pairs{.pairs = 4000};
-        pairs.model = name;
-        check::doctest_expect(check::positivity(model, at, pairs));
-        check::doctest_expect(check::reciprocity(model, at, pairs));
-        check::doctest_expect(check::pdf_coverage(model, at, pairs));
-        check::sample_options consistency{.views = 100, .samples_per_view = 20};
-        consistency.model = name;
-        check::doctest_expect(check::sample_consistency(model, at, consistency));
-        for (const double theta_deg : {0.0, 60.0, 87.0}) {
-            const auto v = glm::normalize(
-                at.shading.to_world(shade::spherical_direction(T(theta_deg * shade::pi<double> / 180), T(0.4))));
-            check::chi2_options chi2{.samples = 40000, .tests = 18};
-            chi2.model = name;
-            check::doctest_expect(check::chi2_goodness_of_fit(model, v, at, chi2));
-            check::doctest_expect(check::pdf_normalization(model, v, at, chi2));
-        }
-        check::albedo_options albedo{.strata = 128, .view_angles = 4, .azimuths = 1,
-                                     .estimator = check::albedo_estimator::own_sampler};
-        albedo.model = name;
-        check::doctest_expect(check::energy_conservation(model, at, albedo));
+        expect_every_property(shade::zeltner_sheen_reciprocal<T>(rgb<T>(1), roughness), "zeltner_sheen_reciprocal", 18);
     }
 }
 
