@@ -5,7 +5,8 @@
 // (F_schlick, F_dielectric, F_conductor) and as a small term type (schlick<T>,
 // dielectric_fresnel<T>, conductor_fresnel<T>) for shade::cook_torrance and
 // shade::ashikhmin_shirley; F_dielectric_two_sided takes a signed cosine for light from
-// either side of a dielectric. Measured metals: shade/brdf/metals.hpp.
+// either side of a dielectric. dielectric_fresnel_average is the hemispherical average of
+// F_dielectric (E_F of OpenPBR's coat). Measured metals: shade/brdf/metals.hpp.
 //
 // The argument cos_theta is the cosine between the incident direction and the normal of
 // the reflecting (micro)facet, e.g. l·h = v·h in a microfacet model, on either side: a
