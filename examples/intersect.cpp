@@ -8,6 +8,7 @@
 #include <shade/geometry/plane.hpp>
 #include <shade/geometry/sphere.hpp>
 #include <shade/geometry/triangle.hpp>
+#include <shade/geometry/triangle_algorithms.hpp>
 
 #include "support/cli.hpp"
 

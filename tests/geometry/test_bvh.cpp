@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <optional>
@@ -19,6 +20,8 @@
 #include <shade/core/random.hpp>
 #include <shade/geometry/bvh.hpp>
 #include <shade/geometry/triangle_bvh.hpp>
+
+#include "support/thread_executor.hpp"
 
 namespace {
 
@@ -463,4 +466,122 @@ TEST_CASE("memory_bytes: nodes and leaf data, with no unused capacity") {
         const shade::triangle_bvh<float, shade::watertight> tight(tris, width);
         CHECK(tight.memory_bytes() == tight.node_count() * (tight.node_width() == 8 ? 256 : 128) + tris.size() * 40);
     }
+}
+
+// The parallel build (detail::bvh_builder with an executor) gives the recursive build's
+// tree bit for bit, whatever the executor (in order, in reverse, on 1 to 4 threads) and
+// the task size (the nodes above it split level by level, the rest as subtrees), at
+// both widths: on a random mesh, a closed sphere, and 5000 copies of one triangle plus
+// others (all centroids of the copies coincide: median splits inside the level phase).
+TEST_CASE("bvh build: the same tree whatever the executor, threads and task size") {
+    shade::rng g(11);
+    std::vector<std::vector<shade::triangle<float>>> meshes{random_mesh<float>(g, 9000, 0.05f), closed_sphere<float>(5),
+                                                            std::vector<shade::triangle<float>>(5000, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}})};
+    for (const auto& t : random_mesh<float>(g, 300, 0.5f)) meshes[2].push_back(t);
+    const auto reverse = [](std::size_t n, const shade::parallel_task& task) {
+        for (std::size_t i = n; i-- > 0;) task(i);
+    };
+    const support::thread_executor one(1), two(2), three(3), four(4);
+    const auto same_bytes = [](const auto& a, const auto& b) {
+        return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
+    };
+    for (const auto& tris : meshes) {
+        std::vector<shade::detail::bvh_prim_ref> input;
+        for (std::uint32_t i = 0; i < tris.size(); ++i) input.push_back(shade::detail::make_prim_ref(shade::bounds(tris[i]), i));
+        for (const std::size_t width : {std::size_t(4), std::size_t(8)}) {
+            auto refs = input;
+            // One task for everything: the recursive build.
+            const auto expected = shade::detail::bvh_builder(8, 8, 1u << 26).build(refs, width);
+            CHECK(expected.order.size() == tris.size());
+            int cases = 0;
+            const auto check = [&](auto&& exec, std::uint32_t task_size) {
+                auto r = input;
+                const auto got = shade::detail::bvh_builder(8, 8, task_size).build(r, width, shade::detail::executor_ref(exec));
+                CHECK(same_bytes(got.nodes, expected.nodes));
+                CHECK(same_bytes(got.wide_nodes, expected.wide_nodes));
+                CHECK(same_bytes(got.order, expected.order));
+                ++cases;
+            };
+            for (const std::uint32_t task_size : {64u, 1000u, 4096u}) {
+                CAPTURE(task_size);
+                check(shade::serial_executor{}, task_size);
+                check(reverse, task_size);
+                check(one, task_size);
+                check(two, task_size);
+                check(three, task_size);
+                check(four, task_size);
+            }
+            CHECK(cases == 18);
+        }
+    }
+}
+
+// The public constructors with an executor: the same hierarchy as without one (the same
+// memory, nodes and hits, record for record), and hits that agree with brute force, at
+// every width, for the batched leaves and the watertight ones, float and double; bvh and
+// primitive_bvh too. A mesh above the default task size (4096), so the level phase runs.
+TEST_CASE_TEMPLATE("triangle_bvh, bvh: built by an executor, the same hierarchy and hits", T, float, double) {
+    shade::rng g(23);
+    const auto tris = random_mesh<T>(g, 6000, T(0.3));
+    const auto rays = random_rays<T>(g, 150);
+    const support::thread_executor two(2);
+    tally count;
+    for (const shade::bvh_width width : widths) {
+        CAPTURE(width);
+        const shade::triangle_bvh<T> serial(tris, width);
+        const shade::triangle_bvh<T> parallel(tris, width, two);
+        CHECK(parallel.memory_bytes() == serial.memory_bytes());
+        CHECK(parallel.node_count() == serial.node_count());
+        for (const auto& r : rays) {
+            const auto a = serial.closest(r), b = parallel.closest(r);
+            REQUIRE(a.has_value() == b.has_value());
+            if (!a) continue;
+            CHECK(a->primitive == b->primitive);
+            CHECK(a->hit.t == b->hit.t);
+            CHECK(a->hit.p == b->hit.p);
+        }
+        check_against_brute_force(parallel, std::span<const shade::triangle<T>>(tris), rays, count);
+        check_against_brute_force(shade::triangle_bvh<T, shade::watertight>(tris, width, two),
+                                  std::span<const shade::triangle<T>>(tris), rays, count);
+        std::vector<shade::aabb<T>> boxes;
+        for (const auto& t : tris) boxes.push_back(shade::bounds(t));
+        const shade::bvh<T> tree(boxes, width, two);
+        CHECK(tree.memory_bytes() == shade::bvh<T>(boxes, width).memory_bytes());
+        const auto test = [&](std::uint32_t i, const shade::ray<T>& r) { return shade::find_intersection(r, tris[i]); };
+        for (const auto& r : rays) {
+            const auto expected = brute_force<shade::moller_trumbore>(r, std::span<const shade::triangle<T>>(tris));
+            const auto got = tree.closest(r, test);
+            REQUIRE(got.has_value() == expected.has_value());
+            if (got) CHECK(got->hit.t == expected->second.t);
+        }
+    }
+    CHECK(count.hits > 50);
+    CHECK(count.hits < count.rays);
+    std::vector<shade::sphere<T>> spheres;
+    for (std::size_t i = 0; i < 5000; ++i) spheres.emplace_back(in_cube<T>(g, T(4)), T(0.01));
+    const shade::primitive_bvh<shade::sphere<T>> balls(spheres, shade::bvh_width::automatic, two);
+    for (const auto& r : rays) {
+        std::optional<T> nearest;
+        for (const auto& s : spheres)
+            if (auto h = shade::intersect(r, s); h && (!nearest || h->t < *nearest)) nearest = h->t;
+        const auto got = balls.closest(r);
+        REQUIRE(got.has_value() == nearest.has_value());
+        if (got) CHECK(got->hit.t == *nearest);
+    }
+}
+
+// Bad input found by a task still throws from the constructor, naming the first bad
+// element (here two, in different tasks of 4096).
+TEST_CASE("triangle_bvh, bvh: an executor's build names the first non-finite input") {
+    shade::rng g(3);
+    auto tris = random_mesh<float>(g, 10000, 0.1f);
+    tris[9000].v1.x = std::numeric_limits<float>::quiet_NaN();
+    tris[5000].v2.z = std::numeric_limits<float>::infinity();
+    const support::thread_executor two(2);
+    CHECK_THROWS_WITH_AS(shade::triangle_bvh<float>(tris, shade::bvh_width::automatic, two),
+                         doctest::Contains("triangle 5000"), shade::invalid_parameter);
+    std::vector<shade::aabb<float>> boxes;
+    for (const auto& t : tris) boxes.push_back(shade::bounds(t));
+    CHECK_THROWS_WITH_AS(shade::bvh<float>(boxes, shade::bvh_width::automatic, two), doctest::Contains("element 5000"),
+                         shade::invalid_parameter);
 }

@@ -14,6 +14,7 @@
 #include <glm/geometric.hpp>
 
 #include <shade/geometry/triangle.hpp>
+#include <shade/geometry/triangle_algorithms.hpp>
 
 #include "geometry/closed_meshes.hpp"
 #include "geometry/special_rays.hpp"

@@ -51,6 +51,7 @@
 #include <vector>
 
 #include <shade/core/error.hpp>
+#include <shade/core/parallel.hpp>
 #include <shade/core/types.hpp>
 #include <shade/geometry/aabb.hpp>
 #include <shade/geometry/detail/bvh_build.hpp>
@@ -88,15 +89,22 @@ public:
     /// Builds over the primitives with the given boxes, into nodes of `width` children.
     /// Throws shade::invalid_parameter naming "boxes" when a box is empty or not finite,
     /// or when there are 2^27 or more.
-    explicit bvh(std::span<const aabb<T>> boxes, bvh_width width = bvh_width::automatic) {
+    explicit bvh(std::span<const aabb<T>> boxes, bvh_width width = bvh_width::automatic)
+        : bvh(boxes, width, serial_executor{}) {}
+
+    /// The same build, its parallel parts run by the executor `run` (see
+    /// shade/core/parallel.hpp): the same hierarchy whatever the executor.
+    template <parallel_executor E>
+    bvh(std::span<const aabb<T>> boxes, bvh_width width, E&& run) {
         detail::require_bvh_size("boxes", boxes.size());
-        std::vector<detail::bvh_prim_ref> refs;
-        refs.reserve(boxes.size());
-        for (std::size_t i = 0; i < boxes.size(); ++i) {
-            detail::require_finite_box("boxes", i, boxes[i]);
-            refs.push_back(detail::make_prim_ref(boxes[i], static_cast<std::uint32_t>(i)));
-        }
-        tree_ = detail::bvh_builder(8, 1).build(refs, detail::bvh_node_width(width == bvh_width::four ? 4 : 8));
+        const detail::executor_ref exec(run);
+        auto made = detail::make_prim_refs(exec, boxes.size(), [&](std::size_t i) { return boxes[i]; },
+                                           [&](std::size_t i) {
+                                               return is_finite(boxes[i].lo) && is_finite(boxes[i].hi) && !boxes[i].empty();
+                                           });
+        if (made.first_invalid < boxes.size())
+            detail::require_finite_box("boxes", made.first_invalid, boxes[made.first_invalid]);
+        tree_ = detail::bvh_builder(8, 1).build(made.refs, detail::bvh_node_width(width == bvh_width::four ? 4 : 8), exec);
     }
 
     /// The nearest hit of r: test(index, ray) is called for primitives whose boxes r
@@ -177,6 +185,12 @@ public:
     /// shade::invalid_parameter naming "primitives" when a primitive's bounds are not finite.
     explicit primitive_bvh(std::span<const P> primitives, bvh_width width = bvh_width::automatic)
         : primitives_(primitives.begin(), primitives.end()), tree_(boxes_of(primitives), width) {}
+
+    /// The same, the hierarchy built in parallel by the executor `run` (see
+    /// shade/core/parallel.hpp): the same hierarchy whatever the executor.
+    template <parallel_executor E>
+    primitive_bvh(std::span<const P> primitives, bvh_width width, E&& run)
+        : primitives_(primitives.begin(), primitives.end()), tree_(boxes_of(primitives), width, run) {}
 
     /// The nearest hit of r, with the index of the primitive hit, or nothing.
     [[nodiscard]] std::optional<primitive_hit<hit_type>> closest(const ray<scalar_type>& r) const {

@@ -14,9 +14,9 @@
 //
 // Every algorithm is a tag type with a static member `find(ray, triangle, culling)`
 // returning std::optional<triangle_intersection<T>> (t, barycentrics, front_face) and a
-// `name`, so tests and benchmarks can loop over shade::triangle_algorithms on the same
-// data. shade::intersect<A> is find followed by shade::make_hit, which adds the hit point
-// and the unit normal. All algorithms
+// `name`, so tests and benchmarks can loop over the set of them
+// (shade/geometry/triangle_algorithms.hpp) on the same data. shade::intersect<A> is find
+// followed by shade::make_hit, which adds the hit point and the unit normal. All algorithms
 //   * are double-sided by default (culling::back_faces keeps front faces only);
 //   * treat counter-clockwise (v0, v1, v2), seen from the front, as the front face: the
 //     geometric normal is normalize(cross(v1 - v0, v2 - v0));
@@ -39,7 +39,6 @@
 #include <limits>
 #include <optional>
 #include <string_view>
-#include <tuple>
 #include <utility>
 
 #include <glm/common.hpp>
@@ -530,10 +529,6 @@ concept triangle_algorithm =
         { A::find(r, tri, cull) } -> std::same_as<std::optional<triangle_intersection<T>>>;
         { A::name } -> std::convertible_to<std::string_view>;
     };
-
-/// Every triangle algorithm shade provides, for tests and benchmarks to iterate over
-/// (std::apply on a value, or doctest's TEST_CASE_TEMPLATE_APPLY).
-using triangle_algorithms = std::tuple<moller_trumbore, plane_then_areas, watertight>;
 
 /// Where ray r meets triangle tri (t, barycentrics, front_face) using Algorithm
 /// (Möller-Trumbore by default), or nothing. The lean test for hot loops: build the full

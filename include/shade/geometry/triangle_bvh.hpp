@@ -10,6 +10,8 @@
 //         use(h->primitive, h->hit.t, h->hit.p, h->hit.n, h->hit.barycentric);
 //     const bool shadowed = mesh.any(shadow_ray);
 //     const shade::triangle_bvh<double, shade::watertight> closed(tris_d); // no leaks
+//     const shade::triangle_bvh<float> fast(tris, shade::bvh_width::automatic, threads);
+//         // built in parallel by an executor (shade/core/parallel.hpp): the same hierarchy
 //
 // closest() returns exactly what a loop of find_intersection<Algorithm> over all the
 // triangles keeps as nearest, with shade::make_hit's record (the hierarchy's box tests
@@ -28,6 +30,7 @@
 #include <vector>
 
 #include <shade/core/error.hpp>
+#include <shade/core/parallel.hpp>
 #include <shade/core/types.hpp>
 #include <shade/geometry/aabb.hpp>
 #include <shade/geometry/detail/bvh_build.hpp>
@@ -72,30 +75,14 @@ public:
     /// Builds over a copy of triangles, into nodes of `width` children. Throws
     /// shade::invalid_parameter naming "triangles" when a vertex is not finite (NaN or
     /// infinite), or for 2^27 triangles or more. Degenerate ones are kept and never hit.
-    explicit triangle_bvh(std::span<const triangle<T>> triangles, bvh_width width = bvh_width::automatic) {
-        detail::require_bvh_size("triangles", triangles.size());
-        std::vector<detail::bvh_prim_ref> refs;
-        refs.reserve(triangles.size());
-        for (std::size_t i = 0; i < triangles.size(); ++i) {
-            const triangle<T>& tri = triangles[i];
-            if (!(is_finite(tri.v0) && is_finite(tri.v1) && is_finite(tri.v2)))
-                throw invalid_parameter("triangles",
-                                        "must have finite vertices (triangle " + std::to_string(i) + ")",
-                                        detail::to_text(tri.v0) + ", " + detail::to_text(tri.v1) + ", " +
-                                            detail::to_text(tri.v2));
-            refs.push_back(detail::make_prim_ref(bounds(tri), static_cast<std::uint32_t>(i)));
-        }
-        constexpr auto leaves = static_cast<std::uint32_t>(leaf_width);
-        tree_ = detail::bvh_builder(batched ? 8 : 4, leaves)
-                    .build(refs, detail::bvh_node_width(width == bvh_width::four ? 4 : 8));
-        size_ = triangles.size();
-        ids_ = std::move(tree_.order);
-        if constexpr (batched) {
-            pack_batches(triangles);
-        } else {
-            triangles_.reserve(ids_.size());
-            for (const std::uint32_t id : ids_) triangles_.push_back(triangles[id]);
-        }
+    explicit triangle_bvh(std::span<const triangle<T>> triangles, bvh_width width = bvh_width::automatic)
+        : triangle_bvh(triangles, width, serial_executor{}) {}
+
+    /// The same build, its parallel parts run by the executor `run` (see
+    /// shade/core/parallel.hpp): the same hierarchy whatever the executor.
+    template <parallel_executor E>
+    triangle_bvh(std::span<const triangle<T>> triangles, bvh_width width, E&& run) {
+        build(triangles, width, detail::executor_ref(run));
     }
 
     /// The nearest hit of r (double-sided unless cull is culling::back_faces): the index
@@ -182,6 +169,34 @@ public:
 private:
     static constexpr std::uint32_t no_hit = ~std::uint32_t(0);
 
+    void build(std::span<const triangle<T>> triangles, bvh_width width, detail::executor_ref run) {
+        detail::require_bvh_size("triangles", triangles.size());
+        const auto finite = [&](std::size_t i) {
+            const triangle<T>& tri = triangles[i];
+            return is_finite(tri.v0) && is_finite(tri.v1) && is_finite(tri.v2);
+        };
+        auto made = detail::make_prim_refs(run, triangles.size(), [&](std::size_t i) { return bounds(triangles[i]); }, finite);
+        if (const std::size_t i = made.first_invalid; i < triangles.size()) {
+            const triangle<T>& tri = triangles[i];
+            throw invalid_parameter("triangles", "must have finite vertices (triangle " + std::to_string(i) + ")",
+                                    detail::to_text(tri.v0) + ", " + detail::to_text(tri.v1) + ", " +
+                                        detail::to_text(tri.v2));
+        }
+        constexpr auto leaves = static_cast<std::uint32_t>(leaf_width);
+        tree_ = detail::bvh_builder(batched ? 8 : 4, leaves)
+                    .build(made.refs, detail::bvh_node_width(width == bvh_width::four ? 4 : 8), run);
+        size_ = triangles.size();
+        ids_ = std::move(tree_.order);
+        if constexpr (batched) {
+            pack_batches(triangles, run);
+        } else {
+            triangles_.resize(ids_.size());
+            detail::bvh_for_ranges(run, ids_.size(), detail::bvh_builder::default_task_size, [&](std::size_t b, std::size_t e) {
+                for (std::size_t i = b; i < e; ++i) triangles_[i] = triangles[ids_[i]];
+            });
+        }
+    }
+
     /// shade::intersect(r, batch, cull), or, in the walk compiled for AVX (Avx; it runs
     /// only where the CPU has AVX), the AVX kernel itself, inlined there like this
     /// function and the leaf lambdas (SHADE_DETAIL_LEAF_INLINE): no test of the CPU and no
@@ -216,27 +231,31 @@ public:
 private:
 
     /// Replaces every leaf's range of triangles (in ids_ order) by its range of leaf_batch
-    /// blocks (ceil(count / leaf_width) of them, the last one partly filled).
-    void pack_batches(std::span<const triangle<T>> triangles) {
-        std::size_t blocks = 0;
+    /// blocks (ceil(count / leaf_width) of them, the last one partly filled), in the order
+    /// of the nodes and their children; the blocks are filled through run.
+    void pack_batches(std::span<const triangle<T>> triangles, detail::executor_ref run) {
+        std::vector<std::array<std::uint32_t, 3>> leaf; // each leaf's first triangle, count and first block
+        std::uint32_t blocks = 0;
         const auto each_node = [this](auto&& f) {
             for (auto& n : tree_.nodes) f(n);
             for (auto& n : tree_.wide_nodes) f(n);
         };
-        each_node([&](const auto& node) {
-            for (const std::uint32_t ref : node.child)
-                if (detail::is_leaf_ref(ref)) blocks += (detail::leaf_count(ref) + leaf_width - 1) / leaf_width;
-        });
-        leaves_.reserve(blocks);
         each_node([&](auto& node) {
             for (std::uint32_t& ref : node.child) {
                 if (!detail::is_leaf_ref(ref)) continue;
-                const std::uint32_t first = detail::leaf_first(ref), count = detail::leaf_count(ref);
-                const auto block_first = static_cast<std::uint32_t>(leaves_.size());
-                for (std::uint32_t i = first; i < first + count; i += leaf_width) {
-                    const std::uint32_t left = first + count - i;
+                const auto count = static_cast<std::uint32_t>((detail::leaf_count(ref) + leaf_width - 1) / leaf_width);
+                leaf.push_back({detail::leaf_first(ref), detail::leaf_count(ref), blocks});
+                ref = detail::make_leaf_ref(blocks, count);
+                blocks += count;
+            }
+        });
+        leaves_.resize(blocks);
+        detail::bvh_for_ranges(run, leaf.size(), 512, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t l = begin; l < end; ++l)
+                for (std::uint32_t i = leaf[l][0], k = leaf[l][2]; i < leaf[l][0] + leaf[l][1]; i += leaf_width, ++k) {
+                    const std::uint32_t left = leaf[l][0] + leaf[l][1] - i;
                     const std::uint32_t n = left < leaf_width ? left : std::uint32_t(leaf_width);
-                    leaf_batch& b = leaves_.emplace_back();
+                    leaf_batch& b = leaves_[k];
                     std::array<triangle<T>, batch_width> tri;
                     for (std::uint32_t j = 0; j < leaf_width; ++j) {
                         const std::uint32_t id = ids_[i + (j < n ? j : n - 1)];
@@ -245,8 +264,6 @@ private:
                     }
                     b.batch = triangle_batch<T, batch_width>(std::span<const triangle<T>>(tri.data(), n));
                 }
-                ref = detail::make_leaf_ref(block_first, static_cast<std::uint32_t>(leaves_.size()) - block_first);
-            }
         });
         std::vector<std::uint32_t>().swap(ids_); // frees it (= {} would keep the capacity)
     }

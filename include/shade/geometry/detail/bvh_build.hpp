@@ -17,6 +17,7 @@
 
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
+#include <shade/core/parallel.hpp>
 #include <shade/core/types.hpp>
 #include <shade/geometry/aabb.hpp>
 
@@ -187,31 +188,53 @@ struct bvh_tree {
 /// costly, or when all centroids coincide; otherwise it is split (at the median when
 /// binning cannot separate the centroids, or below depth median_depth, which bounds the
 /// depth and so the traversal's stack).
+///
+/// In parallel (through an executor, shade/core/parallel.hpp), as Wald 2007 §5 does on
+/// few cores: nodes of more than task_size primitives are split level by level, their
+/// binning shared out task_size primitives per task and the partitions of a level's
+/// nodes run side by side; each smaller node's subtree is then built by one task. Bins
+/// merge by min, max and integer sums, which no order changes, and each partition is the
+/// recursive build's, so the tree is the same whatever the executor and task_size.
 class bvh_builder {
 public:
     static constexpr int bins = 16;
     static constexpr int median_depth = 48;
+    /// Primitives per task of the parallel build (see above), unless given.
+    static constexpr std::uint32_t default_task_size = 4096;
 
-    /// block: a power of two.
-    bvh_builder(std::uint32_t max_leaf, std::uint32_t block)
-        : max_leaf_(max_leaf), block_(block), block_shift_(static_cast<std::uint32_t>(std::countr_zero(block))) {}
+    /// block: a power of two; task_size > 0.
+    bvh_builder(std::uint32_t max_leaf, std::uint32_t block, std::uint32_t task_size = default_task_size)
+        : max_leaf_(max_leaf), block_(block), block_shift_(static_cast<std::uint32_t>(std::countr_zero(block))),
+          task_size_(task_size) {}
 
-    /// Builds over refs (reordered in place), into nodes of `width` (4 or 8) children.
-    [[nodiscard]] bvh_tree build(std::vector<bvh_prim_ref>& refs, std::size_t width = 4) {
+    /// Builds over refs (reordered in place), into nodes of `width` (4 or 8) children,
+    /// running the parallel parts through `run`; the same tree whatever it is.
+    [[nodiscard]] bvh_tree build(std::vector<bvh_prim_ref>& refs, std::size_t width, executor_ref run) {
         bvh_tree tree;
         tree.width = width == 8 ? 8 : 4;
         refs_ = refs.data();
         binary_.clear();
         if (refs.empty()) return tree;
-        binary_.reserve(2 * refs.size() / (block_ > 1 ? block_ : 1u) + 2);
+        const auto n = static_cast<std::uint32_t>(refs.size());
+        binary_.reserve(2 * refs.size() / block_ + 2);
+        std::vector<std::array<bvh_box, 2>> part(tasks(n)); // each task's box and centroid box
+        run(part.size(), [&](std::size_t c) { bounds_of(task_begin(0, c), task_end(0, n, c), part[c][0], part[c][1]); });
         bvh_box box, centroids;
-        bounds_of(0, static_cast<std::uint32_t>(refs.size()), box, centroids);
-        const std::uint32_t root = build_binary(0, static_cast<std::uint32_t>(refs.size()), 0, box, centroids);
+        for (const auto& b : part) box.grow(b[0]), centroids.grow(b[1]);
+        if (n <= task_size_) build_binary(0, n, 0, box, centroids); // the root is binary_[0]
+        else build_top(n, box, centroids, run);
         tree.order.resize(refs.size());
-        for (std::size_t i = 0; i < refs.size(); ++i) tree.order[i] = refs[i].index();
-        if (tree.width == 8) collapse_root(tree.wide_nodes, root);
-        else collapse_root(tree.nodes, root);
+        run(part.size(), [&](std::size_t c) {
+            for (std::uint32_t i = task_begin(0, c); i < task_end(0, n, c); ++i) tree.order[i] = refs[i].index();
+        });
+        if (tree.width == 8) collapse_root(tree.wide_nodes, 0);
+        else collapse_root(tree.nodes, 0);
         return tree;
+    }
+    /// The same, on the caller's thread.
+    [[nodiscard]] bvh_tree build(std::vector<bvh_prim_ref>& refs, std::size_t width = 4) {
+        const serial_executor serial;
+        return build(refs, width, executor_ref(serial));
     }
 
 private:
@@ -221,6 +244,15 @@ private:
         std::uint32_t count = 0; ///< leaf: number of primitives; inner: 0
         std::uint32_t right = 0; ///< inner: right child
     };
+
+    /// The tasks of task_size primitives over n, and the range of task c from `first`.
+    [[nodiscard]] std::size_t tasks(std::uint32_t n) const noexcept { return (n - 1) / task_size_ + 1; }
+    [[nodiscard]] std::uint32_t task_begin(std::uint32_t first, std::size_t c) const noexcept {
+        return first + static_cast<std::uint32_t>(c) * task_size_;
+    }
+    [[nodiscard]] std::uint32_t task_end(std::uint32_t first, std::uint32_t end, std::size_t c) const noexcept {
+        return end - task_begin(first, c) > task_size_ ? task_begin(first, c) + task_size_ : end;
+    }
 
     /// plan_slots's result for one binary node.
     struct slot_plan {
@@ -402,12 +434,132 @@ private:
         }
     }
 
+    /// The primitives' boxes and counts per axis and bin.
+    struct bin_set {
+        std::array<std::array<bvh_box, bins>, 3> box;
+        std::array<std::array<std::uint32_t, bins>, 3> count;
+    };
+
     /// Builds the binary subtree over refs_[begin, end), whose box and centroid box are
     /// given; returns its node's index.
     std::uint32_t build_binary(std::uint32_t begin, std::uint32_t end, int depth, const bvh_box& box,
                                const bvh_box& centroids) {
+        const split_result s = split(begin, end, depth, box, centroids, nullptr);
+        if (s.leaf) return make_leaf(box, begin, end);
+        const auto index = static_cast<std::uint32_t>(binary_.size());
+        binary_.push_back(binary_node{box, 0, 0, 0});
+        const std::uint32_t left = build_binary(begin, s.mid, depth + 1, s.left_box, s.left_centroids);
+        const std::uint32_t right = build_binary(s.mid, end, depth + 1, s.right_box, s.right_centroids);
+        binary_[index].first = left;
+        binary_[index].right = right;
+        return index;
+    }
+
+    /// A node of the parallel build's levels: its primitives, depth, boxes and binary_ index.
+    struct pending {
+        std::uint32_t begin, end;
+        int depth;
+        bvh_box box, centroids;
+        std::uint32_t node;
+    };
+
+    /// The parallel build of the binary tree over the n > task_size primitives (see the
+    /// class comment), the root at binary_[0]: the nodes of more than task_size
+    /// primitives level by level, then the smaller ones' subtrees, one task each, whose
+    /// nodes are appended (children after their parent, as plan_slots needs).
+    void build_top(std::uint32_t n, const bvh_box& box, const bvh_box& centroids, executor_ref run) {
+        binary_.push_back(binary_node{box, 0, 0, 0});
+        std::vector<pending> level{pending{0, n, 0, box, centroids, 0}}, subtrees;
+        while (!level.empty()) {
+            // The bins of the level's nodes, task_size primitives per task (none below
+            // median_depth, split at the median).
+            std::vector<std::size_t> first(level.size() + 1, 0);
+            std::vector<std::uint32_t> owner;
+            for (std::size_t i = 0; i < level.size(); ++i) {
+                first[i + 1] = first[i] + (level[i].depth < median_depth ? tasks(level[i].end - level[i].begin) : 0);
+                owner.resize(first[i + 1], static_cast<std::uint32_t>(i));
+            }
+            std::vector<std::array<bin_set, 2>> binned(first.back());
+            run(binned.size(), [&](std::size_t c) {
+                const pending& p = level[owner[c]];
+                const std::size_t nb = bins_for(p.end - p.begin);
+                bin_into(task_begin(p.begin, c - first[owner[c]]), task_end(p.begin, p.end, c - first[owner[c]]),
+                         p.centroids.lo, bin_scale(p.centroids, nb), nb, binned[c]);
+            });
+            std::vector<split_result> split_of(level.size());
+            run(level.size(), [&](std::size_t i) {
+                const pending& p = level[i];
+                for (std::size_t c = first[i] + 1; c < first[i + 1]; ++c)
+                    merge_bins(binned[first[i]][0], binned[c][0], bins_for(p.end - p.begin));
+                split_of[i] = split(p.begin, p.end, p.depth, p.box, p.centroids,
+                                    first[i] < first[i + 1] ? &binned[first[i]][0] : nullptr);
+            });
+            std::vector<pending> next;
+            for (std::size_t i = 0; i < level.size(); ++i) {
+                const pending& p = level[i];
+                const split_result& s = split_of[i];
+                if (s.leaf) {
+                    binary_[p.node] = binary_node{p.box, p.begin, p.end - p.begin, 0};
+                    continue;
+                }
+                const auto left = static_cast<std::uint32_t>(binary_.size());
+                binary_.resize(binary_.size() + 2); // the children, filled below or by a task
+                binary_[p.node] = binary_node{p.box, left, 0, left + 1};
+                for (const pending& c : {pending{p.begin, s.mid, p.depth + 1, s.left_box, s.left_centroids, left},
+                                         pending{s.mid, p.end, p.depth + 1, s.right_box, s.right_centroids, left + 1}})
+                    (c.end - c.begin > task_size_ ? next : subtrees).push_back(c);
+            }
+            level = std::move(next);
+        }
+        std::vector<std::vector<binary_node>> part(subtrees.size());
+        run(part.size(), [&](std::size_t i) {
+            const pending& p = subtrees[i];
+            bvh_builder b(max_leaf_, block_, task_size_);
+            b.refs_ = refs_;
+            b.binary_.reserve(2 * (p.end - p.begin) / block_ + 2);
+            b.build_binary(p.begin, p.end, p.depth, p.box, p.centroids);
+            part[i] = std::move(b.binary_);
+        });
+        for (std::size_t i = 0; i < part.size(); ++i) {
+            // Local node j: the task's root (0) at its place, the others appended.
+            const auto offset = static_cast<std::uint32_t>(binary_.size()) - 1;
+            const auto place = [&](std::uint32_t j) { return j == 0 ? subtrees[i].node : offset + j; };
+            for (std::uint32_t j = 0; j < part[i].size(); ++j) {
+                binary_node b = part[i][j];
+                if (b.count == 0) b.first = place(b.first), b.right = place(b.right);
+                if (j == 0) binary_[subtrees[i].node] = b;
+                else binary_.push_back(b);
+            }
+        }
+    }
+
+    /// How a node is split: a leaf, or at mid with both sides' boxes.
+    struct split_result {
+        bool leaf = true;
+        std::uint32_t mid = 0;
+        bvh_box left_box, left_centroids, right_box, right_centroids;
+    };
+
+    /// The scale of binning into nb bins: bin = floor((c - centroids.lo) scale) per axis,
+    /// 0 on an axis without extent.
+    [[nodiscard]] static bvh_v4 bin_scale(const bvh_box& centroids, std::size_t nb) noexcept {
+        bvh_v4 scale{0.0f, 0.0f, 0.0f, 0.0f};
+        for (std::size_t k = 0; k < 3; ++k) {
+            const float extent = centroids.hi[k] - centroids.lo[k];
+            // Slightly under nb / extent, so the largest centroid falls in the last bin.
+            scale[k] = extent > 0.0f ? float(nb) * 0.99999f / extent : 0.0f;
+        }
+        return scale;
+    }
+
+    /// Decides how refs_[begin, end) (its box and centroid box given) is split and, if
+    /// split, partitions it; its bins are `binned` when given (bin_into's, with bins_for
+    /// and bin_scale), else made here in bins_.
+    split_result split(std::uint32_t begin, std::uint32_t end, int depth, const bvh_box& box,
+                       const bvh_box& centroids, const bin_set* binned) {
+        split_result result;
         const std::uint32_t n = end - begin;
-        if (n == 1) return make_leaf(box, begin, end);
+        if (n == 1) return result;
 
         std::uint32_t mid = begin;
         bool found = false;
@@ -415,16 +567,11 @@ private:
         if (depth < median_depth) {
             // Bin the centroids on every axis with extent: bin = floor((c - lo) scale).
             const std::size_t nb = bins_for(n);
-            bvh_v4 scale{0.0f, 0.0f, 0.0f, 0.0f};
-            for (std::size_t k = 0; k < 3; ++k) {
-                const float extent = centroids.hi[k] - centroids.lo[k];
-                // Slightly under nb / extent, so the largest centroid falls in the last bin.
-                scale[k] = extent > 0.0f ? float(nb) * 0.99999f / extent : 0.0f;
-            }
+            const bvh_v4 scale = bin_scale(centroids, nb);
             const bvh_v4 c_lo = centroids.lo;
-            bin_primitives(begin, end, c_lo, scale, nb);
-            const auto& bin_box = bins_[0].box;
-            const auto& bin_count = bins_[0].count;
+            if (binned == nullptr) bin_into(begin, end, c_lo, scale, nb, bins_);
+            const auto& bin_box = (binned ? *binned : bins_[0]).box;
+            const auto& bin_count = (binned ? *binned : bins_[0]).count;
             // Sweep, axis k in lane k: cost[j] = (A N of bins < j) + (A N of bins >= j),
             // infinite where one side is empty or the axis has no extent.
             std::array<bvh_v4, bins> right_cost{};
@@ -463,7 +610,7 @@ private:
                 const float area = box.half_area();
                 const float split_cost = area + best_cost; // C_trav A + (A_L N_L + A_R N_R)
                 const float leaf_cost = area * float(blocks(n));
-                if (n <= max_leaf_ && leaf_cost <= split_cost) return make_leaf(box, begin, end);
+                if (n <= max_leaf_ && leaf_cost <= split_cost) return result;
                 // Partition (Hoare), gathering both sides' boxes on the way.
                 const float lo = c_lo[best_axis], sc = scale[best_axis];
                 const auto goes_left = [&](const bvh_prim_ref& r) {
@@ -489,11 +636,11 @@ private:
                 mid = i;
                 found = mid > begin && mid < end;
             } else if (n <= max_leaf_) {
-                return make_leaf(box, begin, end); // all centroids coincide
+                return result; // all centroids coincide
             }
         }
         if (!found) {
-            if (n <= max_leaf_) return make_leaf(box, begin, end);
+            if (n <= max_leaf_) return result;
             // Median split on the widest centroid axis (or by index when they coincide).
             std::size_t axis = 0;
             for (std::size_t k = 1; k < 3; ++k)
@@ -504,13 +651,7 @@ private:
             bounds_of(begin, mid, left_box, left_centroids);
             bounds_of(mid, end, right_box, right_centroids);
         }
-        const auto index = static_cast<std::uint32_t>(binary_.size());
-        binary_.push_back(binary_node{box, 0, 0, 0});
-        const std::uint32_t left = build_binary(begin, mid, depth + 1, left_box, left_centroids);
-        const std::uint32_t right = build_binary(mid, end, depth + 1, right_box, right_centroids);
-        binary_[index].first = left;
-        binary_[index].right = right;
-        return index;
+        return split_result{false, mid, left_box, left_centroids, right_box, right_centroids};
     }
 
     /// Bins for a node of n primitives: 4 + n / 20, at most `bins` (the rule of Embree's
@@ -521,31 +662,34 @@ private:
         return nb < bins ? nb : std::size_t(bins);
     }
 
-    /// The primitives' boxes and counts per axis and bin.
-    struct bin_set {
-        std::array<std::array<bvh_box, bins>, 3> box;
-        std::array<std::array<std::uint32_t, bins>, 3> count;
-    };
+    /// The first nb bins of `into` grown by those of `other`.
+    static void merge_bins(bin_set& into, const bin_set& other, std::size_t nb) noexcept {
+        for (std::size_t k = 0; k < 3; ++k)
+            for (std::size_t j = 0; j < nb; ++j) {
+                into.box[k][j].grow(other.box[k][j]);
+                into.count[k][j] += other.count[k][j];
+            }
+    }
 
-    /// Fills bins_[0] with refs_[begin, end) binned on each axis into nb bins (as bin_index).
+    /// Fills out[0] with refs_[begin, end) binned on each axis into nb bins (as bin_index).
     /// Successive primitives often share a bin, whose box then grows through a chain of
-    /// loads and stores: from 64 on, odd ones go to bins_[1], merged at the end.
-    void bin_primitives(std::uint32_t begin, std::uint32_t end, const bvh_v4& c_lo, const bvh_v4& scale,
-                        std::size_t nb) noexcept {
+    /// loads and stores: from 64 on, odd ones go to out[1], merged at the end.
+    void bin_into(std::uint32_t begin, std::uint32_t end, const bvh_v4& c_lo, const bvh_v4& scale, std::size_t nb,
+                  std::array<bin_set, 2>& out) const noexcept {
         constexpr std::uint32_t two_sets_from = 64;
         const std::size_t sets = end - begin >= two_sets_from ? 2 : 1;
         for (std::size_t s = 0; s < sets; ++s)
             for (std::size_t k = 0; k < 3; ++k)
                 for (std::size_t j = 0; j < nb; ++j) {
-                    bins_[s].box[k][j] = bvh_box{};
-                    bins_[s].count[k][j] = 0;
+                    out[s].box[k][j] = bvh_box{};
+                    out[s].count[k][j] = 0;
                 }
         const bvh_v4 zero{0.0f, 0.0f, 0.0f, 0.0f};
         const auto top = float(nb - 1);
         const bvh_v4 last{top, top, top, top};
         const std::uint32_t odd = sets == 2 ? 1u : 0u;
         for (std::uint32_t i = begin; i < end; ++i) {
-            bin_set& set = bins_[(i - begin) & odd];
+            bin_set& set = out[(i - begin) & odd];
             const bvh_v4 lo = refs_[i].lo, hi = refs_[i].hi; // copies: no reload after the stores
             // Clamped without branches (a NaN lane gives 0), then truncated.
             const std::array<std::uint32_t, 4> b = bvh_truncate(bvh_vmin(bvh_vmax((lo + hi - c_lo) * scale, zero), last));
@@ -554,11 +698,7 @@ private:
             set.box[2][b[2]].grow(lo, hi);
             ++set.count[0][b[0]], ++set.count[1][b[1]], ++set.count[2][b[2]];
         }
-        for (std::size_t k = 0; sets == 2 && k < 3; ++k)
-            for (std::size_t j = 0; j < nb; ++j) {
-                bins_[0].box[k][j].grow(bins_[1].box[k][j]);
-                bins_[0].count[k][j] += bins_[1].count[k][j];
-            }
+        if (sets == 2) merge_bins(out[0], out[1], nb);
     }
 
     /// The bin of a scaled centroid coordinate x, clamped to [0, bins - 1]; written so that
@@ -601,11 +741,41 @@ private:
     std::uint32_t max_leaf_;
     std::uint32_t block_;
     std::uint32_t block_shift_;
+    std::uint32_t task_size_;
     bvh_prim_ref* refs_ = nullptr;
     std::vector<binary_node> binary_;
     std::vector<slot_plan> plans_;
-    std::array<bin_set, 2> bins_; // bin_primitives's result (bins_[0]) and its second set
+    std::array<bin_set, 2> bins_; // the serial build's bins (bin_into's out)
 };
+
+/// Runs body(begin, end) through run on the ranges of `size` indices that [0, n) splits into.
+template <class F>
+void bvh_for_ranges(executor_ref run, std::size_t n, std::size_t size, const F& body) {
+    run((n + size - 1) / size, [&](std::size_t c) { body(c * size, n - c * size > size ? c * size + size : n); });
+}
+
+/// The references of primitives 0 .. n-1, whose boxes box_of(i) gives (an aabb), made
+/// through run, and the least i with !valid(i) (n if none: then every box was made).
+struct bvh_prim_refs {
+    std::vector<bvh_prim_ref> refs;
+    std::size_t first_invalid;
+};
+template <class Box, class Valid>
+[[nodiscard]] bvh_prim_refs make_prim_refs(executor_ref run, std::size_t n, const Box& box_of, const Valid& valid) {
+    bvh_prim_refs r{std::vector<bvh_prim_ref>(n), n};
+    std::vector<std::size_t> invalid((n + bvh_builder::default_task_size - 1) / bvh_builder::default_task_size, n);
+    bvh_for_ranges(run, n, bvh_builder::default_task_size, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            if (!valid(i)) {
+                invalid[begin / bvh_builder::default_task_size] = i;
+                return;
+            }
+            r.refs[i] = make_prim_ref(box_of(i), static_cast<std::uint32_t>(i));
+        }
+    });
+    for (const std::size_t i : invalid) r.first_invalid = i < r.first_invalid ? i : r.first_invalid;
+    return r;
+}
 
 /// Throws shade::invalid_parameter naming `parameter` unless there are fewer than 2^27
 /// primitives (the leaf references' index field).
