@@ -16,6 +16,8 @@
 // allocated and not freed across rtcCommitScene (the hierarchy and its leaf triangles,
 // as its allocator holds them; the geometry's vertex and index buffers, allocated before,
 // are not counted), and peak_bytes_per_triangle, the most held during the commit.
+// bvh/build/<scene>/shade_parallel: shade's build through support::thread_executor on all
+// hardware threads (counter build_threads; bench/report.py times it by the wall clock).
 
 #include <cmath>
 #include <cstddef>
@@ -35,6 +37,7 @@
 #include <shade/geometry/triangle_bvh.hpp>
 
 #include "support.hpp"
+#include "support/thread_executor.hpp"
 #include "tracer/mesh.hpp"
 #include "tracer/scenes.hpp"
 
@@ -289,6 +292,16 @@ void register_scene(const built& b) {
                 benchmark::DoNotOptimize(t);
             },
             -1.0, {{"bytes_per_triangle", double(tree.memory_bytes()) / triangles}});
+    }
+    {
+        static const support::thread_executor threads;
+        shade_bench::add(
+            build + "shade_parallel", 1.0,
+            [&s] {
+                shade::triangle_bvh<float> t(s.triangles, shade::bvh_width::automatic, threads);
+                benchmark::DoNotOptimize(t);
+            },
+            -1.0, {{"build_threads", double(threads.threads())}});
     }
     {
         // Shadow rays: any-hit against Embree's occlusion test.
