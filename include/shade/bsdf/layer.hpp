@@ -49,6 +49,55 @@ concept has_directional_albedo = requires(const C& c, scalar_of<C> mu) {
 
 } // namespace detail
 
+/// C is a lobe choice of shade::layer: `c.coat_probability(e)` returns the probability in
+/// [0, 1] of drawing from the coat for a view where the coat (weighted) reflects the share
+/// e = w E_c(n·v) in [0, 1] of the light; 1 only when the base's coefficient is 0 there.
+template <class C, class T>
+concept layer_choice = std::floating_point<T> && requires(const C& c, T e) {
+    { c.coat_probability(e) } -> std::same_as<T>;
+};
+
+/// shade::layer's default lobe choice: the coat with probability clamp(e, 0.1, 0.9),
+/// e = w E_c(n·v) the coat's share of the energy over a white base, kept within
+/// [0.1, 0.9] so that each lobe is drawn often enough for its peaks.
+struct clamped_coat_albedo {
+    /// clamp(e, 0.1, 0.9).
+    template <std::floating_point T>
+    [[nodiscard]] constexpr T coat_probability(T e) const noexcept {
+        return glm::clamp(e, T(0.1), T(0.9));
+    }
+};
+
+/// A lobe choice of shade::layer that knows a bound b of the base's albedo (the largest
+/// channel of a Lambertian base's rho, for example): the coat with probability
+///
+///     p_c = e / (e + b (1 - e))   kept within [0.1, 0.9],   1 when b = 0
+///
+/// e = w E_c(n·v): the coat's share of the reflected energy when the base reflects b of
+/// what the coat lets through, so that each lobe is drawn in proportion to (a bound of) the
+/// energy it reflects (the one-sample model of Veach 1997, "Robust Monte Carlo Methods for
+/// Light Transport Simulation", sec. 9.2.4, with the lobes' albedos as weights), kept within
+/// [0.1, 0.9] as clamped_coat_albedo is. b = 0 promises a black base: the coat is then
+/// always drawn, and the layer is exactly the coat (times w).
+template <std::floating_point T>
+class base_albedo_choice {
+public:
+    /// b, finite and >= 0. Throws shade::invalid_parameter naming "base_albedo" otherwise.
+    explicit base_albedo_choice(T base_albedo) : b_(require_non_negative("base_albedo", base_albedo)) {}
+
+    [[nodiscard]] constexpr T base_albedo() const noexcept { return b_; } ///< b
+
+    /// p_c for the coat's share e in [0, 1] (class comment).
+    [[nodiscard]] constexpr T coat_probability(T e) const noexcept {
+        if (!(b_ > T(0))) return T(1);
+        const T p = e / (e + b_ * (T(1) - e));
+        return glm::clamp(p, T(0.1), T(0.9));
+    }
+
+private:
+    T b_;
+};
+
 /// A coat over a base: two shade::sampled_bsdf of the same scalar type, combined by the
 /// albedo-scaling approximation of layering, with a coat weight (presence) w in [0, 1].
 /// An opaque reflector: l and v above the surface.
@@ -98,20 +147,17 @@ concept has_directional_albedo = requires(const C& c, scalar_of<C> mu) {
 /// shading frame); values above 1 are clamped to 1. A delta coat (shade::smooth_conductor)
 /// is estimated exactly at the nodes.
 ///
-/// Sampling: the coat with probability p_c = clamp(w E_c(n·v), 0.1, 0.9) (0 when w = 0),
-/// the coat's share of the energy over a white base, kept within [0.1, 0.9] so each lobe
-/// is drawn often enough for its peaks; otherwise the base. pdf is the mixture density
-/// p_c pdf_c + (1 - p_c) pdf_b; delta samples as shade::mix has them (detail::sample_lobe_pair).
+/// Sampling: the coat with probability p_c = choice.coat_probability(w E_c(n·v)) (0 when
+/// w = 0), by default clamped_coat_albedo's clamp(w E_c(n·v), 0.1, 0.9), the coat's share
+/// of the energy over a white base; base_albedo_choice uses a bound of the base's albedo
+/// as well. Otherwise the base. pdf is the mixture density p_c pdf_c + (1 - p_c) pdf_b;
+/// delta samples as shade::mix has them (detail::sample_lobe_pair).
 ///
-/// Compared with shade::coupled_plastic (f_s + k_d (1 - E_s(n·l)) (1 - E_s(n·v)) /
-/// (pi (1 - E_s,avg))): layer<coating, lambert> with w = 1 and layering::reciprocal has the
-/// same formula, but not the same values nor samples: coupled_plastic reads E_s from
-/// precomputed tables of its compensated GGX coating (shade::kulla_conty), the layer
-/// estimates E_c from the coat's sampler (above); coupled_plastic chooses the coating with
-/// E_s / (E_s + max(k_d) (1 - E_s)) and the layer with w E_c (it does not know the base's
-/// albedo). So coupled_plastic keeps its own implementation.
-template <sampled_bsdf Coat, sampled_bsdf Base>
-    requires std::same_as<scalar_of<Coat>, scalar_of<Base>>
+/// shade::coupled_plastic is this layer: layer<ggx_dielectric_coating<T>, lambert<T>,
+/// base_albedo_choice<T>> with w = 1 and layering::reciprocal, its coat reporting its
+/// tabulated albedo and its choice knowing max(k_d).
+template <sampled_bsdf Coat, sampled_bsdf Base, class Choice = clamped_coat_albedo>
+    requires std::same_as<scalar_of<Coat>, scalar_of<Base>> && layer_choice<Choice, scalar_of<Coat>>
 class layer {
     using T = scalar_of<Coat>;
     static constexpr std::size_t nodes = 32;  // view cosines of the estimated E_c
@@ -120,11 +166,13 @@ class layer {
 public:
     using scalar_type = T;
 
-    /// coat over base with coat weight w. Throws shade::invalid_parameter naming
-    /// "coat_weight" unless it lies in [0, 1]; and whatever the coat's sample throws while
-    /// E_c is estimated.
-    layer(const Coat& coat, const Base& base, T coat_weight = T(1), layering form = layering::reciprocal)
-        : coat_(coat), base_(base), w_(require_in_range("coat_weight", coat_weight, T(0), T(1))), form_(form) {
+    /// coat over base with coat weight w, the base's factor `form` and the lobe choice
+    /// `choice`. Throws shade::invalid_parameter naming "coat_weight" unless it lies in
+    /// [0, 1]; and whatever the coat's sample throws while E_c is estimated.
+    layer(const Coat& coat, const Base& base, T coat_weight = T(1), layering form = layering::reciprocal,
+          const Choice& choice = Choice())
+        : coat_(coat), base_(base), w_(require_in_range("coat_weight", coat_weight, T(0), T(1))), form_(form),
+          choice_(choice) {
         if constexpr (detail::has_directional_albedo<Coat>) {
             average_ = coat_.average_albedo();
         } else {
@@ -141,6 +189,7 @@ public:
     [[nodiscard]] constexpr const Base& base() const noexcept { return base_; } ///< the bottom lobe
     [[nodiscard]] constexpr T coat_weight() const noexcept { return w_; }       ///< w, in [0, 1]
     [[nodiscard]] constexpr layering form() const noexcept { return form_; }    ///< the base's factor
+    [[nodiscard]] constexpr const Choice& choice() const noexcept { return choice_; } ///< the lobe choice
 
     /// E_c(mu), the coat's directional albedo at view cosine mu (dimensionless, in [0, 1];
     /// see the class comment for where it comes from).
@@ -211,10 +260,10 @@ public:
     }
 
     /// p_c, the probability that sample() draws from the coat for a view of cosine
-    /// n_dot_v > 0: clamp(w E_c(n·v), 0.1, 0.9), 0 when w = 0.
+    /// n_dot_v > 0: choice().coat_probability(w E_c(n·v)), 0 when w = 0.
     [[nodiscard]] T coat_probability(T n_dot_v) const {
         if (w_ == T(0)) return T(0);
-        return glm::clamp(w_ * coat_albedo(n_dot_v), T(0.1), T(0.9));
+        return choice_.coat_probability(w_ * coat_albedo(n_dot_v));
     }
 
 private:
@@ -260,6 +309,7 @@ private:
     Base base_;
     T w_;
     layering form_;
+    [[no_unique_address]] Choice choice_;
     std::array<T, nodes> table_{};   // E_c at mu_k (estimated coats only)
     T average_ = 0;                  // E_c,avg
     T inverse_average_loss_ = 1;     // 1 / (1 - w E_c,avg), or 0 (constructor)
