@@ -214,6 +214,7 @@ public:
         tree.width = width == 8 ? 8 : 4;
         refs_ = refs.data();
         binary_.clear();
+        subtrees_.clear();
         if (refs.empty()) return tree;
         const auto n = static_cast<std::uint32_t>(refs.size());
         binary_.reserve(2 * refs.size() / block_ + 2);
@@ -227,8 +228,8 @@ public:
         run(part.size(), [&](std::size_t c) {
             for (std::uint32_t i = task_begin(0, c); i < task_end(0, n, c); ++i) tree.order[i] = refs[i].index();
         });
-        if (tree.width == 8) collapse_root(tree.wide_nodes, 0);
-        else collapse_root(tree.nodes, 0);
+        if (tree.width == 8) collapse_root(tree.wide_nodes, 0, run);
+        else collapse_root(tree.nodes, 0, run);
         return tree;
     }
     /// The same, on the caller's thread.
@@ -283,14 +284,14 @@ private:
     }
 
     template <std::size_t W>
-    void collapse_root(std::vector<bvh_node<W>>& nodes, std::uint32_t root) {
+    void collapse_root(std::vector<bvh_node<W>>& nodes, std::uint32_t root, executor_ref run) {
         if (binary_[root].count > 0) {
             // A single leaf: one root node with one child.
             nodes.emplace_back();
             set_empty(nodes[0]);
             set_child(nodes[0], 0, binary_[root].box, leaf_ref(binary_[root]));
         } else {
-            plan_slots(W);
+            plan_slots(W, run);
             nodes.reserve(count_nodes<W>(root)); // exactly: no unused capacity is kept
             nodes.emplace_back();
             collapse(nodes, 0, root);
@@ -381,41 +382,51 @@ private:
     /// (C_trav = 1, as in the build) plus the cheapest split of its W children between its
     /// two subtrees. Partly filled nodes then go where they cost least, which fills the
     /// many nodes next to the leaves.
-    void plan_slots(std::size_t width) {
+    ///
+    /// Children come after their parent, so a walk down the indices meets them first; each
+    /// subtree task's nodes (subtrees_) are planned in a task of their own, then the rest.
+    void plan_slots(std::size_t width, executor_ref run) {
         plans_.assign(binary_.size(), slot_plan{});
-        for (std::size_t m = binary_.size(); m-- > 0;) { // children come after their parent
-            const binary_node& b = binary_[m];
-            slot_plan& p = plans_[m];
-            const float area = b.box.half_area();
-            if (b.count > 0) {
-                p.cost.fill(area * float(blocks(b.count)));
-                continue;
-            }
-            const slot_plan& l = plans_[b.first];
-            const slot_plan& r = plans_[b.right];
-            std::array<float, 8> open{};
-            std::array<std::uint8_t, 8> open_left{};
-            for (std::size_t i = 2; i <= width; ++i) {
-                // Half each way unless a split costs less (also where the costs are
-                // infinite or NaN, from boxes beyond the float range).
-                open[i - 1] = infinity<float>;
-                open_left[i - 1] = static_cast<std::uint8_t>(i / 2);
-                for (std::size_t k = 1; k < i; ++k) {
-                    const float c = l.cost[k - 1] + r.cost[i - k - 1];
-                    if (c < open[i - 1]) {
-                        open[i - 1] = c;
-                        open_left[i - 1] = static_cast<std::uint8_t>(k);
-                    }
+        run(subtrees_.size(), [&](std::size_t i) {
+            for (std::uint32_t m = subtrees_[i][2]; m-- > subtrees_[i][1];) plan_node(m, width);
+            plan_node(subtrees_[i][0], width);
+        });
+        for (std::size_t m = subtrees_.empty() ? binary_.size() : subtrees_[0][1]; m-- > 0;) plan_node(m, width);
+    }
+
+    /// plan_slots's plan of binary node m, whose children's plans are made.
+    void plan_node(std::size_t m, std::size_t width) noexcept {
+        const binary_node& b = binary_[m];
+        slot_plan& p = plans_[m];
+        const float area = b.box.half_area();
+        if (b.count > 0) {
+            p.cost.fill(area * float(blocks(b.count)));
+            return;
+        }
+        const slot_plan& l = plans_[b.first];
+        const slot_plan& r = plans_[b.right];
+        std::array<float, 8> open{};
+        std::array<std::uint8_t, 8> open_left{};
+        for (std::size_t i = 2; i <= width; ++i) {
+            // Half each way unless a split costs less (also where the costs are
+            // infinite or NaN, from boxes beyond the float range).
+            open[i - 1] = infinity<float>;
+            open_left[i - 1] = static_cast<std::uint8_t>(i / 2);
+            for (std::size_t k = 1; k < i; ++k) {
+                const float c = l.cost[k - 1] + r.cost[i - k - 1];
+                if (c < open[i - 1]) {
+                    open[i - 1] = c;
+                    open_left[i - 1] = static_cast<std::uint8_t>(k);
                 }
             }
-            p.node_left = open_left[width - 1];
-            p.cost[0] = area + open[width - 1];
-            for (std::size_t i = 2; i <= width; ++i) {
-                // Opened where no costlier than fewer children: fewer nodes on a tie.
-                const bool opened = open[i - 1] <= p.cost[i - 2];
-                p.cost[i - 1] = opened ? open[i - 1] : p.cost[i - 2];
-                p.left[i - 1] = opened ? open_left[i - 1] : p.left[i - 2];
-            }
+        }
+        p.node_left = open_left[width - 1];
+        p.cost[0] = area + open[width - 1];
+        for (std::size_t i = 2; i <= width; ++i) {
+            // Opened where no costlier than fewer children: fewer nodes on a tie.
+            const bool opened = open[i - 1] <= p.cost[i - 2];
+            p.cost[i - 1] = opened ? open[i - 1] : p.cost[i - 2];
+            p.left[i - 1] = opened ? open_left[i - 1] : p.left[i - 2];
         }
     }
 
@@ -470,6 +481,7 @@ private:
     void build_top(std::uint32_t n, const bvh_box& box, const bvh_box& centroids, executor_ref run) {
         binary_.push_back(binary_node{box, 0, 0, 0});
         std::vector<pending> level{pending{0, n, 0, box, centroids, 0}}, subtrees;
+        subtrees_.clear();
         while (!level.empty()) {
             // The bins of the level's nodes, task_size primitives per task (none below
             // median_depth, split at the median).
@@ -524,6 +536,7 @@ private:
             // Local node j: the task's root (0) at its place, the others appended.
             const auto offset = static_cast<std::uint32_t>(binary_.size()) - 1;
             const auto place = [&](std::uint32_t j) { return j == 0 ? subtrees[i].node : offset + j; };
+            subtrees_.push_back({subtrees[i].node, offset + 1, offset + static_cast<std::uint32_t>(part[i].size())});
             for (std::uint32_t j = 0; j < part[i].size(); ++j) {
                 binary_node b = part[i][j];
                 if (b.count == 0) b.first = place(b.first), b.right = place(b.right);
@@ -745,6 +758,8 @@ private:
     bvh_prim_ref* refs_ = nullptr;
     std::vector<binary_node> binary_;
     std::vector<slot_plan> plans_;
+    /// build_top's subtree tasks: the root's index and the range [begin, end) of the others.
+    std::vector<std::array<std::uint32_t, 3>> subtrees_;
     std::array<bin_set, 2> bins_; // the serial build's bins (bin_into's out)
 };
 
