@@ -239,3 +239,136 @@ TEST_CASE_TEMPLATE("microfacet_reflection: positivity, reciprocity, energy, chi-
                       "ggx 1, conductor");
     expect_properties(compensated_lobe<T>(ggx<T>(T(0.6)), schlick<T>(one)), "compensated ggx 0.6, F = 1", false);
 }
+
+namespace {
+
+// The lobe that reflects below the surface too (reflection_sides::both), with a dielectric
+// Fresnel term: a varnish seen from either side.
+template <class D>
+using two_sided_lobe = shade::microfacet_reflection<D, shade::dielectric_fresnel<shade::scalar_of<D>>,
+                                                    shade::smith_height_correlated<shade::scalar_of<D>>, form::walter,
+                                                    shade::single_scattering, shade::reflection_sides::both>;
+
+template <class D>
+using one_sided_lobe = shade::microfacet_reflection<D, shade::dielectric_fresnel<shade::scalar_of<D>>,
+                                                    shade::smith_height_correlated<shade::scalar_of<D>>>;
+
+} // namespace
+
+// Reflecting below is opt-in: the default lobe stays a BRDF, the two-sided one is a BSDF
+// with its own sampler (so the property kit tests it over the whole sphere).
+static_assert(shade::bsdf_sampler<two_sided_lobe<shade::ggx<float>>> &&
+              !shade::sampled_brdf<two_sided_lobe<shade::ggx<float>>>);
+static_assert(!shade::bsdf_sampler<one_sided_lobe<shade::ggx<double>>>);
+
+TEST_CASE_TEMPLATE("microfacet_reflection, both sides: below, the mirrored pair with eta inverted, bit for bit", T, float,
+                   double) {
+    // From below (n·l < 0, n·v < 0) the lobe of index eta is, by construction of the
+    // two-sided terms (D(m) = D(-m), Lambda of a direction is its mirror image's, and
+    // F_dielectric(-c, eta) = F_dielectric(c, 1/eta)), the above-side lobe of index 1/eta
+    // at the mirror images (x, y, -z); at a pair above, the one-sided lobe itself. 2000
+    // random pairs per configuration, in the identity frame so the mirror is exact.
+    const auto at = flat<T>();
+    const auto check_pairs = [&](const auto& both, const auto& inverted, const auto& same) {
+        shade::rng random(7);
+        int below = 0, reflecting = 0;
+        for (int i = 0; i < 2000; ++i) {
+            const vec3<T> l = shade::square_to_uniform_sphere(vec2<T>(random.uniform<T>(), random.uniform<T>()));
+            const vec3<T> v = shade::square_to_uniform_sphere(vec2<T>(random.uniform<T>(), random.uniform<T>()));
+            const vec3<T> l_m(l.x, l.y, -l.z);
+            const vec3<T> v_m(v.x, v.y, -v.z);
+            if (l.z < T(0) && v.z < T(0)) {
+                ++below;
+                CHECK(both.f(l, v, at) == inverted.f(l_m, v_m, at));
+                CHECK(both.pdf(l, v, at) == inverted.pdf(l_m, v_m, at));
+                if (both.f(l, v, at) != rgb<T>(0)) ++reflecting; // not 0 == 0 (D can underflow far off the peak)
+            } else if (l.z > T(0) && v.z > T(0)) {
+                CHECK(both.f(l, v, at) == same.f(l, v, at));
+                CHECK(both.pdf(l, v, at) == same.pdf(l, v, at));
+            } else {
+                CHECK(both.f(l, v, at) == rgb<T>(0)); // no transmission
+                CHECK(both.pdf(l, v, at) == T(0));
+            }
+        }
+        CHECK(below > 400);
+        CHECK(reflecting > below * 9 / 10);
+    };
+    for (const double eta : {1.5, 1.0 / 1.33, 2.4}) {
+        CAPTURE(eta);
+        const shade::dielectric_fresnel<T> fresnel{T(eta)};
+        const shade::dielectric_fresnel<T> inverse{T(1) / T(eta)};
+        check_pairs(two_sided_lobe<shade::ggx<T>>(shade::ggx<T>(T(0.3)), fresnel),
+                    one_sided_lobe<shade::ggx<T>>(shade::ggx<T>(T(0.3)), inverse),
+                    one_sided_lobe<shade::ggx<T>>(shade::ggx<T>(T(0.3)), fresnel));
+        check_pairs(two_sided_lobe<shade::ggx<T>>(shade::ggx<T>(T(0.1), T(0.4)), fresnel),
+                    one_sided_lobe<shade::ggx<T>>(shade::ggx<T>(T(0.1), T(0.4)), inverse),
+                    one_sided_lobe<shade::ggx<T>>(shade::ggx<T>(T(0.1), T(0.4)), fresnel));
+        check_pairs(two_sided_lobe<shade::beckmann<T>>(shade::beckmann<T>(T(0.4)), fresnel),
+                    one_sided_lobe<shade::beckmann<T>>(shade::beckmann<T>(T(0.4)), inverse),
+                    one_sided_lobe<shade::beckmann<T>>(shade::beckmann<T>(T(0.4)), fresnel));
+    }
+}
+
+TEST_CASE_TEMPLATE("microfacet_reflection, both sides: hand values below, total internal reflection", T, float, double) {
+    // Inside glass (eta = 1.5 seen from outside, light below): at l = v = -n the half
+    // vector is -n, v'·h' = 1 and F = ((1.5 - 1) / (1.5 + 1))^2 = 0.04, the same as from
+    // outside at normal incidence; so f = 0.04 D(n) G / 4 with GGX D(n) = 1 / (pi alpha^2)
+    // and height-correlated G = 1 at normal incidence (Lambda(n) = 0): 0.04 / (4 pi 0.09).
+    // Beyond the critical angle, cos < sqrt(1 - 1/1.5^2) = 0.7454, F = 1 from inside (total
+    // internal reflection): at l and v 60 degrees off -n on either side of it in one plane
+    // (h' = n, v'·h' = 0.5) the lobe equals the F = 1 lobe (Schlick with f0 = 1) at the
+    // mirrored pair, where from outside F(0.5) = 0.089 (F_dielectric, eta 1.5).
+    const auto at = flat<T>();
+    const two_sided_lobe<shade::ggx<T>> glass(shade::ggx<T>(T(0.3)), shade::dielectric_fresnel<T>(T(1.5)));
+    const vec3<T> down(0, 0, -1);
+    const double expected = 0.04 / (4 * shade::pi<double> * 0.09);
+    CHECK(double(glass.f(down, down, at).x) == doctest::Approx(expected).epsilon(sizeof(T) <= 4 ? 1e-5 : 1e-12));
+    const T s60 = T(std::sqrt(0.75));
+    const vec3<T> l(s60, 0, T(-0.5));
+    const vec3<T> v(-s60, 0, T(-0.5));
+    const vec3<T> l_m(s60, 0, T(0.5));
+    const vec3<T> v_m(-s60, 0, T(0.5));
+    const shade::microfacet_reflection<shade::ggx<T>, shade::schlick<T>, shade::smith_height_correlated<T>> mirror(
+        shade::ggx<T>(T(0.3)), shade::schlick<T>(rgb<T>(1)));
+    CHECK(close(glass.f(l, v, at), mirror.f(l_m, v_m, at), T(1e-6)));
+    CHECK(close(glass.f(l_m, v_m, at), T(0.0891867) * mirror.f(l_m, v_m, at), T(1e-4)));
+}
+
+TEST_CASE_TEMPLATE("microfacet_reflection, both sides: chi-square, pdf integral and sample consistency from both sides",
+                   T, float, double) {
+    // The sphere-wide kit (shade/check/sampling.hpp): views above and below the surface,
+    // the whole sphere binned, both transport modes in the consistency check.
+    const auto at = tilted<T>();
+    const two_sided_lobe<shade::ggx<T>> iso(shade::ggx<T>(T(0.3)), shade::dielectric_fresnel<T>(T(1.5)));
+    const two_sided_lobe<shade::ggx<T>> aniso(shade::ggx<T>(T(0.1), T(0.4)), shade::dielectric_fresnel<T>(T(1.5)));
+    const two_sided_lobe<shade::beckmann<T>> beck(shade::beckmann<T>(T(0.3)), shade::dielectric_fresnel<T>(T(1 / 1.33)));
+    const std::size_t family = 3 * 4;
+    const auto sampling = [&](const auto& model, const std::string& name) {
+        for (const double deg : {30.0, 80.0, 180.0, 120.0}) {
+            CAPTURE(deg);
+            shade::check::chi2_options chi2{.samples = 40000, .alpha = 1e-3, .tests = family};
+            chi2.model = name;
+            const vec3<T> v = direction(at, T(deg * shade::pi<double> / 180), T(0.4));
+            shade::check::doctest_expect(shade::check::chi2_goodness_of_fit(model, v, at, chi2));
+            shade::check::doctest_expect(shade::check::pdf_normalization(model, v, at, chi2));
+        }
+        shade::check::sample_options options;
+        options.model = name;
+        shade::check::doctest_expect(shade::check::sample_consistency(model, at, options));
+    };
+    sampling(iso, "two-sided GGX 0.3, eta 1.5");
+    sampling(aniso, "two-sided GGX 0.1 x 0.4, eta 1.5");
+    sampling(beck, "two-sided Beckmann 0.3, eta 1/1.33");
+    // A draw from below stays below, with the density pdf and the weight f |n·l| / pdf.
+    shade::rng random(3);
+    const vec3<T> v = direction(at, T(2.2), T(0.4));
+    for (int i = 0; i < 1000; ++i) {
+        const auto s = iso.sample(v, random.uniform<T>(), vec2<T>(random.uniform<T>(), random.uniform<T>()), at);
+        if (!s) continue;
+        CHECK(glm::dot(at.n(), s->l) < T(0));
+        CHECK(shade::is_reflection(s->flags));
+        CHECK(s->eta == T(1));
+        CHECK(s->pdf == iso.pdf(s->l, v, at));
+        CHECK(s->f == iso.f(s->l, v, at));
+    }
+}

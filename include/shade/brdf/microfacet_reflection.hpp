@@ -9,8 +9,11 @@
 //
 // It is a sampled BRDF (shade::sampled_brdf, so a shade::sampled_bsdf too) that combines
 // with others through shade::mix and shade::layer (shade/bsdf); shade::cook_torrance is this
-// lobe under a Lambertian term with a lobe choice of its own. Also the home of the
-// normalization forms (shade::cook_torrance_form) and the Scattering policy concepts.
+// lobe under a Lambertian term with a lobe choice of its own. With its last parameter
+// reflection_sides::both it also reflects below the surface (a coat seen from inside), and
+// is a BSDF with its own sampler instead. Also the home of the normalization forms
+// (shade::cook_torrance_form), the sides (shade::reflection_sides) and the Scattering
+// policy concepts.
 //
 // Example:
 //   const shade::microfacet_reflection<shade::ggx<float>, shade::schlick<float>, shade::smith_ggx<float>>
@@ -28,6 +31,7 @@
 #include <shade/brdf/microfacet.hpp>
 #include <shade/brdf/microfacet/albedo_table.hpp>
 #include <shade/brdf/multiple_scattering.hpp>
+#include <shade/bsdf/bsdf.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/sampling.hpp>
@@ -93,6 +97,25 @@ struct paper_1982 {
 
 } // namespace cook_torrance_form
 
+/// Which sides of the surface shade::microfacet_reflection reflects on: its Sides
+/// parameter.
+namespace reflection_sides {
+
+/// Above the surface only (default): l and v with n·l > 0 and n·v > 0, f = 0 otherwise (the
+/// BRDF contract); the lobe is a shade::sampled_brdf.
+struct above {};
+
+/// Above, and below when l and v are both below (the surface's underside, e.g. a coat seen
+/// from inside the medium it covers). The lobe is then a BSDF with its own sampler
+/// (shade::bsdf_sampler), not a BRDF.
+struct both {};
+
+} // namespace reflection_sides
+
+/// X is one of the shade::reflection_sides tags.
+template <class X>
+concept reflection_sides_tag = std::same_as<X, reflection_sides::above> || std::same_as<X, reflection_sides::both>;
+
 /// X is one of the shade::cook_torrance_form types (or a user type with the same members).
 template <class X, class T>
 concept cook_torrance_normalization = std::floating_point<T> && requires {
@@ -127,7 +150,8 @@ concept scattering_policy_for =
 /// shade::cook_torrance_form. The terms are evaluated in the local frame of at.shading
 /// (t, b, n): l, v and h become vectors with n = +z and t = +x, so an anisotropic
 /// distribution's alpha_x (m_x) runs along the frame's tangent. Returns 0 unless n·l > 0
-/// and n·v > 0 (a BRDF: reflection above the surface; l and v on opposite sides give 0).
+/// and n·v > 0 (a BRDF: reflection above the surface; l and v on opposite sides give 0),
+/// except that with Sides = reflection_sides::both it reflects below too (see below).
 /// n·l and n·v are floored at machine epsilon in the denominator (detail::cos_floor) so f
 /// stays finite at grazing. Reciprocal: yes (every factor is symmetric in l and v). With a
 /// Smith G, F <= 1 and the walter form, its directional albedo is at most 1 (single
@@ -165,13 +189,34 @@ concept scattering_policy_for =
 ///          default-constructed (the masking terms are stateless).
 /// Scattering: single_scattering (default), kulla_conty or kulla_conty_anisotropic (with
 ///          ggx or beckmann, smith_height_correlated and the walter form).
+/// Sides: reflection_sides::above (default: a BRDF, f = 0 unless both directions are above)
+///          or reflection_sides::both (with single_scattering only; below).
+///
+/// Reflection from below (Sides = reflection_sides::both). When n·l < 0 and n·v < 0 the lobe
+/// reflects off the surface's underside: f(l, v) is the above formula at the mirror images
+/// l', v' of l and v in the tangent plane, with the Fresnel term evaluated at the cosine
+/// -(v'·h') < 0, h' = normalize(l' + v'): the cosine of v against the microfacet normal
+/// turned to n's side, as in rough_dielectric's reflection (Walter, Marschner, Li, Torrance
+/// 2007, eq. 20 with the generalized half vector of eq. 16 on n's side). This is the
+/// two-sided form of every term: D(m) = D(-m), Lambda and G1 of a direction below are its
+/// mirror image's, and a negative cosine gives F_dielectric with 1/eta (shade::F_dielectric:
+/// light inside the medium), Schlick's and the conductor Fresnel the value at |cos|. So a
+/// dielectric_fresnel(eta) lobe seen from below has the values of a dielectric_fresnel(1/eta)
+/// lobe at the mirrored pair, total internal reflection included. l and v on opposite sides
+/// give 0 (this lobe does not transmit). sample(v, uc, u, at, mode) draws from v's side:
+/// below, the mirror image of the draw for v' (visible normals of v'), with the mirrored
+/// density; bsdf_sample flags glossy_reflection, eta 1. Only with single_scattering: the
+/// Kulla-Conty factor F_ms comes from F's average over the outer side, which inside a
+/// dielectric (total internal reflection) is another number.
 template <class Distribution, class Fresnel, class Masking,
-          class Form = cook_torrance_form::walter, class Scattering = single_scattering>
+          class Form = cook_torrance_form::walter, class Scattering = single_scattering,
+          class Sides = reflection_sides::above>
     requires microfacet_distribution<Distribution> &&
              fresnel_term<Fresnel, scalar_of<Distribution>> &&
              masking_for<Masking, Distribution> && std::default_initializable<Masking> &&
              cook_torrance_normalization<Form, scalar_of<Distribution>> &&
-             scattering_policy_for<Scattering, Distribution, Masking, Form>
+             scattering_policy_for<Scattering, Distribution, Masking, Form> && reflection_sides_tag<Sides> &&
+             (std::same_as<Sides, reflection_sides::above> || std::same_as<Scattering, single_scattering>)
 class microfacet_reflection {
 public:
     using scalar_type = scalar_of<Distribution>;
@@ -180,10 +225,12 @@ public:
     using masking_type = Masking;
     using form_type = Form;
     using scattering_type = Scattering;
+    using sides_type = Sides;
 
 private:
     using T = scalar_type;
     static constexpr bool compensated = std::derived_from<Scattering, kulla_conty>;
+    static constexpr bool two_sided = std::same_as<Sides, reflection_sides::both>;
 
 public:
     /// Validating constructor (the distribution and Fresnel term validated their own
@@ -215,9 +262,16 @@ public:
         return bound;
     }
 
-    /// BRDF value in 1/sr without the cosine (class comment); 0 unless n·l > 0 and n·v > 0.
+    /// BRDF value in 1/sr without the cosine (class comment); 0 unless n·l > 0 and n·v > 0,
+    /// or with reflection_sides::both, n·l < 0 and n·v < 0 (the underside).
     [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept {
         detail::assert_unit_directions(l, v, at);
+        if constexpr (two_sided) {
+            const vec3<T> l_local = at.shading.to_local(l);
+            const vec3<T> v_local = at.shading.to_local(v);
+            if (v_local.z < T(0)) return evaluate_below<true, false>(l_local, v_local).single;
+            return evaluate_local<true, false>(l_local, v_local, rgb<T>(1), T(0)).single;
+        }
         const parts value = evaluate_local<true, false>(at.shading.to_local(l), at.shading.to_local(v), rgb<T>(1), T(0));
         if constexpr (compensated)
             return value.single + value.multiple;
@@ -226,11 +280,14 @@ public:
     }
 
     /// The solid-angle density (1/sr) with which sample() draws l for the view v (class
-    /// comment); 0 unless n·l > 0 and n·v > 0.
+    /// comment); 0 unless n·l > 0 and n·v > 0, or with reflection_sides::both, both < 0.
     [[nodiscard]] T pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept
         requires sampled_microfacet_distribution<Distribution>
     {
         const vec3<T> v_local = at.shading.to_local(v);
+        if constexpr (two_sided) {
+            if (v_local.z < T(0)) return evaluate_below<false, true>(at.shading.to_local(l), v_local).pdf;
+        }
         if (!(v_local.z > T(0))) return T(0);
         return evaluate_local<false, true>(at.shading.to_local(l), v_local, rgb<T>(1), cosine_share(v_local.z)).pdf;
     }
@@ -241,7 +298,7 @@ public:
     /// nullopt when v is not above the surface or the drawn l is not.
     [[nodiscard]] std::optional<brdf_sample<T>> sample(const vec3<T>& v, T uc, const vec2<T>& u,
                                                        const surface_point<T>& at) const noexcept
-        requires sampled_microfacet_distribution<Distribution>
+        requires sampled_microfacet_distribution<Distribution> && (!two_sided)
     {
         const vec3<T> v_local = at.shading.to_local(v);
         if (!(v_local.z > T(0))) return std::nullopt;
@@ -256,6 +313,30 @@ public:
             return detail::make_brdf_sample(l, value.single + value.multiple, value.pdf, l_back.z);
         else
             return detail::make_brdf_sample(l, value.single, value.pdf, l_back.z);
+    }
+
+    /// With reflection_sides::both: draws l on v's side for the view v in the given mode,
+    /// from the visible normals of v above the surface, of v's mirror image below it
+    /// (mirrored back). Returns l with f in the mode (shade::bsdf_f), pdf(l, v, at), the
+    /// weight f |n·l| / pdf, flags glossy_reflection and eta 1; nullopt when v is on the
+    /// surface or the drawn l is not on v's side.
+    [[nodiscard]] std::optional<bsdf_sample<T>> sample(const vec3<T>& v, T /*uc*/, const vec2<T>& u,
+                                                       const surface_point<T>& at,
+                                                       transport_mode mode = transport_mode::radiance) const noexcept
+        requires sampled_microfacet_distribution<Distribution> && two_sided
+    {
+        const vec3<T> v_local = at.shading.to_local(v);
+        if (!(v_local.z > T(0)) && !(v_local.z < T(0))) return std::nullopt; // on the surface, or NaN
+        const bool below = v_local.z < T(0);
+        const vec3<T> l_drawn = draw_local(below ? mirror(v_local) : v_local, false, u);
+        const vec3<T> l = at.shading.to_world(below ? mirror(l_drawn) : l_drawn);
+        // f and pdf from l as f() and pdf() take it, so the sample carries exactly their values.
+        const T l_z = at.shading.to_local(l).z;
+        if (below ? !(l_z < T(0)) : !(l_z > T(0))) return std::nullopt;
+        const rgb<T> value = mode == transport_mode::radiance ? f(l, v, at) : f(v, l, at);
+        const std::optional<brdf_sample<T>> s = detail::make_brdf_sample(l, value, pdf(l, v, at), below ? -l_z : l_z);
+        if (!s) return std::nullopt;
+        return bsdf_sample<T>{s->l, s->f, s->pdf, s->weight, bsdf_flags::glossy_reflection, T(1)};
     }
 
     /// With kulla_conty: the albedo E(mu) of the single-scattering lobe with F = 1 at
@@ -317,7 +398,7 @@ public:
         const auto [h, v_dot_h] = detail::half_vector_and_cos(l, v);
         const T d = D_of(h);
         if constexpr (with_f) {
-            out.single = specular(l, v, h, v_dot_h, d, k);
+            out.single = specular(l, v, h, v_dot_h, d, k, v_dot_h);
             if constexpr (compensated) out.multiple = multiple_scattering(l, v, k);
         }
         if constexpr (with_pdf) {
@@ -340,6 +421,25 @@ public:
     }
 
 private:
+    // w mirrored in the tangent plane (local frame): (x, y, -z).
+    [[nodiscard]] static constexpr vec3<T> mirror(const vec3<T>& w) noexcept { return vec3<T>(w.x, w.y, -w.z); }
+
+    // The parts for local l, v below the surface (reflection_sides::both): those of the
+    // mirror images l', v', with F at -(v'·h') (class comment); all 0 unless l.z < 0 and
+    // v.z < 0.
+    template <bool with_f, bool with_pdf>
+    [[nodiscard]] parts evaluate_below(const vec3<T>& l, const vec3<T>& v) const noexcept {
+        parts out;
+        if (!(l.z < T(0)) || !(v.z < T(0))) return out;
+        const vec3<T> l_up = mirror(l);
+        const vec3<T> v_up = mirror(v);
+        const auto [h, v_dot_h] = detail::half_vector_and_cos(l_up, v_up);
+        const T d = D_of(h);
+        if constexpr (with_f) out.single = specular(l_up, v_up, h, v_dot_h, d, rgb<T>(1), -v_dot_h);
+        if constexpr (with_pdf) out.pdf = distribution_.G1(v_up) * d / (T(4) * v_up.z);
+        return out;
+    }
+
     // q(v) with kulla_conty, 0 otherwise.
     [[nodiscard]] T cosine_share(T n_dot_v) const noexcept {
         if constexpr (compensated)
@@ -357,9 +457,10 @@ private:
             return distribution_.D(h.z);
     }
 
-    // k F(v·h) scale D G / ((n·l)(n·v)) for local l, v, h with n·l, n·v > 0.
+    // k F(cos_fresnel) scale D G / ((n·l)(n·v)) for local l, v, h with n·l, n·v > 0;
+    // cos_fresnel is v·h from above, -(v·h) for the mirror image of a pair below.
     [[nodiscard]] rgb<T> specular(const vec3<T>& l, const vec3<T>& v, const vec3<T>& h, T v_dot_h, T d,
-                                  const rgb<T>& k) const noexcept {
+                                  const rgb<T>& k, T cos_fresnel) const noexcept {
         T g;
         if constexpr (requires { { masking_.G(distribution_, l, v, h, v_dot_h) } -> std::same_as<T>; })
             g = masking_.G(distribution_, l, v, h, v_dot_h);
@@ -367,7 +468,7 @@ private:
             g = masking_.G(distribution_, l.z, v.z, h.z, v_dot_h);
         const T lobe = Form::template scale<T>() * d * g /
                        (detail::floored_cos(l.z) * detail::floored_cos(v.z));
-        return k * fresnel_.F(v_dot_h) * lobe;
+        return k * fresnel_.F(cos_fresnel) * lobe;
     }
 
     // k f_ms = k F_ms (1 - E(l)) (1 - E(v)) / (pi (1 - E_avg)) for local l, v above the
