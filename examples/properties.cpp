@@ -21,6 +21,7 @@
 #include <vector>
 
 #include <shade/brdf/eon.hpp>
+#include <shade/brdf/kulla_conty_lobe.hpp>
 #include <shade/brdf/microfacet_reflection.hpp>
 #include <shade/brdf/sheen.hpp>
 #include <shade/bsdf/layer.hpp>
@@ -314,7 +315,7 @@ double multiple_scattering_albedo(const Compensated& model, double f_ms, double 
 constexpr double bsdf_views_deg[] = {0, 45, 75, 89};
 // The BSDF table's chi-square tests share alpha = 0.01 (Šidák); an upper bound on their
 // number (models with a density x views x 2 sides).
-constexpr std::size_t bsdf_chi2_family = 8 * std::size(bsdf_views_deg) * 2;
+constexpr std::size_t bsdf_chi2_family = 10 * std::size(bsdf_views_deg) * 2;
 
 struct bsdf_row {
     std::string name;
@@ -412,6 +413,18 @@ std::vector<std::function<bsdf_row()>> bsdf_jobs(const settings& s) {
     add("Layer: GGX 0.2 varnish (eta 1.5) over Lambert 0.8, albedo scaling (OpenPBR)",
         layer(varnish(ggx<T>(0.2), dielectric_fresnel<T>(1.5)), lambert<T>(rgb<T>(0.8)), T(1), layering::albedo_scaling),
         1, true, true);
+    // A microfacet reflection that opts in to reflecting below too (a varnish seen from
+    // either side; from inside, eta 1/1.5 and total internal reflection), and the
+    // multiple-scattering compensation as a lobe mixed with the single-scattering one (the
+    // kulla_conty policy's f; opaque).
+    add("Microfacet reflection, both sides: GGX 0.3, eta 1.5 (reflection_sides::both)",
+        microfacet_reflection<ggx<T>, dielectric_fresnel<T>, smith_height_correlated<T>, cook_torrance_form::walter,
+                              single_scattering, reflection_sides::both>(ggx<T>(0.3), dielectric_fresnel<T>(1.5)),
+        1.5, true);
+    add("Mix: GGX 0.5 Schlick gold lobe + kulla_conty_lobe (the kulla_conty policy's f)",
+        mix(microfacet_reflection<ggx<T>, schlick<T>, smith_height_correlated<T>>(ggx<T>(0.5), schlick<T>(rgb<T>(1, 0.71, 0.29))),
+            rgb<T>(1), kulla_conty_lobe<ggx<T>, schlick<T>>(ggx<T>(0.5), schlick<T>(rgb<T>(1, 0.71, 0.29))), rgb<T>(1)),
+        1, true, true);
     return jobs;
 }
 
@@ -442,7 +455,7 @@ void print_bsdf_table(const std::vector<bsdf_row>& rows, const settings& s) {
                 "`bsdf_energy_conservation`) with its standard error; energy conserving as for the BRDFs "
                 "(total + 4 SE <= 1.01 at every view). Chi-square and ∫pdf as for the BRDFs, %zu directions per "
                 "view at theta_v = 0, 45, 75, 89 degrees from outside and from inside, the table's tests sharing "
-                "alpha = 0.01 (Šidák level 1 - 0.99^(1/%zu) = %.2g) (the layers, opaque, from outside only: from "
+                "alpha = 0.01 (Šidák level 1 - 0.99^(1/%zu) = %.2g) (the layers and the compensated mix, opaque, from outside only: from "
                 "inside they draw nothing); delta lobes have no density to test (–). The albedo-scaling layer "
                 "is not reciprocal by construction (its base's factor 1 - E_c(n·v) depends on v only; "
                 "shade/bsdf/layer.hpp).\n",
