@@ -189,7 +189,7 @@ struct bvh_tree {
 /// binning cannot separate the centroids, or below depth median_depth, which bounds the
 /// depth and so the traversal's stack).
 ///
-/// In parallel (through an executor, shade/core/parallel.hpp), as Wald 2007 §5 does on
+/// In parallel (through an executor, shade/core/parallel.hpp), as Wald 2007 proposes for
 /// few cores: nodes of more than task_size primitives are split level by level, their
 /// binning shared out task_size primitives per task and the partitions of a level's
 /// nodes run side by side; each smaller node's subtree is then built by one task. Bins
