@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <string>
@@ -170,9 +171,16 @@ bool monitor(void* user, ssize_t bytes, bool) {
     return true;
 }
 
+/// Embree's device configuration: "threads=1", or SHADE_BENCH_EMBREE_CONFIG when set (for
+/// experiments such as "threads=1,isa=avx2", which keeps Embree off its AVX-512 kernels).
+const char* embree_config() {
+    const char* config = std::getenv("SHADE_BENCH_EMBREE_CONFIG");
+    return config != nullptr ? config : "threads=1";
+}
+
 struct embree_device {
     RTCDevice device = [] {
-        RTCDevice d = rtcNewDevice("threads=1");
+        RTCDevice d = rtcNewDevice(embree_config());
         rtcSetDeviceMemoryMonitorFunction(d, monitor, &embree_bytes);
         return d;
     }();
