@@ -18,6 +18,14 @@
 // whose centre has mu >= 0.05
 // (the views the compensation promises R + T for).
 //
+//   dielectric_albedo_tables --reflection --out include/shade/bsdf/detail/dielectric_reflection_albedo_data.hpp
+//
+// writes instead the reflection table of shade/bsdf/dielectric_reflection_albedo.hpp on its
+// own grid (detail::dielectric_reflection_albedo_grid: eta_hat from 1.001): each node the
+// reflected part R_ss alone (the reflection weighted by F, the refraction dropped),
+// stored as R_ss - F(mu, eta_s), F the exact Fresnel reflectance at the view (the node's
+// mu); the cell centres compare F + the interpolated difference with a fresh R_ss.
+//
 //   dielectric_albedo_tables --anisotropic --out include/shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp
 //
 // writes instead the anisotropic corrections of
@@ -65,8 +73,8 @@ namespace {
 using T = double;
 
 constexpr std::string_view usage =
-    R"(usage: dielectric_albedo_tables [--beckmann] [--out FILE.hpp] [--mu-nodes N] [--alpha-nodes N] [--eta-nodes N]
-                                [--strata S] [--threads K] [--quiet]
+    R"(usage: dielectric_albedo_tables [--beckmann | --reflection] [--out FILE.hpp] [--mu-nodes N] [--alpha-nodes N]
+                                [--eta-nodes N] [--strata S] [--threads K] [--quiet]
        dielectric_albedo_tables --anisotropic [--out FILE.hpp] [--strata S] [--threads K] [--quiet]
 
 Computes E(mu, alpha, eta_s) = R + T (importance mode) of
@@ -82,6 +90,9 @@ writes the header of constants.
   --strata S        S^2 samples per node, 16 to 2048 (default 384; 128 with --anisotropic)
   --beckmann        the table of shade::rough_dielectric over Beckmann (m read as alpha)
                     instead of GGX (default output beckmann_dielectric_albedo_data.hpp)
+  --reflection      the reflected part R alone of GGX, stored as R - F(mu, eta_s), on the
+                    reflection grid (eta_hat from 1.001, 20 eta nodes by default, a spline
+                    along eta; default output dielectric_reflection_albedo_data.hpp)
   --anisotropic     write instead the corrections Delta = E(w) - E_iso(mu, sqrt(alpha_x
                     alpha_y), eta_s) of anisotropic GGX interfaces on the fixed grid of
                     dielectric_anisotropic_albedo_table.hpp, and their row averages (default
@@ -98,6 +109,7 @@ struct settings {
     bool quiet = false;
     bool anisotropic = false;
     bool beckmann = false;
+    bool reflection = false;
 };
 
 // E of a model of index eta_s at view cosine mu: the importance-mode weight of its sampler.
@@ -122,6 +134,31 @@ shade::check::albedo_sample<T> estimate(double mu, double alpha, double eta_s, s
         const double refracted = F < 1 ? (1 - F) * weight(u, std::nextafter(1.0, 0.0)) : 0.0;
         return glm::dvec3(reflected + refracted);
     });
+}
+
+// R_ss of a GGX model of index eta_s at view cosine mu: the importance-mode weight of its
+// sampler's reflections, each weighted by the F with which sample() chooses it at the
+// visible normal drawn from u (the refraction dropped).
+shade::check::albedo_sample<T> estimate_reflection(double mu, double alpha, double eta_s, std::size_t strata,
+                                                   std::uint64_t seed) {
+    const shade::rough_dielectric<shade::ggx<T>> model{shade::ggx<T>(alpha), eta_s};
+    shade::surface_point<T> at;
+    at.shading = shade::frame<T>::from_normal_tangent({0, 0, 1}, {1, 0, 0});
+    const double c = std::min(std::max(mu, d::albedo_grid_mu_min), 1.0);
+    const shade::vec3<T> v(std::sqrt((1 - c) * (1 + c)), 0, c);
+    return shade::check::detail::stratified_estimate<T>(v, strata, seed, true, [&](const shade::vec2<T>& u, shade::rng&) {
+        const shade::vec3<T> m = model.distribution().sample_visible_normal(v, u);
+        const double F = shade::F_dielectric(glm::dot(v, m), eta_s);
+        if (!(F > 0)) return glm::dvec3(0);
+        const auto s = model.sample(v, 0, u, at, shade::transport_mode::importance);
+        return glm::dvec3(s ? F * s->weight.x : 0.0);
+    });
+}
+
+// The part of a node's value that is not tabulated: F(mu, eta_s) at the estimate's view
+// cosine for the reflection table (which stores R_ss - F), 0 for the total albedo.
+double baseline(const settings& s, double mu, double eta_s) {
+    return s.reflection ? shade::F_dielectric(std::min(std::max(mu, d::albedo_grid_mu_min), 1.0), eta_s) : 0.0;
 }
 
 // E of an interface of roughnesses (alpha_x, alpha_y) and index eta_s for the unit local view
@@ -153,6 +190,8 @@ struct table {
     double max_error = 0;        // largest standard error of a node
     double max_interpolation = 0; // largest |interpolated - estimated| at the cell centres
     double max_domain = 0;       // the same over the cell centres with mu >= 0.05
+    double max_side[2] = {0, 0}; // max_domain of each side (0 entering, 1 exiting)
+    std::string worst;           // where the largest difference is (for the log)
 };
 
 void parallel_for(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& job) {
@@ -171,7 +210,7 @@ double eta_of_side(std::size_t side, double eta_hat) { return side == 0 ? eta_ha
 table compute(const std::string& name, const std::string& what, const estimator& albedo, const settings& s,
               ex::progress& bar) {
     const d::dielectric_albedo_grid& g = s.grid;
-    table out{name, what, std::vector<float>(g.size()), 0, 0, 0};
+    table out{name, what, std::vector<float>(g.size()), 0, 0, 0, {0, 0}, {}};
     std::vector<double> errors(g.size());
     parallel_for(g.size(), s.threads, [&](std::size_t index) {
         const std::size_t i = index % g.mu_nodes;
@@ -179,10 +218,12 @@ table compute(const std::string& name, const std::string& what, const estimator&
         const std::size_t k = index / (g.mu_nodes * g.alpha_nodes) % g.eta_nodes;
         const std::size_t side = index / (g.mu_nodes * g.alpha_nodes * g.eta_nodes);
         const double alpha = d::albedo_grid_alpha(j, g.alpha_nodes);
-        const double eta_hat = d::dielectric_albedo_eta(k, g.eta_nodes);
-        const double mu = d::dielectric_albedo_view_mu(double(i) / double(g.mu_nodes - 1), alpha, eta_hat, side);
-        const auto a = albedo(mu, alpha, eta_of_side(side, eta_hat), s.strata, 1 + index);
-        out.e[index] = float(std::min(a.albedo.x, 1.0));
+        const double eta_hat = d::dielectric_albedo_eta(g, k);
+        const double mu =
+            d::dielectric_albedo_view_mu(double(i) / double(g.mu_nodes - 1), alpha, eta_hat, side, g.near_critical);
+        const double eta_s = eta_of_side(side, eta_hat);
+        const auto a = albedo(mu, alpha, eta_s, s.strata, 1 + index);
+        out.e[index] = float(std::min(a.albedo.x, 1.0) - baseline(s, mu, eta_s));
         errors[index] = a.standard_error.x;
         bar.advance();
     });
@@ -191,6 +232,7 @@ table compute(const std::string& name, const std::string& what, const estimator&
     const std::size_t cells = 2 * (g.eta_nodes - 1) * (g.alpha_nodes - 1) * (g.mu_nodes - 1);
     std::vector<double> differences(cells);
     std::vector<char> in_domain(cells);
+    std::vector<std::string> where(cells);
     parallel_for(cells, s.threads, [&](std::size_t index) {
         const std::size_t i = index % (g.mu_nodes - 1);
         const std::size_t j = index / (g.mu_nodes - 1) % (g.alpha_nodes - 1);
@@ -198,18 +240,31 @@ table compute(const std::string& name, const std::string& what, const estimator&
         const std::size_t side = index / ((g.mu_nodes - 1) * (g.alpha_nodes - 1) * (g.eta_nodes - 1));
         const double y = (double(j) + 0.5) / double(g.alpha_nodes - 1);
         const double alpha = std::max(y * y, d::albedo_grid_alpha_min);
-        const double eta_hat = 1 + std::sqrt((d::dielectric_albedo_eta(k, g.eta_nodes) - 1) * (d::dielectric_albedo_eta(k + 1, g.eta_nodes) - 1));
-        const double mu = d::dielectric_albedo_view_mu((double(i) + 0.5) / double(g.mu_nodes - 1), alpha, eta_hat, side);
+        const double eta_hat = 1 + std::sqrt((d::dielectric_albedo_eta(g, k) - 1) * (d::dielectric_albedo_eta(g, k + 1) - 1));
+        const double mu = d::dielectric_albedo_view_mu((double(i) + 0.5) / double(g.mu_nodes - 1), alpha, eta_hat, side,
+                                                       g.near_critical);
         const double eta_s = eta_of_side(side, eta_hat);
         const auto a = albedo(mu, alpha, eta_s, s.strata, 1000003 + index);
         const auto cell = d::dielectric_albedo_locate(g, alpha, eta_s);
-        differences[index] = std::abs(d::dielectric_albedo_lookup(out.e.data(), g, cell, mu) - a.albedo.x);
+        const double table_value =
+            std::min(std::max(d::dielectric_albedo_interpolate(out.e.data(), g, cell, mu) + baseline(s, mu, eta_s), 0.0), 1.0);
+        differences[index] = std::abs(table_value - a.albedo.x);
         in_domain[index] = mu >= 0.05;
+        where[index] = "side " + std::to_string(side) + ", mu " + std::to_string(mu) + ", alpha " + std::to_string(alpha) +
+                       ", eta_hat " + std::to_string(eta_hat) + ": estimate " + std::to_string(a.albedo.x) + ", table " +
+                       std::to_string(table_value);
         bar.advance();
     });
-    out.max_interpolation = *std::max_element(differences.begin(), differences.end());
+    const auto worst = std::max_element(differences.begin(), differences.end());
+    out.max_interpolation = *worst;
+    out.worst = where[std::size_t(worst - differences.begin())];
+    const std::size_t side_cells = cells / 2;
     for (std::size_t index = 0; index < cells; ++index)
-        if (in_domain[index]) out.max_domain = std::max(out.max_domain, differences[index]);
+        if (in_domain[index]) {
+            out.max_domain = std::max(out.max_domain, differences[index]);
+            double& side_max = out.max_side[index / side_cells];
+            side_max = std::max(side_max, differences[index]);
+        }
     return out;
 }
 
@@ -219,25 +274,40 @@ void write(std::FILE* f, const std::vector<table>& tables, const settings& s) {
     std::fprintf(f,
                  "// Generated by examples/dielectric_albedo_tables.cpp (%s--mu-nodes %zu --alpha-nodes %zu --eta-nodes %zu "
                  "--strata %zu);\n// do not edit by hand.\n",
-                 s.beckmann ? "--beckmann " : "", g.mu_nodes, g.alpha_nodes, g.eta_nodes, s.strata);
-    std::fprintf(f, "// The albedo tables of shade/bsdf/dielectric_albedo_table.hpp (grid, interpolation, meaning):\n");
-    std::fprintf(f, "// 2 sides x %zu eta x %zu alpha x %zu mu nodes, one (side, eta) block of rows per line group;\n",
-                 g.eta_nodes, g.alpha_nodes, g.mu_nodes);
-    std::fprintf(f, "// each node the mean importance-mode weight of %zu jittered samples of the model's own sampler.\n",
-                 s.strata * s.strata);
+                 s.beckmann ? "--beckmann " : s.reflection ? "--reflection " : "", g.mu_nodes, g.alpha_nodes, g.eta_nodes,
+                 s.strata);
+    if (s.reflection) {
+        std::fprintf(f, "// The reflection table of shade/bsdf/dielectric_reflection_albedo.hpp (meaning) on the grid\n");
+        std::fprintf(f, "// detail::dielectric_reflection_albedo_grid of shade/bsdf/dielectric_albedo_table.hpp (grid,\n");
+        std::fprintf(f, "// interpolation): R_ss(mu, alpha, eta_s) - F_dielectric(mu, eta_s) at each node.\n");
+    } else
+        std::fprintf(f, "// The albedo tables of shade/bsdf/dielectric_albedo_table.hpp (grid, interpolation, meaning):\n");
+    std::fprintf(f, "// 2 sides x %zu eta x %zu alpha x %zu mu nodes, one (side, eta) block of rows per line group%s;\n",
+                 g.eta_nodes, g.alpha_nodes, g.mu_nodes, s.reflection && g.alpha_nodes % 4 == 0 ? ", four rows a line" : "");
+    std::fprintf(f, "// each node the mean importance-mode weight of %zu jittered samples of the model's own sampler%s.\n",
+                 s.strata * s.strata, s.reflection ? " (reflections only)" : "");
     std::fprintf(f, "// Accuracy (measured by the generator, per table below): the largest standard error of a\n");
     std::fprintf(f, "// node; the largest difference between the interpolated table and a fresh estimate at the\n");
     std::fprintf(f, "// centre of every cell (interpolation plus both estimates' noise), and the same over the\n");
-    std::fprintf(f, "// cells whose centre has mu >= 0.05.\n\n");
+    std::fprintf(f, "// cells whose centre has mu >= 0.05%s.\n\n",
+                 s.reflection ? " (the table read as F plus the interpolated difference)" : "");
     std::fprintf(f, "namespace shade::detail {\n");
     for (const auto& t : tables) {
-        std::fprintf(f, "\n/// E(mu, alpha, eta_s) of %s.\n", t.what.c_str());
+        std::fprintf(f, "\n/// %s of %s.\n", s.reflection ? "R_ss(mu, alpha, eta_s) - F(mu, eta_s)" : "E(mu, alpha, eta_s)",
+                     t.what.c_str());
         std::fprintf(f, "/// Node standard error <= %.1e; interpolated vs estimated at cell centres <= %.1e;\n", t.max_error,
                      t.max_interpolation);
-        std::fprintf(f, "/// at the cell centres with mu >= 0.05 <= %.1e.\n", t.max_domain);
+        std::fprintf(f, "/// at the cell centres with mu >= 0.05 <= %.1e (entering side <= %.1e, exiting side <= %.1e).\n",
+                     t.max_domain, t.max_side[0], t.max_side[1]);
         std::fprintf(f, "inline constexpr float %s[%zu] = {\n", t.name.c_str(), g.size());
-        for (std::size_t r = 0; r < g.size() / g.mu_nodes; ++r) {
-            ex::write_float_literals(f, t.e.data() + r * g.mu_nodes, g.mu_nodes);
+        // The reflection table, four rows (of one alpha block) per line: its header is
+        // included by compensated_rough_dielectric.hpp, whose preprocessed lines are budgeted.
+        const std::size_t rows_per_line = s.reflection && g.alpha_nodes % 4 == 0 ? 4 : 1;
+        for (std::size_t r = 0; r < g.size() / g.mu_nodes; r += rows_per_line) {
+            for (std::size_t k = 0; k < rows_per_line; ++k) {
+                if (k > 0) std::fprintf(f, ", ");
+                ex::write_float_literals(f, t.e.data() + (r + k) * g.mu_nodes, g.mu_nodes);
+            }
             std::fprintf(f, ",\n");
         }
         std::fprintf(f, "};\n");
@@ -384,6 +454,7 @@ int main(int argc, char** argv) {
     return ex::run_cli("dielectric_albedo_tables", [&] {
         settings s;
         bool strata_given = false, nodes_given = false;
+        std::size_t mu_nodes = 0, alpha_nodes = 0, eta_nodes = 0; // 0: the grid's own
         ex::command_line args(argc, argv);
         while (args.next()) {
             if (args.flag("--help") || args.flag("-h")) {
@@ -392,13 +463,13 @@ int main(int argc, char** argv) {
             }
             if (args.option("--out")) s.out = args.path();
             else if (args.option("--mu-nodes")) {
-                s.grid.mu_nodes = args.integer<std::size_t>(4, 128);
+                mu_nodes = args.integer<std::size_t>(4, 128);
                 nodes_given = true;
             } else if (args.option("--alpha-nodes")) {
-                s.grid.alpha_nodes = args.integer<std::size_t>(4, 128);
+                alpha_nodes = args.integer<std::size_t>(4, 128);
                 nodes_given = true;
             } else if (args.option("--eta-nodes")) {
-                s.grid.eta_nodes = args.integer<std::size_t>(2, 64);
+                eta_nodes = args.integer<std::size_t>(2, 64);
                 nodes_given = true;
             }
             else if (args.option("--strata")) {
@@ -409,12 +480,22 @@ int main(int argc, char** argv) {
             else if (args.flag("--quiet")) s.quiet = true;
             else if (args.flag("--anisotropic")) s.anisotropic = true;
             else if (args.flag("--beckmann")) s.beckmann = true;
+            else if (args.flag("--reflection")) s.reflection = true;
             else args.unknown();
         }
         (void)ex::output_format("--out", s.out, {".hpp", ".h"});
         if (s.anisotropic && s.beckmann)
             throw ex::usage_error("--beckmann does not apply to --anisotropic (the correction is tabulated for GGX)");
         if (s.beckmann && s.out == "dielectric_albedo_data.hpp") s.out = "beckmann_dielectric_albedo_data.hpp";
+        if (s.reflection && (s.anisotropic || s.beckmann))
+            throw ex::usage_error("--reflection does not apply to --anisotropic or --beckmann (it is tabulated for isotropic GGX)");
+        if (s.reflection) {
+            if (s.out == "dielectric_albedo_data.hpp") s.out = "dielectric_reflection_albedo_data.hpp";
+            s.grid = d::dielectric_reflection_albedo_grid;
+        }
+        if (mu_nodes != 0) s.grid.mu_nodes = mu_nodes;
+        if (alpha_nodes != 0) s.grid.alpha_nodes = alpha_nodes;
+        if (eta_nodes != 0) s.grid.eta_nodes = eta_nodes;
         if (s.anisotropic && nodes_given)
             throw ex::usage_error("--mu-nodes, --alpha-nodes and --eta-nodes do not apply to --anisotropic (its grid is fixed)");
         if (s.anisotropic) {
@@ -443,7 +524,11 @@ int main(int argc, char** argv) {
         const std::size_t cells = 2 * (g.eta_nodes - 1) * (g.alpha_nodes - 1) * (g.mu_nodes - 1);
         std::optional<ex::progress> bar(std::in_place, "dielectric_albedo_tables", g.size() + cells, !s.quiet);
         std::vector<table> tables;
-        if (s.beckmann)
+        if (s.reflection)
+            tables.push_back(compute("ggx_rough_dielectric_reflection_albedo",
+                                     "shade::rough_dielectric<ggx> (isotropic alpha), reflected part",
+                                     estimate_reflection, s, *bar));
+        else if (s.beckmann)
             tables.push_back(compute("beckmann_rough_dielectric_albedo",
                                      "shade::rough_dielectric<beckmann> (isotropic m, read as alpha)",
                                      estimate<shade::beckmann<T>>, s, *bar));
@@ -454,8 +539,9 @@ int main(int argc, char** argv) {
         for (const auto& t : tables)
             std::fprintf(stderr,
                          "dielectric_albedo_tables: %s: largest node standard error %.2e, largest interpolation "
-                         "difference %.2e (%.2e where mu >= 0.05)\n",
-                         t.name.c_str(), t.max_error, t.max_interpolation, t.max_domain);
+                         "difference %.2e (%.2e where mu >= 0.05: %.2e entering, %.2e exiting; the largest at %s)\n",
+                         t.name.c_str(), t.max_error, t.max_interpolation, t.max_domain, t.max_side[0], t.max_side[1],
+                         t.worst.c_str());
         std::FILE* f = std::fopen(header.temporary().c_str(), "w");
         if (!f) throw std::runtime_error("cannot write " + header.temporary().string());
         write(f, tables, s);

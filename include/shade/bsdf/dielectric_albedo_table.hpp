@@ -36,6 +36,12 @@
 // along x. Lookups clamp alpha to [1e-4, 1] and eta_hat to [1.05, 3]: outside,
 // the nearest end is read. The accuracy of each table is stated in the generated header.
 // Layout: index ((side * eta_nodes + k) * alpha_nodes + j) * mu_nodes + i; side 0 entering.
+//
+// The same code reads the reflection table of shade/bsdf/dielectric_reflection_albedo.hpp on
+// its own grid (dielectric_reflection_albedo_grid): 33 view nodes, eta_hat in [1.001, 3],
+// a Catmull-Rom spline along x too, and view coordinates that also resolve the Fresnel
+// reflectance and, on the exiting side, the critical angle (dielectric_albedo_view,
+// near_critical).
 
 #include <cmath>
 #include <concepts>
@@ -43,6 +49,7 @@
 
 #include <glm/common.hpp>
 
+#include <shade/brdf/fresnel.hpp>
 #include <shade/brdf/microfacet/albedo_table.hpp>
 #include <shade/core/quadrature.hpp>
 
@@ -59,11 +66,25 @@ inline constexpr double dielectric_albedo_eta_min = 1.05;
 /// The largest eta_hat of the grid.
 inline constexpr double dielectric_albedo_eta_max = 3.0;
 
-/// The sizes of a dielectric albedo table (two sides).
+/// The coordinate x = log(eta_hat - 1) of eta_hat at its ends.
+inline constexpr double dielectric_albedo_x_min = -2.995732273553991; // log(0.05)
+inline constexpr double dielectric_albedo_x_max = 0.6931471805599453; // log(2)
+
+/// The sizes and the eta range of a dielectric albedo table (two sides). The defaults are
+/// the grid of the total-albedo tables; the reflection table
+/// (shade/bsdf/dielectric_reflection_albedo.hpp) reaches closer to eta_hat = 1 and is
+/// interpolated by a spline along x as well.
 struct dielectric_albedo_grid {
     std::size_t mu_nodes = dielectric_albedo_mu_nodes;
     std::size_t alpha_nodes = dielectric_albedo_alpha_nodes;
     std::size_t eta_nodes = dielectric_albedo_eta_nodes;
+    double eta_min = dielectric_albedo_eta_min; ///< the smallest eta_hat, 1 + exp(x_min)
+    double eta_max = dielectric_albedo_eta_max; ///< the largest eta_hat, 1 + exp(x_max)
+    double x_min = dielectric_albedo_x_min;     ///< log(eta_min - 1)
+    double x_max = dielectric_albedo_x_max;     ///< log(eta_max - 1)
+    bool eta_spline = false;                    ///< Catmull-Rom along x (else linear)
+    bool near_critical = false;                 ///< the exiting side's view coordinate resolves
+                                                ///< the critical angle (dielectric_albedo_view)
 
     /// Floats in the E table: 2 sides x eta x alpha x mu nodes.
     [[nodiscard]] constexpr std::size_t size() const noexcept { return 2 * eta_nodes * alpha_nodes * mu_nodes; }
@@ -73,21 +94,42 @@ struct dielectric_albedo_grid {
     }
 };
 
-/// The coordinate x = log(eta_hat - 1) of eta_hat at its ends, and its span.
-inline constexpr double dielectric_albedo_x_min = -2.995732273553991; // log(0.05)
-inline constexpr double dielectric_albedo_x_max = 0.6931471805599453; // log(2)
+/// The grid of the reflection table (shade/bsdf/dielectric_reflection_albedo.hpp): 33 view
+/// nodes, the default alpha nodes, and 20 nodes along x = log(eta_hat - 1) from log(1e-3) to
+/// log(2) (eta_hat in [1.001, 3]) with a Catmull-Rom spline along x: the reflectance falls
+/// toward 0 as eta_hat nears 1, steeply in x, where the total albedo stays near 1. On the
+/// exiting side the view coordinate crowds its nodes about the critical angle, where the
+/// reflectance steps down from 1 (dielectric_albedo_view, near_critical).
+inline constexpr dielectric_albedo_grid dielectric_reflection_albedo_grid{
+    33, dielectric_albedo_alpha_nodes, 20, 1.001, 3.0,
+    -6.907755278982137, // log(1e-3)
+    0.6931471805599453, // log(2)
+    true, true};
 
-/// eta_hat at node k of an n-node axis: 1 + exp(x_k), x uniform from log(0.05) to log(2).
-[[nodiscard]] inline double dielectric_albedo_eta(std::size_t k, std::size_t n) noexcept {
-    return 1.0 + std::exp(dielectric_albedo_x_min +
-                          double(k) / double(n - 1) * (dielectric_albedo_x_max - dielectric_albedo_x_min));
+/// eta_hat at node k of grid g: 1 + exp(x_k), x uniform from g.x_min to g.x_max.
+[[nodiscard]] inline double dielectric_albedo_eta(const dielectric_albedo_grid& g, std::size_t k) noexcept {
+    return 1.0 + std::exp(g.x_min + double(k) / double(g.eta_nodes - 1) * (g.x_max - g.x_min));
 }
 
-/// The coordinate in [0, 1] of eta_hat (clamped to [1.05, 3]) on the log(eta_hat - 1) axis.
+/// eta_hat at node k of an n-node axis of the default range: x uniform from log(0.05) to log(2).
+[[nodiscard]] inline double dielectric_albedo_eta(std::size_t k, std::size_t n) noexcept {
+    dielectric_albedo_grid g{};
+    g.eta_nodes = n;
+    return dielectric_albedo_eta(g, k);
+}
+
+/// The coordinate in [0, 1] of eta_hat (clamped to [g.eta_min, g.eta_max]) on grid g's
+/// log(eta_hat - 1) axis.
+template <std::floating_point T>
+[[nodiscard]] inline T dielectric_albedo_eta_coordinate(const dielectric_albedo_grid& g, T eta_hat) noexcept {
+    const double e = glm::clamp(double(eta_hat), g.eta_min, g.eta_max);
+    return T((std::log(e - 1.0) - g.x_min) / (g.x_max - g.x_min));
+}
+
+/// The coordinate in [0, 1] of eta_hat (clamped to [1.05, 3]) on the default log(eta_hat - 1) axis.
 template <std::floating_point T>
 [[nodiscard]] inline T dielectric_albedo_eta_coordinate(T eta_hat) noexcept {
-    const double e = glm::clamp(double(eta_hat), dielectric_albedo_eta_min, dielectric_albedo_eta_max);
-    return T((std::log(e - 1.0) - dielectric_albedo_x_min) / (dielectric_albedo_x_max - dielectric_albedo_x_min));
+    return dielectric_albedo_eta_coordinate(dielectric_albedo_grid{}, eta_hat);
 }
 
 /// The view coordinate of (mu, alpha, eta_hat) on a side's table, in [0, 1], increasing in
@@ -102,23 +144,53 @@ template <std::floating_point T>
 ///
 /// s resolves the masking near grazing at small alpha, sqrt(mu / mu_c) the steep fall of E
 /// toward grazing at large alpha, mu / mu_c spreads the rest evenly up to mu_c.
+///
+/// With near_critical (the reflection table), the coordinate also follows the Fresnel
+/// reflectance F(mu) itself, which the reflectance R equals as alpha -> 0: through
+/// q(mu) = (1 - F(mu, eta_s)) / (1 - F(1, eta_s)), increasing from 0 (grazing, or the
+/// critical angle) to 1 (normal view), F being monotonic in mu. Near eta_hat = 1, F falls
+/// from 1 within a small distance of grazing (entering) or of the critical angle
+/// (exiting), a scale that neither c nor the pieces above resolve. On the exiting side R
+/// steps from 1 (total internal reflection) down to F across the critical angle, over a
+/// width of about alpha in mu (the spread of the microfacet normals about n), and just above
+/// mu_c, F falls as 1 - O(sqrt(mu - mu_c)) (Born, Wolf 1999, "Principles of Optics", 7th ed.,
+/// sec. 1.5.4); with r(d) = d / (d + alpha), d the distance from mu_c:
+///
+///     entering:    (2 c + q(mu)) / 3
+///     below mu_c:  (t_below(mu) + 1/2 - r(mu_c - mu) / (2 r(mu_c))) / 2
+///     above mu_c:  1/2 + (sqrt(d / (1 - mu_c)) + r(d) / r(1 - mu_c) + q(mu)) / 6,   d = mu - mu_c
 template <std::floating_point T>
-[[nodiscard]] inline T dielectric_albedo_view(T mu, T alpha, T eta_hat, std::size_t side) noexcept {
-    if (side == 0) return albedo_grid_c(mu, alpha);
+[[nodiscard]] inline T dielectric_albedo_view(T mu, T alpha, T eta_hat, std::size_t side,
+                                              bool near_critical = false) noexcept {
+    const T eta_s = side == 0 ? eta_hat : T(1) / eta_hat;
+    // q(mu): 1 - F normalised to [0, 1] (F(1) = f0 < 1 for the eta_hat of the grids).
+    const auto q = [eta_s, eta_hat](T m) {
+        const T f0 = sqr((eta_hat - T(1)) / (eta_hat + T(1)));
+        return glm::clamp((T(1) - F_dielectric(m, eta_s)) / (T(1) - f0), T(0), T(1));
+    };
+    if (side == 0) return near_critical ? (T(2) * albedo_grid_c(mu, alpha) + q(mu)) / T(3) : albedo_grid_c(mu, alpha);
     const T mu_c = std::sqrt(glm::max(T(1) - T(1) / (eta_hat * eta_hat), T(0)));
-    if (mu >= mu_c) return T(0.5) + T(0.5) * (mu - mu_c) / (T(1) - mu_c);
+    const auto r = [alpha](T d) { return d / (d + alpha); };
+    if (mu >= mu_c) {
+        const T d = mu - mu_c, span = T(1) - mu_c;
+        if (!near_critical) return T(0.5) + T(0.5) * d / span;
+        return T(0.5) + (std::sqrt(d / span) + r(d) / r(span) + q(mu)) / T(6);
+    }
     const auto s = [alpha](T m) { return m / (m + alpha * (T(1) - m)); };
     const T x = mu / mu_c;
-    return (T(2) * s(mu) / s(mu_c) + std::sqrt(x) + x) / T(8);
+    const T below = (T(2) * s(mu) / s(mu_c) + std::sqrt(x) + x) / T(8);
+    if (!near_critical) return below;
+    return T(0.5) * (below + T(0.5) - T(0.5) * r(mu_c - mu) / r(mu_c));
 }
 
 /// The view cosine at coordinate t in [0, 1] (the inverse of dielectric_albedo_view), by
 /// bisection to double precision (for the generator and the tests).
-[[nodiscard]] inline double dielectric_albedo_view_mu(double t, double alpha, double eta_hat, std::size_t side) noexcept {
+[[nodiscard]] inline double dielectric_albedo_view_mu(double t, double alpha, double eta_hat, std::size_t side,
+                                                     bool near_critical = false) noexcept {
     double lo = 0, hi = 1;
     for (int k = 0; k < 64; ++k) {
         const double mid = 0.5 * (lo + hi);
-        (dielectric_albedo_view(mid, alpha, eta_hat, side) < t ? lo : hi) = mid;
+        (dielectric_albedo_view(mid, alpha, eta_hat, side, near_critical) < t ? lo : hi) = mid;
     }
     return 0.5 * (lo + hi);
 }
@@ -130,11 +202,11 @@ struct dielectric_albedo_cell {
     albedo_grid_cell<T> alpha{}; ///< cell along sqrt(alpha)
     albedo_grid_cell<T> eta{};   ///< cell along x = log(eta_hat - 1)
     T alpha_clamped = 1;         ///< alpha clamped to [1e-4, 1] (for the view coordinate)
-    T eta_clamped = 1;           ///< eta_hat clamped to [1.05, 3] (for the view coordinate)
+    T eta_clamped = 1;           ///< eta_hat clamped to the grid's range (for the view coordinate)
 };
 
 /// The cell of (alpha, eta_s): eta_s > 1 reads the entering table, eta_s < 1 (and NaN)
-/// the exiting one; alpha and eta_hat clamped to the grid.
+/// the exiting one; alpha clamped to [1e-4, 1] and eta_hat to [g.eta_min, g.eta_max].
 template <std::floating_point T>
 [[nodiscard]] inline dielectric_albedo_cell<T> dielectric_albedo_locate(const dielectric_albedo_grid& g, T alpha,
                                                                          T eta_s) noexcept {
@@ -143,8 +215,8 @@ template <std::floating_point T>
     const T eta_hat = eta_s > T(1) ? eta_s : T(1) / eta_s;
     c.alpha_clamped = glm::clamp(alpha, T(albedo_grid_alpha_min), T(1));
     c.alpha = albedo_grid_locate(std::sqrt(c.alpha_clamped), g.alpha_nodes);
-    c.eta_clamped = glm::clamp(eta_hat, T(dielectric_albedo_eta_min), T(dielectric_albedo_eta_max));
-    c.eta = albedo_grid_locate(dielectric_albedo_eta_coordinate(c.eta_clamped), g.eta_nodes);
+    c.eta_clamped = glm::clamp(eta_hat, T(g.eta_min), T(g.eta_max));
+    c.eta = albedo_grid_locate(dielectric_albedo_eta_coordinate(g, c.eta_clamped), g.eta_nodes);
     return c;
 }
 
@@ -173,31 +245,43 @@ template <std::floating_point T, class Node>
     return catmull_rom(p0, p1, p2, p3, t);
 }
 
-/// E(mu, alpha, eta_s) read from a table of grid g at a located cell: a Catmull-Rom spline
-/// along the view coordinate and along sqrt(alpha), linear along x; mu clamped to [0, 1].
-/// On the exiting side the view axis is two pieces, below and above the critical angle
-/// (the node at 0.5 when the view nodes are odd in number), joined with a kink as E is.
-/// Returns the albedo R + T, dimensionless, clamped to [0, 1] (the spline may overshoot a
-/// node value by a little where E bends sharply).
+/// The table of grid g interpolated at a located cell and view cosine mu (clamped to
+/// [0, 1]), not clamped: a Catmull-Rom spline along the view coordinate and along
+/// sqrt(alpha), linear along x (a Catmull-Rom spline when g.eta_spline). On the exiting
+/// side the view axis is two pieces, below and above the critical angle (the node at 0.5
+/// when the view nodes are odd in number), joined with a kink as E is.
 template <std::floating_point T>
-[[nodiscard]] inline T dielectric_albedo_lookup(const float* table, const dielectric_albedo_grid& g,
-                                                const dielectric_albedo_cell<T>& cell, T mu) noexcept {
+[[nodiscard]] inline T dielectric_albedo_interpolate(const float* table, const dielectric_albedo_grid& g,
+                                                     const dielectric_albedo_cell<T>& cell, T mu) noexcept {
     const T m = glm::clamp(mu, T(0), T(1));
     const auto c_mu =
-        albedo_grid_locate(dielectric_albedo_view(m, cell.alpha_clamped, cell.eta_clamped, cell.side), g.mu_nodes);
+        albedo_grid_locate(dielectric_albedo_view(m, cell.alpha_clamped, cell.eta_clamped, cell.side, g.near_critical),
+                           g.mu_nodes);
     const std::size_t last = g.mu_nodes - 1;
     const std::size_t middle = cell.side == 1 && last % 2 == 0 ? last / 2 : last;
     const std::size_t lo = c_mu.i < middle ? 0 : middle;
     const std::size_t hi = c_mu.i < middle ? middle : last;
-    T e[2];
-    for (std::size_t dk = 0; dk < 2; ++dk) {
+    // The value at eta node k, interpolated along the view coordinate and sqrt(alpha).
+    const auto block_value = [&](std::size_t k) {
         const auto row_value = [&](std::size_t j) {
-            const float* row = table + g.row(cell.side, cell.eta.i + dk, j);
+            const float* row = table + g.row(cell.side, k, j);
             return catmull_rom_axis<T>([row](std::size_t i) { return T(row[i]); }, c_mu.i, lo, hi, c_mu.t);
         };
-        e[dk] = catmull_rom_axis<T>(row_value, cell.alpha.i, 0, g.alpha_nodes - 1, cell.alpha.t);
-    }
-    return glm::clamp(e[0] + cell.eta.t * (e[1] - e[0]), T(0), T(1));
+        return catmull_rom_axis<T>(row_value, cell.alpha.i, 0, g.alpha_nodes - 1, cell.alpha.t);
+    };
+    if (g.eta_spline) return catmull_rom_axis<T>(block_value, cell.eta.i, 0, g.eta_nodes - 1, cell.eta.t);
+    const T e0 = block_value(cell.eta.i);
+    const T e1 = block_value(cell.eta.i + 1);
+    return e0 + cell.eta.t * (e1 - e0);
+}
+
+/// E(mu, alpha, eta_s) read from a table of grid g at a located cell
+/// (dielectric_albedo_interpolate). Returns the albedo R + T, dimensionless, clamped to
+/// [0, 1] (the spline may overshoot a node value by a little where E bends sharply).
+template <std::floating_point T>
+[[nodiscard]] inline T dielectric_albedo_lookup(const float* table, const dielectric_albedo_grid& g,
+                                                const dielectric_albedo_cell<T>& cell, T mu) noexcept {
+    return glm::clamp(dielectric_albedo_interpolate(table, g, cell, mu), T(0), T(1));
 }
 
 /// E_avg(alpha, eta_s) = 2 integral_0^1 E(mu) mu dmu of the interpolated table at a located
