@@ -192,6 +192,26 @@ template <std::floating_point T>
     return glm::mix(r_b, widened, coat_weight);
 }
 
+/// Section "Coat", "Darkening", equation internal_diffuse_reflection_coefficient_for_rough_base:
+/// K_r = 1 - (1 - E_F(eta_c)) / eta_c^2, the fraction of diffuse light from below that a coat
+/// of index eta_c reflects back down (E_F = dielectric_fresnel_average). Dimensionless, in
+/// [0, 1]. The caller guarantees eta_c > 0.
+template <std::floating_point T>
+[[nodiscard]] inline T coat_rough_reflection(T eta_c) noexcept {
+    return T(1) - (T(1) - dielectric_fresnel_average(eta_c)) / (eta_c * eta_c);
+}
+
+/// coat_darkening_factor (below) with K_r = coat_rough_reflection(eta_c) given, for a caller
+/// that evaluates it at many views of one coat.
+template <std::floating_point T>
+[[nodiscard]] inline rgb<T> coat_darkening_factor(const rgb<T>& base_albedo, T eta_c, T k_r, T mu_o, T r_b,
+                                                  T coat_weight, T coat_darkening) noexcept {
+    const T k_s = F_dielectric(mu_o, eta_c);
+    const T k = glm::mix(k_s, k_r, r_b);
+    const rgb<T> delta = rgb<T>(T(1) - k) / (rgb<T>(1) - base_albedo * k);
+    return glm::mix(rgb<T>(1), delta, coat_weight * coat_darkening);
+}
+
 /// Section "Coat", "Darkening", equations general_darkening_formula,
 /// internal_diffuse_reflection_coefficient_for_rough_base / _smooth_base / _general_base and
 /// modulated_darkening_factor: the factor the base's lobes are multiplied by under a coat,
@@ -208,11 +228,8 @@ template <std::floating_point T>
 template <std::floating_point T>
 [[nodiscard]] inline rgb<T> coat_darkening_factor(const rgb<T>& base_albedo, T eta_c, T mu_o, T r_b, T coat_weight,
                                                   T coat_darkening) noexcept {
-    const T k_r = T(1) - (T(1) - dielectric_fresnel_average(eta_c)) / (eta_c * eta_c);
-    const T k_s = F_dielectric(mu_o, eta_c);
-    const T k = glm::mix(k_s, k_r, r_b);
-    const rgb<T> delta = rgb<T>(T(1) - k) / (rgb<T>(1) - base_albedo * k);
-    return glm::mix(rgb<T>(1), delta, coat_weight * coat_darkening);
+    return coat_darkening_factor(base_albedo, eta_c, coat_rough_reflection(eta_c), mu_o, r_b, coat_weight,
+                                 coat_darkening);
 }
 
 /// Section "Coat", "Darkening", equations base_roughness_estimate and

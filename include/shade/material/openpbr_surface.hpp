@@ -1,0 +1,936 @@
+#pragma once
+// shade::openpbr_surface: OpenPBR Surface 1.1 as one sampled BSDF, the specification's
+// reduction of its layers to a mixture of public lobes. Not in the umbrella header:
+// include it directly.
+//
+//   shade::openpbr_parameters<float> p;          // the specification's defaults
+//   p.base_color = {0.9f, 0.6f, 0.2f};
+//   p.coat_weight = 1.0f;
+//   const shade::openpbr_surface<float> paint(p);
+//   const auto s = shade::sample_bsdf(paint, v, uc, u, at, shade::transport_mode::radiance);
+
+#include <array>
+#include <cmath>
+#include <concepts>
+#include <cstddef>
+#include <optional>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <shade/brdf/anisotropic_multiple_scattering.hpp>
+#include <shade/brdf/detail/directions.hpp>
+#include <shade/brdf/eon.hpp>
+#include <shade/brdf/f82_tint.hpp>
+#include <shade/brdf/fresnel.hpp>
+#include <shade/brdf/microfacet/ggx.hpp>
+#include <shade/brdf/microfacet/masking.hpp>
+#include <shade/brdf/microfacet_reflection.hpp>
+#include <shade/brdf/sheen.hpp>
+#include <shade/brdf/thin_film.hpp>
+#include <shade/bsdf/bsdf.hpp>
+#include <shade/bsdf/compensated_rough_dielectric.hpp>
+#include <shade/bsdf/detail/delta.hpp>
+#include <shade/bsdf/detail/dielectric_albedo_row.hpp>
+#include <shade/bsdf/detail/lobe_pair.hpp>
+#include <shade/bsdf/dielectric_reflection_albedo.hpp>
+#include <shade/bsdf/layer.hpp>
+#include <shade/bsdf/refract.hpp>
+#include <shade/bsdf/smooth_dielectric.hpp>
+#include <shade/core/math.hpp>
+#include <shade/core/scalar.hpp>
+#include <shade/core/surface_point.hpp>
+#include <shade/core/types.hpp>
+#include <shade/material/openpbr_parameters.hpp>
+
+namespace shade {
+
+namespace openpbr {
+
+/// The smallest GGX alpha of a rough lobe of openpbr_surface (shade::ggx's own lower
+/// bound): a lobe whose alpha along the tangent, alpha_t >= alpha_b, is below it is a delta
+/// lobe (a mirror or a straight refraction), evaluated exactly.
+template <std::floating_point T>
+inline constexpr T smallest_alpha = T(1e-4);
+
+/// Gulbrandsen 2014, "Artist Friendly Metallic Fresnel", JCGT 3(4), eqs. 9-10 (the
+/// inverse mapping): the complex index n + i k of a conductor whose normal-incidence
+/// reflectance is r and whose edge tint is g, per channel,
+///
+///     n = g (1 - r) / (1 + r) + (1 - g) (1 + sqrt(r)) / (1 - sqrt(r))
+///     k^2 = (r (n + 1)^2 - (n - 1)^2) / (1 - r)
+///
+/// with r clamped to [0, 0.99] (r = 1 is an infinite index) and g to [0, 1]. openpbr_surface
+/// uses it to put a thin film over its F82 metal, which has no complex index of its own.
+template <std::floating_point T>
+struct conductor_index {
+    rgb<T> eta;   ///< n per channel
+    rgb<T> kappa; ///< k per channel
+};
+
+/// See conductor_index.
+template <std::floating_point T>
+[[nodiscard]] inline conductor_index<T> gulbrandsen_index(const rgb<T>& reflectance, const rgb<T>& edge_tint) noexcept {
+    conductor_index<T> out{rgb<T>(1), rgb<T>(0)};
+    for (int c = 0; c < 3; ++c) {
+        const T r = glm::clamp(reflectance[c], T(0), T(0.99));
+        const T g = glm::clamp(edge_tint[c], T(0), T(1));
+        const T sr = std::sqrt(r);
+        const T n = g * (T(1) - r) / (T(1) + r) + (T(1) - g) * (T(1) + sr) / (T(1) - sr);
+        const T k2 = (r * sqr(n + T(1)) - sqr(n - T(1))) / (T(1) - r);
+        out.eta[c] = glm::clamp(n, T(1e-4), T(1e4));
+        out.kappa[c] = std::sqrt(glm::clamp(k2, T(0), T(1e8)));
+    }
+    return out;
+}
+
+/// The Fresnel term of openpbr_surface's dielectric reflection lobe and of its metal
+/// (shade::fresnel_term), per channel in [0, 1]:
+///
+///     F(mu) = tint (lerp(F_base(mu), F_film(mu), w))
+///
+/// F_base the exact dielectric reflectance at the modulated index eta'_s (section
+/// "Dielectric base", equation modulated_ior), tint specular_color; or, for the metal, the
+/// F82-tint reflectance times specular_weight (section "Metal"; shade::F_f82_tint) with
+/// tint 1. F_film the thin film's reflectance (shade::thin_film_fresnel, section "Thin
+/// film": the film over the base dielectric, or over the conductor of gulbrandsen_index)
+/// and w thin_film_weight (section "Thin film": the film's Fresnel replaces the base's in
+/// proportion to its coverage).
+template <std::floating_point T>
+class surface_fresnel {
+public:
+    using scalar_type = T;
+
+    /// The dielectric's: index ratio eta (> 0), tint in [0, 1]^3, and a film of weight
+    /// film_weight in [0, 1] (film unused when 0). The caller guarantees the ranges.
+    [[nodiscard]] static surface_fresnel dielectric(T eta, const rgb<T>& tint, T film_weight,
+                                                    const thin_film_fresnel<T>& film) noexcept {
+        surface_fresnel s(film);
+        s.eta_ = eta;
+        s.tint_ = tint;
+        s.film_weight_ = film_weight;
+        return s;
+    }
+
+    /// The metal's: F82-tint with f0, edge tint and weight in [0, 1], and a film as above.
+    [[nodiscard]] static surface_fresnel metal(const f82_tint<T>& f82, T film_weight,
+                                               const thin_film_fresnel<T>& film) noexcept {
+        surface_fresnel s(film);
+        s.metal_ = true;
+        s.f82_ = f82;
+        s.film_weight_ = film_weight;
+        return s;
+    }
+
+    /// F(cos_theta) per channel, dimensionless, in [0, 1]; |cos_theta| is used.
+    [[nodiscard]] rgb<T> F(T cos_theta) const noexcept {
+        const T c = std::abs(cos_theta);
+        rgb<T> base = metal_ ? f82_.F(c) : rgb<T>(F_dielectric(c, eta_));
+        if (film_weight_ > T(0)) base = glm::mix(base, film_.F(c), film_weight_);
+        return metal_ ? base : tint_ * base;
+    }
+
+    [[nodiscard]] constexpr bool is_metal() const noexcept { return metal_; }    ///< the metal's term
+    [[nodiscard]] constexpr T eta() const noexcept { return eta_; }              ///< eta'_s (dielectric)
+    [[nodiscard]] constexpr const rgb<T>& tint() const noexcept { return tint_; } ///< specular_color (dielectric)
+    [[nodiscard]] constexpr T film_weight() const noexcept { return film_weight_; } ///< thin_film_weight
+
+private:
+    explicit surface_fresnel(const thin_film_fresnel<T>& film) noexcept
+        : film_(film), f82_(unchecked, rgb<T>(0), rgb<T>(1), T(1)) {}
+
+    thin_film_fresnel<T> film_;
+    f82_tint<T> f82_;
+    rgb<T> tint_{1};
+    T eta_ = T(1.5);
+    T film_weight_ = T(0);
+    bool metal_ = false;
+};
+
+} // namespace openpbr
+
+/// OpenPBR Surface 1.1 (Andersson, Edmondson, Guertault, Hill, Kutz, Portsmouth, Pharr,
+/// et al. 2024, "OpenPBR Surface Specification", Academy Software Foundation, v1.1) as a
+/// shade::sampled_bsdf: the specification's section "Reduction to a mixture of lobes",
+/// whose layers (fuzz over coat over a base substrate) are combined by albedo scaling,
+/// written as a weighted sum of public lobes:
+///
+///     f = alpha f_surface + (1 - alpha) f_transparent                      (opacity)
+///     f_surface = F f_fuzz + (1 - F E_fuzz(v)) f_coated                    (fuzz)
+///     f_coated  = C f_coat + lerp(1, T_coat (1 - E_coat(v)), C) D f_base  (coat)
+///     f_base    = M f_metal + (1 - M) (f_spec + (1 - E_spec(v)) f_T)       (metal, dielectric base)
+///     f_T       = T f_transmission + (1 - T) (S f_subsurface + (1 - S) f_diffuse)
+///
+/// alpha geometry_opacity, F fuzz_weight, C coat_weight, M base_metalness, T
+/// transmission_weight, S subsurface_weight; E_X(v) the directional albedo of lobe X at the
+/// view (white, for the fuzz); T_coat the coat's absorption along the two refracted paths
+/// (openpbr::coat_absorption) and D its darkening (openpbr::coat_darkening_factor). The
+/// lobes, each a public model:
+///
+///   * f_fuzz: shade::zeltner_sheen (fuzz_color, fuzz_roughness); E_fuzz its albedo table.
+///   * f_coat: shade::microfacet_reflection over anisotropic GGX with the exact dielectric
+///     Fresnel of coat_ior (coat_roughness, coat_roughness_anisotropy; openpbr::
+///     roughness_to_alpha); E_coat = shade::dielectric_reflection_albedo.
+///   * f_metal: microfacet_reflection with the F82-tint Fresnel (base_weight base_color,
+///     specular_color, specular_weight clamped to 1 so the metal creates no energy) and
+///     Kulla-Conty compensation at every azimuth (shade::kulla_conty_anisotropic), so a white
+///     metal reflects everything; roughness specular_roughness widened by the coat
+///     (openpbr::coat_roughened).
+///   * f_spec: microfacet_reflection with openpbr::surface_fresnel (specular_color times the
+///     exact Fresnel of the modulated index eta'_s, openpbr::modulated_ior_ratio of
+///     openpbr::specular_ior_ratio; with a thin film); E_spec its albedo:
+///     specular_color times dielectric_reflection_albedo at eta'_s, the film's part
+///     estimated as F_film(mu) E_1(mu), E_1 the albedo of the lobe with F = 1 (the
+///     Kulla-Conty table).
+///   * f_transmission: the transmitted part of shade::compensated_rough_dielectric at the
+///     index specular_ior, divided by its transmittance from v, so that it carries all
+///     the energy the specular reflection leaves (the specification's "the transmission
+///     Fresnel factor can be omitted"), tinted by transmission_color when
+///     transmission_depth = 0 (otherwise the colour belongs to the interior medium,
+///     interior()).
+///   * f_diffuse: shade::eon (base_weight base_color, base_diffuse_roughness).
+///   * f_subsurface: shade::eon (subsurface_color, base_diffuse_roughness): the surface
+///     part of subsurface scattering as a diffuse lobe; the interior is reported by
+///     interior() (openpbr::subsurface_medium) for a renderer's volume integrator.
+///
+/// Roughness 0 (alpha below openpbr::smallest_alpha): the coat, metal, specular reflection
+/// and transmission become delta lobes (exact mirrors and refractions; no clamped lobe).
+/// geometry_opacity < 1 adds a delta pass-through.
+///
+/// Thin-walled (geometry_thin_walled): both sides look the same (a view from below is
+/// answered as the mirror image of one from above, the specification's "the surface always
+/// flipped so that incident rays enter top-down"); the transmission lobe is the
+/// straight-through lobe of a thin sheet: the Kulla-Conty-compensated GGX mirror lobe with
+/// F = 1, mirrored through the surface (albedo 1 at every view, so the sheet reflects
+/// E_spec and transmits the rest: no energy lost or created at any roughness), or a delta
+/// straight through at roughness 0; subsurface becomes diffuse reflection and transmission
+/// S (1 -+ g) / 2 (equation thin_wall_subsurface), g subsurface_scatter_anisotropy.
+///
+/// Seen from inside (not thin-walled, v below the surface): the bare interface,
+/// compensated_rough_dielectric (or shade::smooth_dielectric at roughness 0) at
+/// specular_ior, when the material transmits at all ((1 - M) T > 0), times alpha; the
+/// coat, fuzz and opaque base are not seen from inside (the specification's section
+/// "Entering versus exiting" allows this).
+///
+/// Energy: the white furnace of the specification's section "White furnace testing"
+/// holds by construction wherever E_X is the lobe's exact albedo (each layer passes on
+/// exactly what its top reflects); what remains is the accuracy of the albedo tables and
+/// the thin film's estimate. Reciprocal: no (albedo scaling depends on v; the
+/// specification's choice); f in importance mode is the adjoint f(v, l) (shade/bsdf/bsdf.hpp).
+///
+/// Sampling: one lobe chosen with probability proportional to its share of the energy at
+/// the view (its weight times its albedo, largest channel), then the lobe's own sampler;
+/// pdf is the mixture density of the non-delta lobes, weight f |n·l| / pdf with the whole
+/// f. A delta sample (pbrt-v4's convention) has pdf the lobe's probability and weight its
+/// throughput over that probability.
+template <std::floating_point T>
+class openpbr_surface {
+public:
+    using scalar_type = T;
+    using fuzz_lobe = zeltner_sheen<T>;
+    using coat_lobe = microfacet_reflection<ggx<T>, dielectric_fresnel<T>, smith_height_correlated<T>>;
+    using specular_lobe = microfacet_reflection<ggx<T>, openpbr::surface_fresnel<T>, smith_height_correlated<T>>;
+    using metal_lobe = microfacet_reflection<ggx<T>, openpbr::surface_fresnel<T>, smith_height_correlated<T>,
+                                             cook_torrance_form::walter, kulla_conty_anisotropic>;
+    using transmission_lobe = compensated_rough_dielectric<T>;
+    using sheet_lobe = microfacet_reflection<ggx<T>, schlick<T>, smith_height_correlated<T>,
+                                             cook_torrance_form::walter, kulla_conty_anisotropic>;
+    using diffuse_lobe = eon<T>;
+
+    /// The lobes of the mixture, in the order of the class comment.
+    enum class lobe : std::size_t {
+        fuzz,
+        coat,
+        metal,
+        specular,
+        transmission,
+        diffuse,
+        subsurface_reflection,
+        subsurface_transmission,
+        transparent,
+        count
+    };
+
+    /// Builds the material. Throws shade::invalid_parameter naming the first parameter
+    /// outside the specification's range (openpbr_parameters::validate).
+    explicit openpbr_surface(const openpbr_parameters<T>& parameters, layering form = layering::albedo_scaling)
+        : p_(parameters), form_(form) {
+        p_.validate();
+        build();
+    }
+
+    [[nodiscard]] constexpr const openpbr_parameters<T>& parameters() const noexcept { return p_; } ///< as given
+    [[nodiscard]] constexpr bool thin_walled() const noexcept { return p_.geometry_thin_walled; } ///< a thin shell
+    [[nodiscard]] constexpr layering form() const noexcept { return form_; } ///< how the layers are combined
+
+    /// The medium inside the surface for a renderer's volume integrator: the translucent
+    /// base's (openpbr::transmission_medium) when transmission_weight > 0, otherwise the
+    /// subsurface's (openpbr::subsurface_medium) when subsurface_weight > 0; none
+    /// (present false) for a thin-walled or opaque material.
+    [[nodiscard]] openpbr::homogeneous_medium<T> interior() const noexcept {
+        if (p_.geometry_thin_walled) return {};
+        if (p_.transmission_weight > T(0)) return openpbr::transmission_medium(p_);
+        if (p_.subsurface_weight > T(0)) return openpbr::subsurface_medium(p_);
+        return {};
+    }
+
+    /// The base dielectric's index of refraction at the wavelength lambda_nm (nanometres),
+    /// section "Dispersion": openpbr::dispersed_ior of specular_ior with the Abbe number
+    /// openpbr::abbe_number (specular_ior itself when transmission_dispersion_scale is 0).
+    /// For a spectral renderer that traces one wavelength per path; the RGB model above
+    /// refracts with specular_ior.
+    [[nodiscard]] T specular_ior_at(T lambda_nm) const noexcept {
+        return openpbr::dispersed_ior(p_.specular_ior, openpbr::abbe_number(p_), lambda_nm);
+    }
+
+    /// Emitted radiance toward v in nits (cd/m^2) per channel: emission_luminance
+    /// emission_color from the base, passed through the coat and the fuzz as their layers
+    /// pass light from below (section "Emission": lerp(1, T_coat (1 - E_coat(v)), C) with
+    /// T_coat the coat's one-way transmittance coat_color^(1 / (2 mu_t)), mu_t the refracted
+    /// cosine, and 1 - F E_fuzz(v)), times geometry_opacity. 0 from below unless
+    /// thin-walled.
+    [[nodiscard]] rgb<T> emission(const vec3<T>& v, const surface_point<T>& at) const noexcept {
+        if (!(p_.emission_luminance > T(0))) return rgb<T>(0);
+        T mu = glm::dot(at.n(), v);
+        if (p_.geometry_thin_walled) mu = std::abs(mu);
+        if (!(mu > T(0))) return rgb<T>(0);
+        mu = glm::min(mu, T(1));
+        rgb<T> e = p_.emission_luminance * p_.emission_color * p_.geometry_opacity;
+        if (p_.coat_weight > T(0)) {
+            const rgb<T> one_way = glm::sqrt(openpbr::coat_absorption(p_.coat_color, mu, mu, coat_eta_));
+            e *= glm::mix(rgb<T>(1), one_way * (T(1) - coat_albedo(mu)), p_.coat_weight);
+        }
+        e *= T(1) - p_.fuzz_weight * fuzz_albedo(mu);
+        return e;
+    }
+
+    /// BSDF value in 1/sr without the cosine, radiance mode, for l and v on either side
+    /// (class comment); delta lobes add nothing.
+    [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept {
+        const oriented o = orient(v, at);
+        if (!o.valid) return rgb<T>(0);
+        if (o.inside) return p_.geometry_opacity * inside_f(l, v, o.at);
+        const view w = view_at(v, o.at, false);
+        return p_.geometry_opacity * surface_f(l, v, o.at, w);
+    }
+
+    /// The density (1/sr) with which sample() draws l for v: the mixture of the non-delta
+    /// lobes' densities.
+    [[nodiscard]] T pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept {
+        const oriented o = orient(v, at);
+        if (!o.valid) return T(0);
+        if (o.inside) return inside_pdf(l, v, o.at);
+        const view w = view_at(v, o.at);
+        return surface_pdf(l, v, o.at, w);
+    }
+
+    /// The probability with which sample() chooses lobe k for the view v (dimensionless;
+    /// the probabilities of all lobes sum to 1, or are all 0 for a black material).
+    [[nodiscard]] T lobe_probability(lobe k, const vec3<T>& v, const surface_point<T>& at) const noexcept {
+        const oriented o = orient(v, at);
+        if (!o.valid) return T(0);
+        if (o.inside) {
+            if (k == lobe::transparent) return inside_probability(true);
+            return k == lobe::transmission ? inside_probability(false) : T(0);
+        }
+        return view_at(v, o.at).p[std::size_t(k)];
+    }
+
+    /// Draws l for v in the given mode (class comment). nullopt when v lies on the surface,
+    /// the material is black from v, or the chosen lobe draws nothing.
+    [[nodiscard]] std::optional<bsdf_sample<T>> sample(const vec3<T>& v, T uc, const vec2<T>& u,
+                                                       const surface_point<T>& at,
+                                                       transport_mode mode = transport_mode::radiance) const {
+        const oriented o = orient(v, at);
+        if (!o.valid) return std::nullopt;
+        if (o.inside) return inside_sample(v, uc, u, o, mode);
+        const view w = view_at(v, o.at);
+        // The lobe: the first whose cumulative probability exceeds uc; uc rescaled within it.
+        std::size_t k = 0;
+        T start = T(0);
+        for (; k < lobe_count; ++k) {
+            if (w.p[k] > T(0) && uc < start + w.p[k]) break;
+            start += w.p[k];
+        }
+        if (k == lobe_count) {
+            // uc at the very top (rounding): the last lobe with a probability.
+            for (k = lobe_count; k-- > 0;)
+                if (w.p[k] > T(0)) break;
+            if (k == std::size_t(-1)) return std::nullopt;
+            start -= w.p[k];
+        }
+        const T uc_lobe = glm::max(T(0), detail::remap_lobe_choice(uc - start, w.p[k], true));
+        return sample_lobe(lobe(k), v, uc_lobe, u, o, w, mode);
+    }
+
+private:
+    static constexpr std::size_t lobe_count = std::size_t(lobe::count);
+
+    // The surface point the material is evaluated at: flipped for a thin-walled view from
+    // below; inside for a solid seen from below.
+    struct oriented {
+        surface_point<T> at;
+        bool valid = false;
+        bool inside = false;
+        bool flipped = false;
+    };
+
+    // What the mixture's weights need at the view v (above the surface of `at`).
+    struct view {
+        T mu = 0;                          // n·v, in (0, 1]
+        T fuzz_keep = 1;                   // 1 - F E_fuzz(mu)
+        T coat_albedo = 0;                 // E_coat(mu)
+        rgb<T> darkening{1};               // D, per channel
+        rgb<T> specular_albedo{0};         // E_spec(v), per channel
+        T transmittance = 1;               // of the transmission lobe's interface from v
+        std::array<T, lobe_count> p{};     // lobe probabilities
+    };
+
+    [[nodiscard]] oriented orient(const vec3<T>& v, const surface_point<T>& at) const noexcept {
+        oriented o{at};
+        const T n_dot_v = glm::dot(at.n(), v);
+        if (!(n_dot_v != T(0)) || !std::isfinite(n_dot_v)) return o;
+        o.valid = true;
+        if (n_dot_v < T(0)) {
+            if (p_.geometry_thin_walled) {
+                o.at.shading.n = -at.shading.n;
+                o.at.shading.b = -at.shading.b;
+                o.flipped = true;
+            } else {
+                o.inside = true;
+            }
+        }
+        return o;
+    }
+
+    // E_fuzz(mu): the fuzz lobe's directional albedo (white); 0 without fuzz.
+    [[nodiscard]] T fuzz_albedo(T mu) const noexcept {
+        if (fuzz_) return fuzz_->albedo(mu);
+        if (fuzz_reciprocal_) return fuzz_reciprocal_->albedo(mu);
+        return T(0);
+    }
+
+    // The reciprocal form's factor under the coat for cosines mu_l, mu_v (per channel):
+    // (1 - C E_coat(l)) (1 - C E_coat(v)) / (1 - C E_coat,avg) lerp(1, T_coat, C)
+    // sqrt(D(l) D(v)).
+    [[nodiscard]] rgb<T> reciprocal_under_coat(T mu_l, const view& w) const noexcept {
+        const T C = p_.coat_weight;
+        if (C == T(0)) return rgb<T>(1);
+        const rgb<T> absorbed = openpbr::coat_absorption(p_.coat_color, mu_l, w.mu, coat_eta_);
+        const rgb<T> darkening_l = openpbr::coat_darkening_factor(
+            base_albedo_, coat_eta_, coat_rough_reflection_, mu_l, base_roughness_estimate_, C, p_.coat_darkening);
+        const T keep = (T(1) - C * coat_albedo(mu_l)) * (T(1) - C * w.coat_albedo) * coat_loss_inverse_;
+        return keep * glm::mix(rgb<T>(1), absorbed, C) * glm::sqrt(darkening_l * w.darkening);
+    }
+
+    // E_coat(mu): the coat's directional albedo (white).
+    [[nodiscard]] T coat_albedo(T mu) const noexcept {
+        if (coat_) return coat_albedo_.at(mu);
+        return F_dielectric(mu, coat_eta_);
+    }
+
+    // E_spec(v): the specular reflection lobe's directional albedo per channel.
+    [[nodiscard]] rgb<T> specular_albedo(T mu) const noexcept {
+        const T e_dielectric =
+            specular_eta_ == T(1) ? T(0)
+            : specular_ ? specular_albedo_.at(mu)
+                        : F_dielectric(mu, specular_eta_);
+        rgb<T> e(e_dielectric);
+        if (p_.thin_film_weight > T(0)) {
+            const T e1 = specular_ ? detail::albedo_lookup(detail::albedo_tables_of<ggx<T>>::e,
+                                                           detail::albedo_grid_nodes, mu, specular_alpha_)
+                                   : T(1);
+            e = glm::mix(e, glm::min(film_dielectric_->F(mu) * e1, rgb<T>(1)), p_.thin_film_weight);
+        }
+        return p_.specular_color * e;
+    }
+
+    // The base's factor under the coat for cosines mu_l, mu_v (per channel):
+    // lerp(1, T_coat (1 - E_coat(v)), C) D.
+    [[nodiscard]] rgb<T> under_coat(T mu_l, const view& w) const noexcept {
+        if (p_.coat_weight == T(0)) return rgb<T>(1);
+        const rgb<T> absorbed = openpbr::coat_absorption(p_.coat_color, glm::min(mu_l, T(1)), w.mu, coat_eta_);
+        return glm::mix(rgb<T>(1), absorbed * (T(1) - w.coat_albedo), p_.coat_weight) * w.darkening;
+    }
+
+    // The view's terms; the lobe probabilities too when `probabilities` (pdf and sample).
+    [[nodiscard]] view view_at(const vec3<T>& v, const surface_point<T>& at, bool probabilities = true) const noexcept {
+        view w;
+        w.mu = glm::min(glm::dot(at.n(), v), T(1));
+        const T F = p_.fuzz_weight;
+        const T C = p_.coat_weight;
+        const T M = p_.base_metalness;
+        const T Tw = p_.transmission_weight;
+        const T S = p_.subsurface_weight;
+        const T e_fuzz = fuzz_albedo(w.mu);
+        w.fuzz_keep = T(1) - F * e_fuzz;
+        if (C > T(0)) {
+            w.coat_albedo = coat_albedo(w.mu);
+            w.darkening = openpbr::coat_darkening_factor(base_albedo_, coat_eta_, coat_rough_reflection_, w.mu,
+                                                         base_roughness_estimate_, C, p_.coat_darkening);
+        }
+        if (M < T(1)) {
+            w.specular_albedo = specular_albedo(w.mu);
+            if (transmission_ && Tw > T(0)) {
+                const T e_s = transmission_anisotropic_ ? transmission_->single_scattering_albedo(v, at)
+                                                        : glm::clamp(transmission_albedo_.at(w.mu), T(0), T(1));
+                const T r_ss = transmission_reflection_.at(w.mu);
+                w.transmittance = glm::max(e_s - r_ss + transmission_->transmitted_share(false) * (T(1) - e_s),
+                                           T(1e-6));
+            }
+        }
+        if (!probabilities) return w;
+        // The energy each lobe sends back toward v (largest channel), whose shares are
+        // the lobe probabilities.
+        const T below = w.fuzz_keep * max_channel(under_coat(w.mu, w));
+        const T dielectric = below * (T(1) - M);
+        const T rest = dielectric * max_channel(rgb<T>(1) - w.specular_albedo);
+        std::array<T, lobe_count> e{};
+        e[std::size_t(lobe::fuzz)] = F * e_fuzz * max_channel(p_.fuzz_color);
+        e[std::size_t(lobe::coat)] = w.fuzz_keep * C * w.coat_albedo;
+        e[std::size_t(lobe::metal)] = below * M * max_channel(metal_fresnel_->F(w.mu));
+        e[std::size_t(lobe::specular)] = dielectric * max_channel(w.specular_albedo);
+        e[std::size_t(lobe::transmission)] = rest * Tw * max_channel(transmission_tint_);
+        const T opaque = rest * (T(1) - Tw);
+        if (diffuse_) e[std::size_t(lobe::diffuse)] = opaque * (T(1) - S) * max_channel(diffuse_->rho());
+        const T sss = subsurface_ ? opaque * S * max_channel(p_.subsurface_color) : T(0);
+        if (p_.geometry_thin_walled) {
+            const T g = p_.subsurface_scatter_anisotropy;
+            e[std::size_t(lobe::subsurface_reflection)] = sss * T(0.5) * (T(1) - g);
+            e[std::size_t(lobe::subsurface_transmission)] = sss * T(0.5) * (T(1) + g);
+        } else {
+            e[std::size_t(lobe::subsurface_reflection)] = sss;
+        }
+        T total = T(0);
+        for (std::size_t k = 0; k + 1 < lobe_count; ++k) total += e[k];
+        const T alpha = p_.geometry_opacity;
+        if (total > T(0)) {
+            for (std::size_t k = 0; k + 1 < lobe_count; ++k) w.p[k] = alpha * e[k] / total;
+            w.p[std::size_t(lobe::transparent)] = T(1) - alpha;
+        } else {
+            w.p[std::size_t(lobe::transparent)] = alpha < T(1) ? T(1) : T(0);
+        }
+        return w;
+    }
+
+    [[nodiscard]] static T max_channel(const rgb<T>& c) noexcept { return glm::max(c.x, glm::max(c.y, c.z)); }
+
+    // The local direction w mirrored through the surface (thin-walled transmission).
+    [[nodiscard]] static vec3<T> mirrored(const vec3<T>& l, const surface_point<T>& at) noexcept {
+        return l - T(2) * glm::dot(at.n(), l) * at.n();
+    }
+
+    // f_surface (without alpha), v above `at`.
+    [[nodiscard]] rgb<T> surface_f(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at,
+                                   const view& w) const noexcept {
+        const T n_dot_l = glm::dot(at.n(), l);
+        if (!(n_dot_l != T(0)) || !std::isfinite(n_dot_l)) return rgb<T>(0);
+        const T M = p_.base_metalness;
+        const T Tw = p_.transmission_weight;
+        const T S = p_.subsurface_weight;
+        if (n_dot_l > T(0)) {
+            rgb<T> top(0);
+            if (fuzz_) top += p_.fuzz_weight * fuzz_->f(l, v, at);
+            if (fuzz_reciprocal_) top += p_.fuzz_weight * fuzz_reciprocal_->f(l, v, at);
+            // The factors each layer puts on what lies below it (class comment).
+            T fuzz_keep = w.fuzz_keep;
+            rgb<T> coat_keep(1);
+            rgb<T> specular_keep = rgb<T>(1) - w.specular_albedo;
+            if (form_ == layering::reciprocal) {
+                const T mu_l = glm::min(n_dot_l, T(1));
+                const T F = p_.fuzz_weight;
+                fuzz_keep = (T(1) - F * fuzz_albedo(mu_l)) * w.fuzz_keep * fuzz_loss_inverse_;
+                coat_keep = reciprocal_under_coat(mu_l, w);
+                if (p_.base_metalness < T(1))
+                    specular_keep *= (rgb<T>(1) - specular_albedo(mu_l)) * specular_loss_inverse_;
+            } else {
+                coat_keep = under_coat(n_dot_l, w);
+            }
+            if (coat_) top += fuzz_keep * p_.coat_weight * coat_->f(l, v, at);
+            rgb<T> base(0);
+            if (metal_ && M > T(0)) base += M * metal_->f(l, v, at);
+            if (M < T(1)) {
+                rgb<T> dielectric(0);
+                if (specular_) dielectric += specular_->f(l, v, at);
+                if (Tw < T(1)) {
+                    rgb<T> opaque(0);
+                    if (diffuse_) opaque += (T(1) - S) * diffuse_->f(l, v, at);
+                    if (subsurface_) opaque += S * subsurface_reflection_weight_ * subsurface_tint_ * subsurface_->f(l, v, at);
+                    dielectric += specular_keep * ((T(1) - Tw) * opaque);
+                }
+                base += (T(1) - M) * dielectric;
+            }
+            return top + fuzz_keep * coat_keep * base;
+        }
+        if (M == T(1)) return rgb<T>(0);
+        rgb<T> through(0);
+        if (Tw > T(0)) {
+            if (p_.geometry_thin_walled) {
+                if (sheet_) through += Tw * transmission_tint_ * sheet_->f(mirrored(l, at), v, at);
+            } else if (transmission_) {
+                through += (Tw / w.transmittance) * transmission_tint_ * transmission_->f(l, v, at);
+            }
+        }
+        if (p_.geometry_thin_walled && subsurface_ && Tw < T(1))
+            through += ((T(1) - Tw) * S * subsurface_transmission_weight_) * subsurface_tint_ * subsurface_->f(mirrored(l, at), v, at);
+        return w.fuzz_keep * under_coat(-n_dot_l, w) * ((T(1) - M) * (rgb<T>(1) - w.specular_albedo)) * through;
+    }
+
+    // The mixture density of the non-delta lobes, v above `at`.
+    [[nodiscard]] T surface_pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at,
+                                const view& w) const noexcept {
+        const T n_dot_l = glm::dot(at.n(), l);
+        if (!(n_dot_l != T(0)) || !std::isfinite(n_dot_l)) return T(0);
+        const auto p = [&](lobe k) { return w.p[std::size_t(k)]; };
+        T density = T(0);
+        if (n_dot_l > T(0)) {
+            if (fuzz_ && p(lobe::fuzz) > T(0)) density += p(lobe::fuzz) * fuzz_->pdf(l, v, at);
+            if (fuzz_reciprocal_ && p(lobe::fuzz) > T(0))
+                density += p(lobe::fuzz) * fuzz_reciprocal_->pdf(l, v, at);
+            if (coat_ && p(lobe::coat) > T(0)) density += p(lobe::coat) * coat_->pdf(l, v, at);
+            if (metal_ && p(lobe::metal) > T(0)) density += p(lobe::metal) * metal_->pdf(l, v, at);
+            if (specular_ && p(lobe::specular) > T(0)) density += p(lobe::specular) * specular_->pdf(l, v, at);
+            if (p(lobe::diffuse) > T(0)) density += p(lobe::diffuse) * diffuse_->pdf(l, v, at);
+            if (p(lobe::subsurface_reflection) > T(0))
+                density += p(lobe::subsurface_reflection) * subsurface_->pdf(l, v, at);
+            return density;
+        }
+        if (p(lobe::transmission) > T(0)) {
+            if (p_.geometry_thin_walled) {
+                if (sheet_) density += p(lobe::transmission) * sheet_->pdf(mirrored(l, at), v, at);
+            } else if (transmission_) {
+                density += p(lobe::transmission) * transmission_->pdf(l, v, at);
+            }
+        }
+        if (p(lobe::subsurface_transmission) > T(0))
+            density += p(lobe::subsurface_transmission) * subsurface_->pdf(mirrored(l, at), v, at);
+        return density;
+    }
+
+    // The bsdf_sample of a non-delta direction l drawn for v: the whole f and pdf (w the
+    // view's terms for a view from outside, nullptr from inside).
+    [[nodiscard]] std::optional<bsdf_sample<T>> finish(const vec3<T>& l, const vec3<T>& v, const oriented& o,
+                                                       bsdf_flags kind, T eta, transport_mode mode,
+                                                       const view* w) const {
+        const surface_point<T> original = unflipped(o);
+        const T density = w ? surface_pdf(l, v, o.at, *w) : inside_pdf(l, v, o.at);
+        if (!(density > T(0)) || !std::isfinite(density)) return std::nullopt;
+        const rgb<T> value = mode == transport_mode::importance ? f(v, l, original)
+                             : w ? p_.geometry_opacity * surface_f(l, v, o.at, *w)
+                                 : p_.geometry_opacity * inside_f(l, v, o.at);
+        const T abs_n_dot_l = std::abs(glm::dot(original.n(), l));
+        const bool same_side = (glm::dot(original.n(), l) > T(0)) == (glm::dot(original.n(), v) > T(0));
+        return bsdf_sample<T>{l, value, density, value * (abs_n_dot_l / density),
+                              kind | (same_side ? bsdf_flags::reflection : bsdf_flags::transmission), eta};
+    }
+
+    [[nodiscard]] static surface_point<T> unflipped(const oriented& o) noexcept {
+        if (!o.flipped) return o.at;
+        surface_point<T> at = o.at;
+        at.shading.n = -at.shading.n;
+        at.shading.b = -at.shading.b;
+        return at;
+    }
+
+    // Draws from lobe k for v above o.at (class comment).
+    [[nodiscard]] std::optional<bsdf_sample<T>> sample_lobe(lobe k, const vec3<T>& v, T uc, const vec2<T>& u,
+                                                            const oriented& o, const view& w,
+                                                            transport_mode mode) const {
+        const surface_point<T>& at = o.at;
+        const T p_k = w.p[std::size_t(k)];
+        const vec3<T> mirror = detail::reflect_about(v, at.n());
+        const auto from_brdf = [&](const auto& model, bsdf_flags kind,
+                                   bool through) -> std::optional<bsdf_sample<T>> {
+            const auto s = model.sample(v, uc, u, at);
+            if (!s) return std::nullopt;
+            const vec3<T> l = through ? mirrored(s->l, at) : s->l;
+            return finish(l, v, o, kind, T(1), mode, &w);
+        };
+        const T M = p_.base_metalness;
+        switch (k) {
+        case lobe::fuzz:
+            if (fuzz_reciprocal_) return from_brdf(*fuzz_reciprocal_, bsdf_flags::glossy, false);
+            return from_brdf(*fuzz_, bsdf_flags::glossy, false);
+        case lobe::coat:
+            if (coat_) return from_brdf(*coat_, bsdf_flags::glossy, false);
+            return delta(mirror, rgb<T>(w.fuzz_keep * p_.coat_weight * F_dielectric(w.mu, coat_eta_)), p_k, o,
+                         bsdf_flags::reflection, T(1));
+        case lobe::metal:
+            if (metal_) return from_brdf(*metal_, bsdf_flags::glossy, false);
+            return delta(mirror, w.fuzz_keep * under_coat(w.mu, w) * (M * metal_fresnel_->F(w.mu)), p_k, o,
+                         bsdf_flags::reflection, T(1));
+        case lobe::specular:
+            if (specular_) return from_brdf(*specular_, bsdf_flags::glossy, false);
+            return delta(mirror, w.fuzz_keep * under_coat(w.mu, w) * ((T(1) - M) * specular_fresnel_->F(w.mu)), p_k,
+                         o, bsdf_flags::reflection, T(1));
+        case lobe::transmission: {
+            const rgb<T> carried = w.fuzz_keep * ((T(1) - M) * p_.transmission_weight) *
+                                   (rgb<T>(1) - w.specular_albedo) * transmission_tint_;
+            if (p_.geometry_thin_walled) {
+                if (sheet_) return from_brdf(*sheet_, bsdf_flags::glossy, true);
+                return delta(-v, carried * under_coat(w.mu, w), p_k, o, bsdf_flags::transmission, T(1));
+            }
+            const T eta = p_.specular_ior;
+            if (transmission_) {
+                const auto s = transmission_->sample(v, uc, u, at, transport_mode::radiance);
+                if (!s || !is_transmission(s->flags)) return std::nullopt;
+                return finish(s->l, v, o, bsdf_flags::glossy, s->eta, mode, &w);
+            }
+            if (index_matched_) return delta(-v, carried * under_coat(w.mu, w), p_k, o, bsdf_flags::transmission, T(1));
+            const std::optional<vec3<T>> l = refract(v, at.n(), eta);
+            if (!l) return std::nullopt;
+            const T mu_l = -glm::dot(at.n(), *l);
+            const T radiance = mode == transport_mode::radiance ? T(1) / (eta * eta) : T(1);
+            return delta(*l, carried * under_coat(mu_l, w) * radiance, p_k, o, bsdf_flags::transmission, eta);
+        }
+        case lobe::diffuse:
+            return from_brdf(*diffuse_, bsdf_flags::diffuse, false);
+        case lobe::subsurface_reflection:
+            return from_brdf(*subsurface_, bsdf_flags::diffuse, false);
+        case lobe::subsurface_transmission:
+            return from_brdf(*subsurface_, bsdf_flags::diffuse, true);
+        case lobe::transparent:
+            if (!(p_k > T(0))) return std::nullopt;
+            return detail::make_specular_sample(-v, rgb<T>(T(1) - p_.geometry_opacity), p_k, unflipped(o),
+                                                bsdf_flags::transmission, T(1));
+        case lobe::count:
+            break;
+        }
+        return std::nullopt;
+    }
+
+    // A delta sample of the surface (throughput before opacity, which it applies), chosen
+    // with probability p.
+    [[nodiscard]] std::optional<bsdf_sample<T>> delta(const vec3<T>& l, const rgb<T>& throughput, T p,
+                                                      const oriented& o, bsdf_flags kind, T eta) const noexcept {
+        if (!(p > T(0))) return std::nullopt;
+        return detail::make_specular_sample(l, p_.geometry_opacity * throughput, p, unflipped(o), kind, eta);
+    }
+
+    // Seen from inside a solid: the bare interface times alpha, and the pass-through.
+    [[nodiscard]] T inside_probability(bool transparent) const noexcept {
+        const bool interface = inside_transmits_;
+        const T alpha = p_.geometry_opacity;
+        if (transparent) return interface ? T(1) - alpha : (alpha < T(1) ? T(1) : T(0));
+        return interface ? alpha : T(0);
+    }
+
+    [[nodiscard]] rgb<T> inside_f(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept {
+        if (!inside_transmits_ || !transmission_) return rgb<T>(0);
+        return transmission_->f(l, v, at);
+    }
+
+    [[nodiscard]] T inside_pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept {
+        if (!inside_transmits_ || !transmission_) return T(0);
+        return inside_probability(false) * transmission_->pdf(l, v, at);
+    }
+
+    [[nodiscard]] std::optional<bsdf_sample<T>> inside_sample(const vec3<T>& v, T uc, const vec2<T>& u,
+                                                              const oriented& o, transport_mode mode) const {
+        const T p_through = inside_probability(true);
+        if (uc < p_through) {
+            return detail::make_specular_sample(-v, rgb<T>(T(1) - p_.geometry_opacity), p_through, o.at,
+                                                bsdf_flags::transmission, T(1));
+        }
+        const T p_interface = inside_probability(false);
+        if (!(p_interface > T(0))) return std::nullopt;
+        const T uc_interface = glm::max(T(0), detail::remap_lobe_choice(uc - p_through, p_interface, true));
+        if (transmission_) {
+            const auto s = transmission_->sample(v, uc_interface, u, o.at, mode);
+            if (!s) return std::nullopt;
+            if (is_specular(s->flags)) return std::nullopt;
+            return finish(s->l, v, o, bsdf_flags::glossy, s->eta, mode, nullptr);
+        }
+        if (index_matched_)
+            return detail::make_specular_sample(-v, rgb<T>(p_.geometry_opacity), p_interface, o.at,
+                                                bsdf_flags::transmission, T(1));
+        const auto s = smooth_dielectric<T>(unchecked, p_.specular_ior).sample(v, uc_interface, u, o.at, mode);
+        if (!s) return std::nullopt;
+        const T throughput_over_p = p_.geometry_opacity / p_interface;
+        bsdf_sample<T> out = *s;
+        out.pdf *= p_interface;
+        out.f *= p_.geometry_opacity;
+        out.weight *= throughput_over_p;
+        return out;
+    }
+
+    void build();
+
+    openpbr_parameters<T> p_;
+    layering form_;
+    std::optional<fuzz_lobe> fuzz_;
+    std::optional<zeltner_sheen_reciprocal<T>> fuzz_reciprocal_;
+    std::optional<coat_lobe> coat_;
+    std::optional<metal_lobe> metal_;
+    std::optional<specular_lobe> specular_;
+    std::optional<transmission_lobe> transmission_;
+    std::optional<sheet_lobe> sheet_;
+    std::optional<diffuse_lobe> diffuse_;
+    std::optional<diffuse_lobe> subsurface_;
+    std::optional<openpbr::surface_fresnel<T>> metal_fresnel_;
+    std::optional<openpbr::surface_fresnel<T>> specular_fresnel_;
+    std::optional<thin_film_fresnel<T>> film_dielectric_;
+    rgb<T> transmission_tint_{1};
+    rgb<T> subsurface_tint_{1};
+    rgb<T> base_albedo_{1};
+    T subsurface_reflection_weight_ = 1;
+    T subsurface_transmission_weight_ = 0;
+    T coat_eta_ = T(1.6);
+    T coat_rough_reflection_ = 0;   // K_r of the coat (openpbr::coat_rough_reflection)
+    T coat_alpha_ = 0;
+    detail::reflection_albedo_row<T> coat_albedo_{};          // E_coat(mu)
+    detail::reflection_albedo_row<T> specular_albedo_{};      // R_ss(mu) at eta'_s
+    detail::reflection_albedo_row<T> transmission_reflection_{}; // R_ss(mu) at specular_ior
+    detail::dielectric_albedo_row<T, detail::dielectric_albedo_mu_nodes> transmission_albedo_{}; // its E_s(mu)
+    bool transmission_anisotropic_ = false;
+    T specular_eta_ = T(1.5);
+    T specular_alpha_ = 0;
+    T transmission_alpha_ = 0;
+    T base_roughness_estimate_ = 0;
+    T fuzz_loss_inverse_ = 1;       // reciprocal form: 1 / (1 - F E_fuzz,avg)
+    T coat_loss_inverse_ = 1;       // reciprocal form: 1 / (1 - C E_coat,avg)
+    rgb<T> specular_loss_inverse_{1}; // reciprocal form: 1 / (1 - E_spec,avg) per channel
+    bool index_matched_ = false;
+    bool inside_transmits_ = false;
+};
+
+template <std::floating_point T>
+void openpbr_surface<T>::build() {
+    const openpbr_parameters<T>& p = p_;
+    const T C = p.coat_weight;
+    // A GGX of the alphas of roughness r and anisotropy a, or nothing below smallest_alpha.
+    const auto distribution = [](T r, T a) -> std::optional<ggx<T>> {
+        const openpbr::alpha_pair<T> alpha = openpbr::roughness_to_alpha(r, a);
+        if (!(alpha.t >= openpbr::smallest_alpha<T>)) return std::nullopt;
+        return ggx<T>(unchecked, alpha.t, glm::max(alpha.b, openpbr::smallest_alpha<T>));
+    };
+    const auto iso = [](const ggx<T>& d) { return std::sqrt(d.alpha_x() * d.alpha_y()); };
+
+    // Fuzz.
+    if (p.fuzz_weight > T(0)) {
+        if (form_ == layering::reciprocal)
+            fuzz_reciprocal_.emplace(p.fuzz_color, p.fuzz_roughness);
+        else
+            fuzz_.emplace(p.fuzz_color, p.fuzz_roughness);
+    }
+
+    // Coat.
+    coat_eta_ = p.coat_ior;
+    if (C > T(0)) coat_rough_reflection_ = openpbr::coat_rough_reflection(coat_eta_);
+    if (C > T(0)) {
+        if (const auto d = distribution(p.coat_roughness, p.coat_roughness_anisotropy)) {
+            coat_.emplace(unchecked, *d, dielectric_fresnel<T>(unchecked, coat_eta_));
+            coat_alpha_ = iso(*d);
+            coat_albedo_ = detail::reflection_albedo_row<T>(coat_alpha_, coat_eta_);
+        }
+    }
+
+    // Thin film (section "Thin film"): thickness in micrometres, the film's index over the
+    // ambient medium (index 1).
+    const T thickness_nm = glm::min(p.thin_film_thickness * T(1000), T(1e5));
+    const T film_ior = glm::clamp(p.thin_film_ior, T(1e-4), T(1e4));
+    const thin_film_fresnel<T> film_over_dielectric =
+        thin_film_fresnel<T>::over_dielectric(glm::clamp(p.specular_ior, T(1e-4), T(1e4)), film_ior, thickness_nm);
+    const T film_weight = p.thin_film_weight;
+    if (film_weight > T(0)) film_dielectric_.emplace(film_over_dielectric);
+
+    // The base's roughness, widened by the coat.
+    const T r_base = openpbr::coat_roughened(p.specular_roughness, p.coat_roughness, C);
+    const std::optional<ggx<T>> base_distribution = distribution(r_base, p.specular_roughness_anisotropy);
+
+    // Metal.
+    const rgb<T> f0 = glm::clamp(p.base_weight * p.base_color, rgb<T>(0), rgb<T>(1));
+    const f82_tint<T> f82(unchecked, f0, p.specular_color, glm::min(p.specular_weight, T(1)));
+    const openpbr::conductor_index<T> index = openpbr::gulbrandsen_index(f0, p.specular_color);
+    metal_fresnel_.emplace(openpbr::surface_fresnel<T>::metal(
+        f82, film_weight,
+        film_weight > T(0) ? thin_film_fresnel<T>::over_conductor(index.eta, index.kappa, film_ior, thickness_nm)
+                           : film_over_dielectric));
+    if (p.base_metalness > T(0) && base_distribution) metal_.emplace(unchecked, *base_distribution, *metal_fresnel_);
+
+    // Dielectric base: the specular reflection.
+    const T eta_s = openpbr::specular_ior_ratio(p.specular_ior, T(1), p.coat_ior, C);
+    specular_eta_ = openpbr::modulated_ior_ratio(eta_s, p.specular_weight);
+    specular_fresnel_.emplace(
+        openpbr::surface_fresnel<T>::dielectric(specular_eta_, p.specular_color, film_weight, film_over_dielectric));
+    if (base_distribution) {
+        specular_.emplace(unchecked, *base_distribution, *specular_fresnel_);
+        specular_alpha_ = iso(*base_distribution);
+        specular_albedo_ = detail::reflection_albedo_row<T>(specular_alpha_, specular_eta_);
+    }
+
+    // Transmission.
+    transmission_tint_ = (p.geometry_thin_walled || !(p.transmission_depth > T(0))) ? p.transmission_color : rgb<T>(1);
+    index_matched_ = std::abs(p.specular_ior - T(1)) < T(1e-4);
+    const bool transmits = p.transmission_weight > T(0) && p.base_metalness < T(1);
+    inside_transmits_ = transmits && !p.geometry_thin_walled;
+    if (base_distribution && transmits) {
+        if (p.geometry_thin_walled) {
+            sheet_.emplace(unchecked, *base_distribution, schlick<T>(unchecked, rgb<T>(1)));
+        } else if (!index_matched_) {
+            transmission_.emplace(unchecked, *base_distribution,
+                                  glm::clamp(p.specular_ior, dielectric_eta_min<T>, dielectric_eta_max<T>));
+            transmission_alpha_ = iso(*base_distribution);
+            const T eta = transmission_->eta();
+            transmission_reflection_ = detail::reflection_albedo_row<T>(transmission_alpha_, eta);
+            transmission_anisotropic_ = base_distribution->alpha_x() != base_distribution->alpha_y();
+            transmission_albedo_ = detail::dielectric_albedo_row<T, detail::dielectric_albedo_mu_nodes>(
+                detail::ggx_rough_dielectric_albedo, detail::dielectric_albedo_grid{},
+                detail::dielectric_albedo_locate(detail::dielectric_albedo_grid{}, transmission_alpha_, eta));
+        }
+    }
+
+    // Diffuse and subsurface.
+    const bool opaque_base = p.base_metalness < T(1) && p.transmission_weight < T(1);
+    if (opaque_base && p.subsurface_weight < T(1))
+        diffuse_.emplace(unchecked, glm::clamp(p.base_weight * p.base_color, rgb<T>(0), rgb<T>(1)),
+                         p.base_diffuse_roughness);
+    if (opaque_base && p.subsurface_weight > T(0)) {
+        if (p.geometry_thin_walled) {
+            subsurface_.emplace(unchecked, rgb<T>(1), p.base_diffuse_roughness);
+            subsurface_tint_ = p.subsurface_color;
+            const T g = p.subsurface_scatter_anisotropy;
+            subsurface_reflection_weight_ = T(0.5) * (T(1) - g);
+            subsurface_transmission_weight_ = T(0.5) * (T(1) + g);
+        } else {
+            subsurface_.emplace(unchecked, p.subsurface_color, p.base_diffuse_roughness);
+        }
+    }
+
+    // The base's normal-incidence albedo for the coat's darkening (section "Coat",
+    // "Darkening": E_b), and the estimated base roughness.
+    const T r0 = F_dielectric(T(1), specular_eta_);
+    // The translucent base's albedo: its colour at the surface (depth 0), or, with an
+    // interior medium, what the medium's scattering can send back (transmission_scatter).
+    const rgb<T> translucent = p.transmission_depth > T(0) ? p.transmission_scatter : p.transmission_color;
+    const rgb<T> below = glm::mix(glm::mix(p.base_weight * p.base_color, p.subsurface_color, p.subsurface_weight),
+                                  translucent, p.transmission_weight);
+    const rgb<T> dielectric_albedo = p.specular_color * r0 + (rgb<T>(1) - p.specular_color * r0) * below;
+    base_albedo_ = glm::clamp(glm::mix(dielectric_albedo, metal_fresnel_->F(T(1)), p.base_metalness), rgb<T>(0),
+                              rgb<T>(1));
+    base_roughness_estimate_ =
+        openpbr::base_roughness_estimate(p.specular_roughness, p.base_metalness, p.specular_weight, eta_s);
+
+    // The reciprocal form's averages E_avg = 2 integral E(mu) mu dmu, by the midpoint rule
+    // on 32 cells of x = sqrt(mu) (E_avg = 4 integral E(x^2) x^3 dx), normalised so that a
+    // constant E is exact. A loss of 0 (a layer that reflects everything) leaves nothing
+    // below it: its inverse is taken as 0.
+    if (form_ == layering::reciprocal) {
+        const auto inverse_loss = [](T loss) { return loss > T(0) ? T(1) / loss : T(0); };
+        if (fuzz_reciprocal_) fuzz_loss_inverse_ = inverse_loss(T(1) - p.fuzz_weight * fuzz_reciprocal_->average_albedo());
+        constexpr int cells = 32;
+        T coat_sum = 0, weights = 0;
+        rgb<T> specular_sum(0);
+        for (int k = 0; k < cells; ++k) {
+            const T x = (T(k) + T(0.5)) / T(cells);
+            const T w = x * x * x;
+            coat_sum += w * coat_albedo(x * x);
+            specular_sum += w * specular_albedo(x * x);
+            weights += w;
+        }
+        coat_loss_inverse_ = inverse_loss(T(1) - C * coat_sum / weights);
+        for (int c = 0; c < 3; ++c) specular_loss_inverse_[c] = inverse_loss(T(1) - specular_sum[c] / weights);
+    }
+}
+
+} // namespace shade
