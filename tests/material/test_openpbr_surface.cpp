@@ -640,3 +640,91 @@ TEST_CASE("openpbr_surface: the dispersed index at a wavelength") {
     CHECK(m.specular_ior_at(587.6) == doctest::Approx(1.5).epsilon(1e-12));
     CHECK(m.specular_ior_at(486.1) - m.specular_ior_at(656.3) == doctest::Approx(0.5 / 20).epsilon(1e-9));
 }
+
+TEST_CASE_TEMPLATE("openpbr_surface: random parameters at the ends of their ranges give finite values, never NaN", T,
+                   float, double) {
+    // Parameters drawn at either end of their range (30 %) or inside it, indices from the
+    // extremes the validation accepts (1e-3, 1e3, exactly 1); directions over the sphere
+    // with some on the horizon (|n·w| = 1e-7). f, pdf, emission and every sample's weight
+    // must be finite and >= 0 (e.g. a coat of index 1e-3 reflects all diffuse light back,
+    // K = 1, over a white base, E_b = 1: the darkening's 0 / 0 is its limit 1).
+    shade::rng r(5);
+    const auto U = [&]() { return r.uniform<T>(); };
+    const auto pick = [&](T a, T b) {
+        const T x = U();
+        if (x < T(0.15)) return a;
+        if (x < T(0.3)) return b;
+        return a + (b - a) * U();
+    };
+    const auto colour = [&]() { return rgb<T>(pick(0, 1), pick(0, 1), pick(0, 1)); };
+    const T iors[] = {T(1), T(1.5), T(0.5), T(3), T(1e-3), T(1e3), T(1.0001)};
+    const auto ior = [&]() { return iors[r.next_u32() % 7]; };
+    const auto at = check_test::model_point<T>();
+    {
+        // The darkening's 0 / 0, directly: a coat of index 1e-3 over a white base.
+        params<T> p = white<T>();
+        p.coat_weight = T(1);
+        p.coat_ior = T(1e-3);
+        const rgb<T> f = surface<T>(p).f(view_at_cosine(at, 0.7, 1.0), view_at_cosine(at, 0.5), at);
+        for (int c = 0; c < 3; ++c) CHECK(std::isfinite(f[c]));
+    }
+    int bad = 0;
+    for (int k = 0; k < 400; ++k) {
+        params<T> p;
+        p.base_weight = pick(0, 1);
+        p.base_color = colour();
+        p.base_diffuse_roughness = pick(0, 1);
+        p.base_metalness = pick(0, 1);
+        p.specular_weight = pick(0, 3);
+        p.specular_color = colour();
+        p.specular_roughness = pick(0, 1);
+        p.specular_roughness_anisotropy = pick(0, 1);
+        p.specular_ior = ior();
+        p.transmission_weight = pick(0, 1);
+        p.transmission_color = colour();
+        p.transmission_depth = pick(0, 2);
+        p.transmission_scatter = colour();
+        p.subsurface_weight = pick(0, 1);
+        p.subsurface_color = colour();
+        p.subsurface_scatter_anisotropy = pick(-1, 1);
+        p.coat_weight = pick(0, 1);
+        p.coat_color = colour();
+        p.coat_roughness = pick(0, 1);
+        p.coat_roughness_anisotropy = pick(0, 1);
+        p.coat_ior = ior();
+        p.coat_darkening = pick(0, 1);
+        p.fuzz_weight = pick(0, 1);
+        p.fuzz_color = colour();
+        p.fuzz_roughness = pick(0, 1);
+        p.thin_film_weight = pick(0, 1);
+        p.thin_film_thickness = pick(0, 2);
+        p.thin_film_ior = ior();
+        p.emission_luminance = pick(0, 100);
+        p.geometry_opacity = pick(0, 1);
+        p.geometry_thin_walled = U() < T(0.3);
+        const surface<T> m(p);
+        for (int i = 0; i < 50; ++i) {
+            const auto direction = [&]() {
+                T z = T(2) * U() - T(1);
+                if (U() < T(0.05)) z = U() < T(0.5) ? T(1e-7) : T(-1e-7);
+                const T phi = T(6.2831853) * U();
+                const T s = std::sqrt(std::max(T(0), T(1) - z * z));
+                return glm::normalize(at.shading.to_world(vec3<T>(s * std::cos(phi), s * std::sin(phi), z)));
+            };
+            const vec3<T> l = direction(), v = direction();
+            const rgb<T> f = m.f(l, v, at);
+            const T pdf = m.pdf(l, v, at);
+            const rgb<T> e = m.emission(v, at);
+            bool ok = std::isfinite(pdf) && pdf >= T(0);
+            for (int c = 0; c < 3; ++c) ok = ok && std::isfinite(f[c]) && f[c] >= T(0) && std::isfinite(e[c]);
+            for (const auto mode : {shade::transport_mode::radiance, shade::transport_mode::importance}) {
+                const auto s = m.sample(v, U(), vec2<T>(U(), U()), at, mode);
+                if (!s) continue;
+                ok = ok && s->pdf > T(0) && std::isfinite(s->pdf) && std::isfinite(s->l.x);
+                for (int c = 0; c < 3; ++c) ok = ok && std::isfinite(s->weight[c]) && s->weight[c] >= T(0);
+            }
+            if (!ok) ++bad;
+        }
+    }
+    CHECK(bad == 0);
+}

@@ -208,7 +208,13 @@ template <std::floating_point T>
                                                   T coat_weight, T coat_darkening) noexcept {
     const T k_s = F_dielectric(mu_o, eta_c);
     const T k = glm::mix(k_s, k_r, r_b);
-    const rgb<T> delta = rgb<T>(T(1) - k) / (rgb<T>(1) - base_albedo * k);
+    // A coat that reflects all diffuse light back (K = 1) over a white base (E_b = 1) is
+    // 0 / 0: the limit of Delta as E_b -> 1 is 1 (a white base loses nothing), taken there.
+    rgb<T> delta(1);
+    for (int c = 0; c < 3; ++c) {
+        const T denominator = T(1) - base_albedo[c] * k;
+        if (denominator > T(0)) delta[c] = (T(1) - k) / denominator;
+    }
     return glm::mix(rgb<T>(1), delta, coat_weight * coat_darkening);
 }
 
