@@ -22,6 +22,7 @@
 #include <shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp>
 #include <shade/bsdf/dielectric_albedo_table.hpp>
 #include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>
+#include <shade/bsdf/dielectric_reflection_albedo.hpp>
 #include <shade/bsdf/rough_dielectric.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/sampling.hpp>
@@ -181,6 +182,53 @@ public:
     /// view in medium `inside` (false: outside). In [0, 1].
     [[nodiscard]] T transmitted_share(bool inside) const noexcept { return side_[inside ? 1 : 0].tau; }
 
+    /// The directional albedo of the reflected part for the view v on either side (importance
+    /// mode; dimensionless, in [0, 1]): the energy arriving along v that leaves on v's side,
+    ///
+    ///     R(v) = R_ss(v) + (1 - tau_s) (1 - E_s(v)),
+    ///
+    /// R_ss the reflected part of single scattering (shade::dielectric_reflection_albedo;
+    /// for anisotropic GGX read at sqrt(alpha_x alpha_y), an approximation whose measured
+    /// error is in docs/properties.md) and (1 - tau_s) (1 - E_s(v)) what f_ms reflects (the
+    /// class comment). 0 when v lies on the surface. GGX only (no reflection table for
+    /// Beckmann). Accuracy: that of the reflection table (stated in
+    /// shade/bsdf/detail/dielectric_reflection_albedo_data.hpp) against the model's own
+    /// sampler; the total-albedo table's error cancels, f_ms being built from the same E_s.
+    [[nodiscard]] T reflectance(const vec3<T>& v, const surface_point<T>& at) const noexcept
+        requires std::same_as<Distribution, ggx<T>>
+    {
+        const vec3<T> v_local = at.shading.to_local(v);
+        if (!(v_local.z != T(0)) || !std::isfinite(v_local.z)) return T(0);
+        const std::size_t s = v_local.z > T(0) ? 0 : 1;
+        const T r_ss = single_reflectance(s, v_local);
+        if (!enabled_) return r_ss;
+        return glm::clamp(r_ss + (T(1) - side_[s].tau) * (T(1) - albedo(s, v_local)), T(0), T(1));
+    }
+
+    /// The directional albedo of the transmitted part for the view v on either side
+    /// (importance mode: no 1/eta^2; dimensionless, in [0, 1]): the energy arriving along v
+    /// that crosses the interface,
+    ///
+    ///     T(v) = (E_s(v) - R_ss(v)) + tau_s (1 - E_s(v)),
+    ///
+    /// single scattering's R + T from the total-albedo table less its reflected part, plus
+    /// what f_ms transmits; clamped to [0, 1] (the two tables' errors could carry E_s - R_ss
+    /// just below 0 where nearly everything is reflected). 0 when v lies on the surface. GGX
+    /// only. reflectance + transmittance = 1 (unless a clamp acts) whenever the compensation
+    /// is on (1 - E_s,avg above detail::dielectric_compensation_min_loss on both sides).
+    /// Accuracy: the total-albedo table's and the reflection table's, added (both stated in
+    /// their generated headers).
+    [[nodiscard]] T transmittance(const vec3<T>& v, const surface_point<T>& at) const noexcept
+        requires std::same_as<Distribution, ggx<T>>
+    {
+        const vec3<T> v_local = at.shading.to_local(v);
+        if (!(v_local.z != T(0)) || !std::isfinite(v_local.z)) return T(0);
+        const std::size_t s = v_local.z > T(0) ? 0 : 1;
+        const T e = albedo(s, v_local);
+        const T multiple_share = enabled_ ? side_[s].tau * (T(1) - e) : T(0);
+        return glm::clamp(e - single_reflectance(s, v_local) + multiple_share, T(0), T(1));
+    }
+
     /// The BSDF value in 1/sr without the cosine, radiance mode, f_ss + f_ms, for l and v
     /// on either side; 0 when either lies on the surface.
     [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept {
@@ -302,6 +350,13 @@ private:
         if constexpr (tables::anisotropic)
             if (anisotropic_) e += detail::dielectric_anisotropic_delta(tables::delta, anisotropic_cell_, side_[s].cell.side, w.x, w.y, mu);
         return glm::clamp(e, T(0), T(1));
+    }
+
+    /// R_ss for the local view v in medium s (shade::dielectric_reflection_albedo at
+    /// sqrt(alpha_x alpha_y)).
+    [[nodiscard]] T single_reflectance(std::size_t s, const vec3<T>& v) const noexcept {
+        const Distribution& d = single_.distribution();
+        return dielectric_reflection_albedo(unchecked, std::abs(v.z), d.alpha_x(), d.alpha_y(), side_[s].eta_s);
     }
 
     /// The probability of drawing from rough_dielectric's sampler for the local view v in
