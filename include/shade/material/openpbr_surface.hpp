@@ -311,7 +311,7 @@ public:
         if (!o.valid) return rgb<T>(0);
         if (o.inside) return p_.geometry_opacity * inside_f(l, v, o.at);
         const view w = view_at(v, o.at, false);
-        return p_.geometry_opacity * surface_f(l, v, o.at, w);
+        return p_.geometry_opacity * surface_eval<true, false>(l, v, o.at, w).f;
     }
 
     /// The density (1/sr) with which sample() draws l for v: the mixture of the non-delta
@@ -321,7 +321,7 @@ public:
         if (!o.valid) return T(0);
         if (o.inside) return inside_pdf(l, v, o.at);
         const view w = view_at(v, o.at);
-        return surface_pdf(l, v, o.at, w);
+        return surface_eval<false, true>(l, v, o.at, w).pdf;
     }
 
     /// The probability with which sample() chooses lobe k for the view v (dimensionless;
@@ -423,16 +423,30 @@ private:
         return keep * glm::mix(rgb<T>(1), absorbed, C) * glm::sqrt(darkening_l * w.darkening);
     }
 
+    // The roughness of an anisotropic GGX seen along the local direction w: the alpha of
+    // the isotropic surface whose masking of w equals the anisotropic one's,
+    // sqrt(alpha_x^2 cos^2 phi + alpha_y^2 sin^2 phi) (Heitz 2014, "Understanding the
+    // Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT 3(2), eq. 80).
+    [[nodiscard]] static T projected_alpha(const ggx<T>& d, const vec3<T>& w) noexcept {
+        const T s2 = w.x * w.x + w.y * w.y;
+        if (!(s2 > T(0))) return std::sqrt(d.alpha_x() * d.alpha_y());
+        return std::sqrt((sqr(d.alpha_x() * w.x) + sqr(d.alpha_y() * w.y)) / s2);
+    }
+
     // E_coat(mu): the coat's directional albedo (white).
-    [[nodiscard]] T coat_albedo(T mu) const noexcept {
+    [[nodiscard]] T coat_albedo(T mu, const vec3<T>& w_local = vec3<T>(0)) const noexcept {
+        if (coat_ && coat_anisotropic_ && w_local != vec3<T>(0))
+            return dielectric_reflection_albedo(unchecked, mu, projected_alpha(coat_->distribution(), w_local), coat_eta_);
         if (coat_) return coat_albedo_.at(mu);
         return F_dielectric(mu, coat_eta_);
     }
 
     // E_spec(v): the specular reflection lobe's directional albedo per channel.
-    [[nodiscard]] rgb<T> specular_albedo(T mu) const noexcept {
+    [[nodiscard]] rgb<T> specular_albedo(T mu, const vec3<T>& w_local = vec3<T>(0)) const noexcept {
         const T e_dielectric =
             specular_eta_ == T(1) ? T(0)
+            : specular_ && specular_anisotropic_ && w_local != vec3<T>(0)
+                ? dielectric_reflection_albedo(unchecked, mu, projected_alpha(specular_->distribution(), w_local), specular_eta_)
             : specular_ ? specular_albedo_.at(mu)
                         : F_dielectric(mu, specular_eta_);
         rgb<T> e(e_dielectric);
@@ -465,16 +479,21 @@ private:
         const T e_fuzz = fuzz_albedo(w.mu);
         w.fuzz_keep = T(1) - F * e_fuzz;
         if (C > T(0)) {
-            w.coat_albedo = coat_albedo(w.mu);
+            w.coat_albedo = coat_albedo(w.mu, at.shading.to_local(v));
             w.darkening = openpbr::coat_darkening_factor(base_albedo_, coat_eta_, coat_rough_reflection_, w.mu,
                                                          base_roughness_estimate_, C, p_.coat_darkening);
         }
         if (M < T(1)) {
-            w.specular_albedo = specular_albedo(w.mu);
+            w.specular_albedo = specular_albedo(w.mu, at.shading.to_local(v));
             if (transmission_ && Tw > T(0)) {
                 const T e_s = transmission_anisotropic_ ? transmission_->single_scattering_albedo(v, at)
                                                         : glm::clamp(transmission_albedo_.at(w.mu), T(0), T(1));
-                const T r_ss = transmission_reflection_.at(w.mu);
+                const T r_ss = transmission_anisotropic_
+                                   ? dielectric_reflection_albedo(unchecked, w.mu,
+                                                                  projected_alpha(transmission_->distribution(),
+                                                                                  at.shading.to_local(v)),
+                                                                  transmission_->eta())
+                                   : transmission_reflection_.at(w.mu);
                 w.transmittance = glm::max(e_s - r_ss + transmission_->transmitted_share(false) * (T(1) - e_s),
                                            T(1e-6));
             }
@@ -520,48 +539,118 @@ private:
         return l - T(2) * glm::dot(at.n(), l) * at.n();
     }
 
-    // f_surface (without alpha), v above `at`.
-    [[nodiscard]] rgb<T> surface_f(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at,
-                                   const view& w) const noexcept {
+    // f_surface (without alpha) and the mixture density of the non-delta lobes, v above
+    // `at`, each when asked for (the microfacet lobes share their half vector and D).
+    struct value_and_density {
+        rgb<T> f{0};
+        T pdf = 0;
+    };
+
+    template <bool with_f, bool with_pdf>
+    [[nodiscard]] value_and_density surface_eval(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at,
+                                                 const view& w) const noexcept {
+        value_and_density out;
         const T n_dot_l = glm::dot(at.n(), l);
-        if (!(n_dot_l != T(0)) || !std::isfinite(n_dot_l)) return rgb<T>(0);
+        if (!(n_dot_l != T(0)) || !std::isfinite(n_dot_l)) return out;
+        if (n_dot_l > T(0)) {
+            reflect<with_f, with_pdf>(l, v, n_dot_l, at, w, out);
+        } else {
+            if constexpr (with_f) out.f = through_f(l, v, n_dot_l, at, w);
+            if constexpr (with_pdf) out.pdf = through_pdf(l, v, at, w);
+        }
+        return out;
+    }
+
+    // A microfacet lobe's f and its density at the local pair (the lobe's own pdf uses
+    // the same cosine share q).
+    template <bool with_f, bool with_pdf, class Lobe>
+    static void microfacet(const Lobe& lobe, const vec3<T>& l_local, const vec3<T>& v_local, T weight, T probability,
+                           rgb<T>& f, T& pdf) noexcept {
+        const bool density = with_pdf && probability > T(0);
+        if (!with_f && !density) return;
+        T q = T(0);
+        if constexpr (std::derived_from<typename Lobe::scattering_type, kulla_conty>)
+            q = lobe.multiple_scattering_probability(v_local.z);
+        const auto parts = lobe.template evaluate_local<with_f, with_pdf>(l_local, v_local, rgb<T>(1), q);
+        if constexpr (with_f) f = weight * (parts.single + parts.multiple);
+        if constexpr (with_pdf) pdf += probability * parts.pdf;
+    }
+
+    // The reflected part (l above the surface).
+    template <bool with_f, bool with_pdf>
+    void reflect(const vec3<T>& l, const vec3<T>& v, T n_dot_l, const surface_point<T>& at, const view& w,
+                 value_and_density& out) const noexcept {
         const T M = p_.base_metalness;
         const T Tw = p_.transmission_weight;
         const T S = p_.subsurface_weight;
-        if (n_dot_l > T(0)) {
-            rgb<T> top(0);
-            if (fuzz_) top += p_.fuzz_weight * fuzz_->f(l, v, at);
-            if (fuzz_reciprocal_) top += p_.fuzz_weight * fuzz_reciprocal_->f(l, v, at);
-            // The factors each layer puts on what lies below it (class comment).
-            T fuzz_keep = w.fuzz_keep;
-            rgb<T> coat_keep(1);
-            rgb<T> specular_keep = rgb<T>(1) - w.specular_albedo;
+        const auto p = [&](lobe k) { return with_pdf ? w.p[std::size_t(k)] : T(0); };
+        const vec3<T> l_local = at.shading.to_local(l);
+        const vec3<T> v_local = at.shading.to_local(v);
+        rgb<T> top(0), lobe_f(0);
+        if (fuzz_) {
+            if constexpr (with_f) top += p_.fuzz_weight * fuzz_->f(l, v, at);
+            if (p(lobe::fuzz) > T(0)) out.pdf += p(lobe::fuzz) * fuzz_->pdf(l, v, at);
+        }
+        if (fuzz_reciprocal_) {
+            if constexpr (with_f) top += p_.fuzz_weight * fuzz_reciprocal_->f(l, v, at);
+            if (p(lobe::fuzz) > T(0)) out.pdf += p(lobe::fuzz) * fuzz_reciprocal_->pdf(l, v, at);
+        }
+        // The factors each layer puts on what lies below it (class comment).
+        T fuzz_keep = w.fuzz_keep;
+        rgb<T> coat_keep(1);
+        rgb<T> specular_keep = rgb<T>(1) - w.specular_albedo;
+        if constexpr (with_f) {
             if (form_ == layering::reciprocal) {
                 const T mu_l = glm::min(n_dot_l, T(1));
                 const T F = p_.fuzz_weight;
                 fuzz_keep = (T(1) - F * fuzz_albedo(mu_l)) * w.fuzz_keep * fuzz_loss_inverse_;
                 coat_keep = reciprocal_under_coat(mu_l, w);
-                if (p_.base_metalness < T(1))
-                    specular_keep *= (rgb<T>(1) - specular_albedo(mu_l)) * specular_loss_inverse_;
+                if (M < T(1)) specular_keep *= (rgb<T>(1) - specular_albedo(mu_l)) * specular_loss_inverse_;
             } else {
                 coat_keep = under_coat(n_dot_l, w);
             }
-            if (coat_) top += fuzz_keep * p_.coat_weight * coat_->f(l, v, at);
-            rgb<T> base(0);
-            if (metal_ && M > T(0)) base += M * metal_->f(l, v, at);
-            if (M < T(1)) {
-                rgb<T> dielectric(0);
-                if (specular_) dielectric += specular_->f(l, v, at);
-                if (Tw < T(1)) {
-                    rgb<T> opaque(0);
-                    if (diffuse_) opaque += (T(1) - S) * diffuse_->f(l, v, at);
-                    if (subsurface_) opaque += S * subsurface_reflection_weight_ * subsurface_tint_ * subsurface_->f(l, v, at);
-                    dielectric += specular_keep * ((T(1) - Tw) * opaque);
-                }
-                base += (T(1) - M) * dielectric;
-            }
-            return top + fuzz_keep * coat_keep * base;
         }
+        if (coat_) {
+            microfacet<with_f, with_pdf>(*coat_, l_local, v_local, fuzz_keep * p_.coat_weight, p(lobe::coat), lobe_f,
+                                         out.pdf);
+            if constexpr (with_f) top += lobe_f;
+        }
+        rgb<T> base(0);
+        if (metal_ && M > T(0)) {
+            microfacet<with_f, with_pdf>(*metal_, l_local, v_local, M, p(lobe::metal), lobe_f, out.pdf);
+            if constexpr (with_f) base += lobe_f;
+        }
+        if (M < T(1)) {
+            rgb<T> dielectric(0);
+            if (specular_) {
+                microfacet<with_f, with_pdf>(*specular_, l_local, v_local, T(1), p(lobe::specular), lobe_f, out.pdf);
+                if constexpr (with_f) dielectric += lobe_f;
+            }
+            if (Tw < T(1)) {
+                rgb<T> opaque(0);
+                if (diffuse_) {
+                    if constexpr (with_f) opaque += (T(1) - S) * diffuse_->f(l, v, at);
+                    if (p(lobe::diffuse) > T(0)) out.pdf += p(lobe::diffuse) * diffuse_->pdf(l, v, at);
+                }
+                if (subsurface_) {
+                    if constexpr (with_f)
+                        opaque += S * subsurface_reflection_weight_ * subsurface_tint_ * subsurface_->f(l, v, at);
+                    if (p(lobe::subsurface_reflection) > T(0))
+                        out.pdf += p(lobe::subsurface_reflection) * subsurface_->pdf(l, v, at);
+                }
+                if constexpr (with_f) dielectric += specular_keep * ((T(1) - Tw) * opaque);
+            }
+            if constexpr (with_f) base += (T(1) - M) * dielectric;
+        }
+        if constexpr (with_f) out.f = top + fuzz_keep * coat_keep * base;
+    }
+
+    // f of the transmitted part (l below the surface).
+    [[nodiscard]] rgb<T> through_f(const vec3<T>& l, const vec3<T>& v, T n_dot_l, const surface_point<T>& at,
+                                   const view& w) const noexcept {
+        const T M = p_.base_metalness;
+        const T Tw = p_.transmission_weight;
+        const T S = p_.subsurface_weight;
         if (M == T(1)) return rgb<T>(0);
         rgb<T> through(0);
         if (Tw > T(0)) {
@@ -576,25 +665,11 @@ private:
         return w.fuzz_keep * under_coat(-n_dot_l, w) * ((T(1) - M) * (rgb<T>(1) - w.specular_albedo)) * through;
     }
 
-    // The mixture density of the non-delta lobes, v above `at`.
-    [[nodiscard]] T surface_pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at,
+    // The density of the transmitted part (l below the surface).
+    [[nodiscard]] T through_pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at,
                                 const view& w) const noexcept {
-        const T n_dot_l = glm::dot(at.n(), l);
-        if (!(n_dot_l != T(0)) || !std::isfinite(n_dot_l)) return T(0);
         const auto p = [&](lobe k) { return w.p[std::size_t(k)]; };
         T density = T(0);
-        if (n_dot_l > T(0)) {
-            if (fuzz_ && p(lobe::fuzz) > T(0)) density += p(lobe::fuzz) * fuzz_->pdf(l, v, at);
-            if (fuzz_reciprocal_ && p(lobe::fuzz) > T(0))
-                density += p(lobe::fuzz) * fuzz_reciprocal_->pdf(l, v, at);
-            if (coat_ && p(lobe::coat) > T(0)) density += p(lobe::coat) * coat_->pdf(l, v, at);
-            if (metal_ && p(lobe::metal) > T(0)) density += p(lobe::metal) * metal_->pdf(l, v, at);
-            if (specular_ && p(lobe::specular) > T(0)) density += p(lobe::specular) * specular_->pdf(l, v, at);
-            if (p(lobe::diffuse) > T(0)) density += p(lobe::diffuse) * diffuse_->pdf(l, v, at);
-            if (p(lobe::subsurface_reflection) > T(0))
-                density += p(lobe::subsurface_reflection) * subsurface_->pdf(l, v, at);
-            return density;
-        }
         if (p(lobe::transmission) > T(0)) {
             if (p_.geometry_thin_walled) {
                 if (sheet_) density += p(lobe::transmission) * sheet_->pdf(mirrored(l, at), v, at);
@@ -613,11 +688,17 @@ private:
                                                        bsdf_flags kind, T eta, transport_mode mode,
                                                        const view* w) const {
         const surface_point<T> original = unflipped(o);
-        const T density = w ? surface_pdf(l, v, o.at, *w) : inside_pdf(l, v, o.at);
+        T density;
+        rgb<T> value;
+        if (w && mode == transport_mode::radiance) {
+            const value_and_density both = surface_eval<true, true>(l, v, o.at, *w);
+            density = both.pdf;
+            value = p_.geometry_opacity * both.f;
+        } else {
+            density = w ? surface_eval<false, true>(l, v, o.at, *w).pdf : inside_pdf(l, v, o.at);
+            value = mode == transport_mode::importance ? f(v, l, original) : p_.geometry_opacity * inside_f(l, v, o.at);
+        }
         if (!(density > T(0)) || !std::isfinite(density)) return std::nullopt;
-        const rgb<T> value = mode == transport_mode::importance ? f(v, l, original)
-                             : w ? p_.geometry_opacity * surface_f(l, v, o.at, *w)
-                                 : p_.geometry_opacity * inside_f(l, v, o.at);
         const T abs_n_dot_l = std::abs(glm::dot(original.n(), l));
         const bool same_side = (glm::dot(original.n(), l) > T(0)) == (glm::dot(original.n(), v) > T(0));
         return bsdf_sample<T>{l, value, density, value * (abs_n_dot_l / density),
@@ -783,6 +864,8 @@ private:
     detail::reflection_albedo_row<T> transmission_reflection_{}; // R_ss(mu) at specular_ior
     detail::dielectric_albedo_row<T, detail::dielectric_albedo_mu_nodes> transmission_albedo_{}; // its E_s(mu)
     bool transmission_anisotropic_ = false;
+    bool coat_anisotropic_ = false;
+    bool specular_anisotropic_ = false;
     T specular_eta_ = T(1.5);
     T specular_alpha_ = 0;
     T transmission_alpha_ = 0;
@@ -822,6 +905,7 @@ void openpbr_surface<T>::build() {
             coat_.emplace(unchecked, *d, dielectric_fresnel<T>(unchecked, coat_eta_));
             coat_alpha_ = iso(*d);
             coat_albedo_ = detail::reflection_albedo_row<T>(coat_alpha_, coat_eta_);
+            coat_anisotropic_ = d->alpha_x() != d->alpha_y();
         }
     }
 
@@ -857,6 +941,7 @@ void openpbr_surface<T>::build() {
         specular_.emplace(unchecked, *base_distribution, *specular_fresnel_);
         specular_alpha_ = iso(*base_distribution);
         specular_albedo_ = detail::reflection_albedo_row<T>(specular_alpha_, specular_eta_);
+        specular_anisotropic_ = base_distribution->alpha_x() != base_distribution->alpha_y();
     }
 
     // Transmission.
