@@ -19,6 +19,7 @@
 #include <shade/bsdf/bsdf.hpp>
 #include <shade/bsdf/detail/beckmann_dielectric_albedo_data.hpp>
 #include <shade/bsdf/detail/dielectric_albedo_data.hpp>
+#include <shade/bsdf/detail/dielectric_albedo_row.hpp>
 #include <shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp>
 #include <shade/bsdf/dielectric_albedo_table.hpp>
 #include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>
@@ -287,6 +288,7 @@ private:
     /// What the lobe keeps per medium s (0 outside, 1 inside) of the view.
     struct side_state {
         detail::dielectric_albedo_cell<T> cell{}; ///< where E_s is read
+        detail::dielectric_albedo_row<T, detail::dielectric_albedo_mu_nodes> row{}; ///< E_s at the cell, along mu
         T eta_s = 1;       ///< n_far / n_s
         T e_avg = 1;       ///< E_s,avg
         T tau = 0;         ///< share of the lost energy transmitted from s
@@ -305,7 +307,14 @@ private:
         for (std::size_t s = 0; s < 2; ++s) {
             side_[s].eta_s = s == 0 ? eta : T(1) / eta;
             side_[s].cell = detail::dielectric_albedo_locate(grid, alpha, side_[s].eta_s);
-            side_[s].e_avg = detail::dielectric_albedo_average(tables::e, grid, side_[s].cell);
+            side_[s].row = detail::dielectric_albedo_row<T, detail::dielectric_albedo_mu_nodes>(tables::e, grid,
+                                                                                                side_[s].cell);
+            // E_s,avg as detail::dielectric_albedo_average integrates it, read through the row.
+            const auto& row = side_[s].row;
+            side_[s].e_avg = glm::clamp(
+                T(gauss_legendre_integral(
+                    [&row](double mu) { return 2 * mu * double(glm::clamp(row.at(T(mu)), T(0), T(1))); }, 0, 1, 8)),
+                T(0), T(1));
             // The average of the corrected E_s(w): the isotropic average plus Delta_s,avg.
             if constexpr (tables::anisotropic)
                 if (anisotropic_) {
@@ -346,7 +355,7 @@ private:
     /// needs 1 - E_s >= 0).
     [[nodiscard]] T albedo(std::size_t s, const vec3<T>& w) const noexcept {
         const T mu = std::abs(w.z);
-        T e = detail::dielectric_albedo_lookup(tables::e, detail::dielectric_albedo_grid{}, side_[s].cell, mu);
+        T e = side_[s].row.at(mu);
         if constexpr (tables::anisotropic)
             if (anisotropic_) e += detail::dielectric_anisotropic_delta(tables::delta, anisotropic_cell_, side_[s].cell.side, w.x, w.y, mu);
         return glm::clamp(e, T(0), T(1));
