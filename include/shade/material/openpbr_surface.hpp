@@ -60,7 +60,7 @@ inline constexpr T smallest_alpha = T(1e-4);
 ///     n = g (1 - r) / (1 + r) + (1 - g) (1 + sqrt(r)) / (1 - sqrt(r))
 ///     k^2 = (r (n + 1)^2 - (n - 1)^2) / (1 - r)
 ///
-/// with r clamped to [0, 0.99] (r = 1 is an infinite index) and g to [0, 1]. openpbr_surface
+/// with r clamped to [0, 0.9999] (r = 1 is an infinite index) and g to [0, 1]. openpbr_surface
 /// uses it to put a thin film over its F82 metal, which has no complex index of its own.
 template <std::floating_point T>
 struct conductor_index {
@@ -73,7 +73,7 @@ template <std::floating_point T>
 [[nodiscard]] inline conductor_index<T> gulbrandsen_index(const rgb<T>& reflectance, const rgb<T>& edge_tint) noexcept {
     conductor_index<T> out{rgb<T>(1), rgb<T>(0)};
     for (int c = 0; c < 3; ++c) {
-        const T r = glm::clamp(reflectance[c], T(0), T(0.99));
+        const T r = glm::clamp(reflectance[c], T(0), T(0.9999));
         const T g = glm::clamp(edge_tint[c], T(0), T(1));
         const T sr = std::sqrt(r);
         const T n = g * (T(1) - r) / (T(1) + r) + (T(1) - g) * (T(1) + sr) / (T(1) - sr);
@@ -451,10 +451,24 @@ private:
                         : F_dielectric(mu, specular_eta_);
         rgb<T> e(e_dielectric);
         if (p_.thin_film_weight > T(0)) {
+            // The film's part: E1 F_film(c), E1 the lobe's albedo with F = 1 and c the cosine
+            // at which the base's Fresnel equals the lobe's mean Fresnel, F(c) = R_ss / E1
+            // (found by bisection, F decreasing in c): the film's reflectance read where the
+            // lobe's microfacets see the interface on average. Exact for a smooth lobe (c = mu).
             const T e1 = specular_ ? detail::albedo_lookup(detail::albedo_tables_of<ggx<T>>::e,
                                                            detail::albedo_grid_nodes, mu, specular_alpha_)
                                    : T(1);
-            e = glm::mix(e, glm::min(film_dielectric_->F(mu) * e1, rgb<T>(1)), p_.thin_film_weight);
+            T c = mu;
+            if (specular_ && specular_eta_ != T(1) && e1 > T(0)) {
+                const T target = e_dielectric / e1;
+                T lo = T(0), hi = T(1);
+                for (int i = 0; i < 16; ++i) {
+                    const T mid = T(0.5) * (lo + hi);
+                    (F_dielectric(mid, specular_eta_) > target ? lo : hi) = mid;
+                }
+                c = T(0.5) * (lo + hi);
+            }
+            e = glm::mix(e, glm::min(film_dielectric_->F(c) * e1, rgb<T>(1)), p_.thin_film_weight);
         }
         return p_.specular_color * e;
     }
