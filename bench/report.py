@@ -25,6 +25,7 @@ BASELINES = {
     "bvh": "embree",
     "brdf_sampling": "f",
     "bsdf": "ggx_conductor",
+    "openpbr": "lambert",
 }
 
 # Row (variant) and column (subgroup) order of a family's tables, where the order of first
@@ -33,9 +34,13 @@ VARIANT_ORDER = {
     "bsdf": ["ggx_conductor", "ggx_conductor_exact_fresnel", "smooth_conductor", "smooth_dielectric",
              "thin_dielectric", "rough_dielectric_ggx", "rough_dielectric_beckmann"],
 }
+OPENPBR_MATERIALS = ["default_material", "metal", "rough_glass", "coated_plastic"]
+VARIANT_ORDER["openpbr"] = ["lambert"] + [v for m in OPENPBR_MATERIALS for v in (
+    m, f"{m}.coat", f"{m}.metal", f"{m}.specular", f"{m}.transmission", f"{m}.diffuse")]
 SUBGROUP_ORDER = {
     "bsdf": ["f_reflection", "f_transmission", "pdf_reflection", "pdf_transmission", "sample_outside",
              "sample_inside"],
+    "openpbr": ["f", "pdf", "sample"],
 }
 
 FAMILY_TITLES = {
@@ -46,6 +51,7 @@ FAMILY_TITLES = {
     "brdf": "BRDF evaluation (f(l, v), 512 direction pairs above the surface)",
     "bvh": "BVH against Embree 3 (ns per ray, or per build)",
     "brdf_sampling": "BRDF sampling per model: sample(v, uc, u) and pdf(l, v) against f(l, v), and f before the sampling redesign (legacy_f, bench/legacy/)",
+    "openpbr": "OpenPBR Surface and its lobes (bench/openpbr.cpp: 512 random inputs visited in a random order; v above, l above for the opaque materials and over the sphere for rough glass; <material>.<lobe> is one lobe of the material alone; ratios to lambert)",
     "bsdf": "BSDFs, the dielectrics next to the conductors (bench/bsdf.cpp: 512 random inputs visited in a random order; f and pdf with l above (reflection) or below (transmission) for v above; sample_bsdf from above and from below; ratios to the rough conductor ggx_conductor)",
 }
 
@@ -308,6 +314,62 @@ def bound_rows(ns):
             "| kernel | data | ns per test | bound ns | ratio |", "|---|---|---:|---:|---:|"] + rows + [""]
 
 
+# The production reference of issue 32 (ns per call) and the goal: at most half of it.
+OPENPBR_REFERENCE = {"f": (280, 280), "sample": (460, 760)}
+
+
+def openpbr_rows(values):
+    """shade::openpbr_surface (bench/openpbr.cpp) per material: ns per call, the ratio to
+    the sum of its own lobes' times (benchmarks named <material>.<lobe>) and to Lambert."""
+    ops = ["f", "pdf", "sample"]
+    got = {}
+    for name, value in values.items():
+        family, typ, sub, variant = split(name)
+        if family == "openpbr" and typ == "float":
+            got[(sub, variant)] = value
+    materials = [m for m in OPENPBR_MATERIALS if any((op, m) in got for op in ops)]
+    if not materials:
+        return []
+    lines = ["## OpenPBR Surface against its lobes (timed run)", "",
+             "`shade::openpbr_surface<float>` (bench/openpbr.cpp, one thread, "
+             "512 random inputs in a random order) for four presets of "
+             "`shade/material/openpbr_presets.hpp`: ns per call; × lobes, its time over the sum of the "
+             "times of the lobes it evaluates, each timed alone on the same inputs (what the layering, "
+             "the albedo lookups and the lobe choice add; 1.00× would be free); × lambert, over "
+             "`shade::lambert`'s.", "",
+             "| material (its lobes) | f: ns | × lobes | × lambert | pdf: ns | × lobes | × lambert "
+             "| sample: ns | × lobes | × lambert |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for m in materials:
+        lobes = [v.split(".", 1)[1] for v in VARIANT_ORDER["openpbr"]
+                 if v.startswith(m + ".") and any((op, v) in got for op in ops)]
+        row = f"| {m} ({', '.join(lobes)}) |"
+        for op in ops:
+            t = got.get((op, m))
+            parts = [got[(op, f"{m}.{lobe}")] for lobe in lobes if (op, f"{m}.{lobe}") in got]
+            base = got.get((op, "lambert"))
+            if t is None:
+                row += " | | |"
+                continue
+            row += (f" {t:.1f} | {fmt_ratio(t / sum(parts) if parts else None)} |"
+                    f" {fmt_ratio(t / base if base else None)} |")
+        lines.append(row)
+    lines.append("")
+    for op, (low, high) in OPENPBR_REFERENCE.items():
+        times = [got[(op, m)] for m in materials if (op, m) in got]
+        if not times:
+            continue
+        ref = f"{low}" if low == high else f"{low}–{high}"
+        goal = low / 2
+        over = sum(t > goal for t in times)
+        verdict = "met by every material" if over == 0 else f"exceeded by {over} of the {len(times)} materials"
+        lines.append(f"- `{op}`: {min(times):.0f}–{max(times):.0f} ns per call over these materials, against "
+                     f"the production reference of ~{ref} ns (issue 32); the goal, at most half of "
+                     f"{low} ns ({goal:.0f} ns), is {verdict}.")
+    lines.append("")
+    return lines
+
+
 def bvh_rows(runs, flags=None, ctx=None):
     """The BVH section: shade::triangle_bvh<float> against Embree 3 per scene, from the
     bench_bvh groups bvh/<build|primary|incoherent|shadow>/<scene>/<shade|embree>; empty
@@ -562,6 +624,7 @@ def main():
             ctx, runs = load_json(path)
             lines += bvh_rows(runs, flags, ctx)
     lines += bound_rows(per_op(time_runs))
+    lines += openpbr_rows(per_op(time_runs))
 
     native_runs, native_context = {}, {}
     if args.native_dir:

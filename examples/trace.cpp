@@ -5,6 +5,7 @@
 //   trace --scene gallery --width 640 --height 360 --spp 4 --out gallery.png
 //   trace --scene furnace --integrator path --out out/furnace.pfm
 //   trace --scene cornell --integrator path --out out/cornell.exr
+//   trace --scene openpbr --integrator path --spp 256 --out docs/openpbr.png
 //
 // Direct lighting in the classic mode (area lights sampled n x n), or path tracing in
 // physical units (next-event estimation and BRDF sampling combined by MIS, Russian
@@ -49,6 +50,10 @@ options:
                    cornell: a red/green room with an OBJ pyramid and a sphere light (path);
                    glass: that room with a rough glass pyramid, a glass sphere and a thin
                    glass pane (path)
+                   openpbr: twelve OpenPBR Surface presets (metals, coated, fuzz, glass,
+                   thin film, subsurface) in a studio: gradient sky and a key light (path);
+                   openpbr-furnace: their white versions in a white environment (path:
+                   1 wherever a material conserves energy)
   --integrator M   direct (default): classic direct lighting; path: path tracing in
                    physical units with next-event estimation, MIS and Russian roulette
   --strategy S     path integrator only: mis (default), light or brdf sampling alone

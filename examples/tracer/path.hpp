@@ -11,6 +11,7 @@
 #include <optional>
 #include <variant>
 
+#include <glm/exponential.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/bsdf/bsdf.hpp>
@@ -47,11 +48,19 @@ namespace detail {
 /// Largest channel.
 inline real max_channel(const rgb& c) { return std::max(c.x, std::max(c.y, c.z)); }
 
+/// The surface point an OpenPBR object is evaluated at: the surface's own (outward) normal,
+/// and a tangent running around the vertical axis (cross(+y, n), a sphere's dp/dphi about
+/// +y: the direction anisotropic roughness stretches along); where that is zero (at the
+/// poles) the arbitrary frame of surface_point::at.
+inline surface_point openpbr_point(const scene_hit& h) {
+    return surface_point::at(h.p, h.outward_n, glm::cross(vec3(0, 1, 0), h.outward_n), vec2(0));
+}
+
 } // namespace detail
 
 /// The radiance arriving along camera ray r (W/(m^2 sr)), estimated by one path. Objects
-/// without a physical material (object::brdf, object::glass or object::rough_glass) absorb
-/// everything.
+/// without a physical material (object::brdf, object::glass, object::rough_glass or
+/// object::openpbr) absorb everything.
 ///
 /// At every vertex with a density (a BRDF, or rough glass) the direct light is estimated
 /// twice and the two combined by MIS (Veach 1997, ch. 9; shade::power_heuristic): (a)
@@ -76,6 +85,18 @@ inline real max_channel(const rgb& c) { return std::max(c.x, std::max(c.y, c.z))
 /// glass and thin panes (object::glass) scatter by their delta lobes alone: no light
 /// sampling there, and emission found after them counts whole.
 ///
+/// An OpenPBR surface (object::openpbr, shade::openpbr_surface, evaluated at
+/// detail::openpbr_point) is a vertex with a density like rough glass when light passes
+/// through it (object::openpbr_two_sided: lights sampled on both sides, the continuation on
+/// either), like a BRDF otherwise (but with the outward normal). Its emission toward the ray
+/// counts whole wherever a ray hits it (it is not among the sampled lights). A sample from
+/// one of its delta lobes (bsdf_flags::specular) has no density: the emission the next ray
+/// finds then counts whole, as after smooth glass. A transmission sample that enters it (l
+/// against the outward normal, not thin-walled) puts the path inside its interior medium,
+/// one that leaves takes it out; inside, each segment of length t multiplies beta by
+/// exp(-object::openpbr_absorption t) (absorption only: the medium's scattering is not
+/// simulated).
+///
 /// The random numbers come from `sampler`, in the same order at every vertex (the
 /// dimensions of a shade::sampler): the light's index (1D), the point on it (2D), the
 /// BSDF's lobe (1D) and direction (2D), Russian roulette (1D); a strategy that skips a
@@ -93,6 +114,7 @@ rgb trace_path(const scene& s, const light_chooser& lights, shade::ray<real> r, 
     // energy (pbrt-v4's etaScale: Pharr, Jakob, Humphreys 2023, sec. 13.4.3).
     real eta_scale = 1;
     shade::light_sample_context<real> previous{};   // the vertex the ray left (for light pdfs)
+    rgb absorption(0); // of the OpenPBR interior medium the ray travels in (0: none)
     for (int bounce = 0;; ++bounce) {
         const bool from_camera = previous_brdf_pdf == 0;
         // The weight of emission found by this ray, against light sampling at its origin,
@@ -118,11 +140,13 @@ rgb trace_path(const scene& s, const light_chooser& lights, shade::ray<real> r, 
             }
             break;
         }
+        if (absorption != rgb(0)) beta *= glm::exp(-absorption * h->t);
         const object& o = s.objects[h->object];
         if (const int emitter = o.light_at(h->triangle); emitter >= 0) {
             const auto i = std::size_t(emitter);
             radiance += beta * emission_weight(i) * s.lights[i].incident_radiance(r.origin, r.direction);
         }
+        if (o.openpbr) radiance += beta * o.openpbr->emission(-r.direction, detail::openpbr_point(*h));
         if (o.glass) {
             // A delta dielectric (smooth interface or thin pane): delta lobes only, so no light
             // sampling here (no direction of it has a density), and the emission the next
@@ -156,16 +180,17 @@ rgb trace_path(const scene& s, const light_chooser& lights, shade::ray<real> r, 
             }
             continue;
         }
-        if ((!o.brdf && !o.rough_glass) || bounce >= options.max_bounces) break;
+        if ((!o.brdf && !o.rough_glass && !o.openpbr) || bounce >= options.max_bounces) break;
 
-        // A vertex with a density: a BRDF (light arrives and leaves above the geometric
-        // normal) or rough glass (either side of the interface).
-        const bool rough = o.rough_glass.has_value();
+        // A vertex with a density: a BRDF or an opaque OpenPBR surface (light arrives and
+        // leaves above the geometric normal), or rough glass or an OpenPBR surface that
+        // light passes through (either side of the interface).
+        const bool rough = o.rough_glass.has_value() || (o.openpbr && o.openpbr_two_sided);
         const vec3 v = -r.direction;
-        // Rough glass is evaluated with the surface's own normal, whose side (outside of the
-        // medium) says on which side v and l are, so the path's medium follows from the
-        // hit; a BRDF with the shading normal on the viewer's side.
-        const auto at = surface_point::at(h->p, rough ? h->outward_n : h->shading_n);
+        // Rough glass and OpenPBR are evaluated with the surface's own normal, whose side
+        // (outside of the medium) says on which side v and l are, so the path's medium
+        // follows from the hit; a BRDF with the shading normal on the viewer's side.
+        const auto at = o.openpbr ? detail::openpbr_point(*h) : surface_point::at(h->p, rough ? h->outward_n : h->shading_n);
         // Rays leave on the side of their direction, off the surface by the hit point's
         // rounding bound (shade/geometry/spawn.hpp); after a BRDF always above the geometric
         // normal (the path ends below it).
@@ -176,8 +201,14 @@ rgb trace_path(const scene& s, const light_chooser& lights, shade::ray<real> r, 
         const auto can_leave = [&](const vec3& l) {
             return rough ? glm::dot(l, h->outward_n) != 0 : glm::dot(l, h->geometric_n) > 0;
         };
-        const auto f_at = [&](const vec3& l) { return rough ? o.rough_glass->f(l, v, at) : o.brdf->f(l, v, at); };
-        const auto pdf_at = [&](const vec3& l) { return rough ? o.rough_glass->pdf(l, v, at) : o.brdf->pdf(l, v, at); };
+        const auto f_at = [&](const vec3& l) {
+            if (o.openpbr) return o.openpbr->f(l, v, at);
+            return o.rough_glass ? o.rough_glass->f(l, v, at) : o.brdf->f(l, v, at);
+        };
+        const auto pdf_at = [&](const vec3& l) {
+            if (o.openpbr) return o.openpbr->pdf(l, v, at);
+            return o.rough_glass ? o.rough_glass->pdf(l, v, at) : o.brdf->pdf(l, v, at);
+        };
 
         // (a) Next-event estimation.
         // The lights see the surface (shade::light_sample_context): above a BRDF the
@@ -216,13 +247,18 @@ rgb trace_path(const scene& s, const light_chooser& lights, shade::ray<real> r, 
         const real uc = sampler.next_1d();
         const vec2 u = sampler.next_2d();
         const real u_roulette = sampler.next_1d();
-        const auto bs = rough ? shade::sample_bsdf(*o.rough_glass, v, uc, u, at, shade::transport_mode::radiance)
-                              : shade::sample_bsdf(*o.brdf, v, uc, u, at, shade::transport_mode::radiance);
+        const auto bs = o.openpbr       ? o.openpbr->sample(v, uc, u, at, shade::transport_mode::radiance)
+                        : o.rough_glass ? shade::sample_bsdf(*o.rough_glass, v, uc, u, at, shade::transport_mode::radiance)
+                                        : shade::sample_bsdf(*o.brdf, v, uc, u, at, shade::transport_mode::radiance);
         if (!bs || !can_leave(bs->l)) break;
         beta *= bs->weight;
-        if (shade::is_transmission(bs->flags)) eta_scale *= bs->eta * bs->eta;
-        previous_brdf_pdf = bs->pdf;
-        previous = here;
+        if (shade::is_transmission(bs->flags)) {
+            eta_scale *= bs->eta * bs->eta;
+            if (o.openpbr) absorption = glm::dot(bs->l, h->outward_n) < 0 ? o.openpbr_absorption : rgb(0);
+        }
+        const bool delta = shade::is_specular(bs->flags);
+        previous_brdf_pdf = delta ? real(0) : bs->pdf;
+        previous = delta ? shade::light_sample_context<real>{} : here;
         r = shade::ray<real>{origin_toward(bs->l), bs->l};
         if (bounce + 1 >= options.roulette_after) {
             const real q = std::min(real(1), detail::max_channel(beta) * eta_scale);

@@ -37,6 +37,8 @@
 #include <shade/geometry/triangle_bvh.hpp>
 #include <shade/light/any_light.hpp>
 #include <shade/light/environment_map.hpp>
+#include <shade/material/openpbr_parameters.hpp>
+#include <shade/material/openpbr_surface.hpp>
 #include <shade/shading/shader.hpp>
 #include <shade/shading/sum_over_lights.hpp>
 
@@ -184,6 +186,19 @@ struct object {
     /// `glass` it has a density over the whole sphere, so the path integrator samples
     /// lights on both sides of it.
     std::optional<rough_glass_bsdf> rough_glass;
+    /// An OpenPBR Surface instead (path integrator; the classic integrator draws it black),
+    /// evaluated with the surface's own (outward) normal, so that the side of v says whether
+    /// the path is inside: its lobes, its emission (counted where a ray hits it) and its
+    /// interior medium (openpbr_absorption).
+    std::shared_ptr<const shade::openpbr_surface<real>> openpbr;
+    /// Whether light can pass through the OpenPBR surface (transmission, geometry_opacity
+    /// below 1 or a thin wall): then lights are sampled and paths continue on both sides of
+    /// it; otherwise only on the side it is seen from.
+    bool openpbr_two_sided = false;
+    /// The absorption coefficient (1 / scene length, per channel) a path inside the OpenPBR
+    /// object's interior medium is attenuated by: the medium's sigma_t (1 - albedo), its
+    /// scattering ignored (openpbr_surface::interior()); 0 without a medium or for a thin wall.
+    rgb openpbr_absorption{0};
     int emitter = -1; ///< index into scene::lights of the light this object is the geometry of
     /// For a mesh: each triangle k is a light of its own, scene::lights[emitter + k]
     /// (add_emissive_mesh); otherwise the whole object is scene::lights[emitter].
@@ -308,6 +323,22 @@ struct scene {
         const rough_glass_bsdf glass = make_rough_glass(alpha, eta, model);
         add_mesh(std::move(m), mesh_shading::flat, make_material(shade::any_brdf<real>(shade::lambert<real>(rgb(0)))));
         objects.back().rough_glass = glass;
+    }
+    /// A sphere of an OpenPBR Surface material (path integrator only; the classic
+    /// integrator draws it black). Throws shade::invalid_parameter as openpbr_surface's
+    /// constructor does.
+    void add_openpbr_sphere(const shade::sphere<real>& sphere, const shade::openpbr_parameters<real>& parameters) {
+        auto surface = std::make_shared<const shade::openpbr_surface<real>>(parameters);
+        add_sphere(sphere, make_material(shade::any_brdf<real>(shade::lambert<real>(rgb(0)))));
+        object& o = objects.back();
+        // openpbr_surface transmits through its translucent base (not a pure metal), the
+        // pass-through of opacity below 1 and, thin-walled, through the sheet; its
+        // subsurface is a diffuse reflection of the surface (the medium is only reported).
+        o.openpbr_two_sided = (parameters.transmission_weight > 0 && parameters.base_metalness < 1) ||
+                              parameters.geometry_opacity < 1 || parameters.geometry_thin_walled;
+        const auto medium = surface->interior();
+        if (medium.present && !surface->thin_walled()) o.openpbr_absorption = medium.sigma_t * (rgb(1) - medium.albedo);
+        o.openpbr = std::move(surface);
     }
     void add_mesh(tracer::mesh m, mesh_shading shading, material mat) {
         object o;

@@ -19,18 +19,20 @@
 #include <shade/shading/gradient.hpp>
 #include <shade/shading/toon.hpp>
 
+#include "openpbr_scenes.hpp"
 #include "physical_scenes.hpp"
 #include "scene.hpp"
 
 namespace tracer {
 
 /// The names make_scene accepts, comma-separated (for messages).
-inline std::string scene_names() { return "gallery, mesh, lights, furnace, furnace-conductor, glass-furnace, energy, enclosure, veach, cornell, glass"; }
+inline std::string scene_names() { return "gallery, mesh, lights, furnace, furnace-conductor, glass-furnace, energy, enclosure, veach, cornell, glass, openpbr, openpbr-furnace"; }
 
 /// True when make_scene knows `name`.
 inline bool is_scene_name(const std::string& name) {
     return name == "gallery" || name == "mesh" || name == "lights" || name == "furnace" ||
-           name == "furnace-conductor" || name == "glass-furnace" || name == "energy" || name == "enclosure" || name == "veach" || name == "cornell" || name == "glass";
+           name == "furnace-conductor" || name == "glass-furnace" || name == "energy" || name == "enclosure" || name == "veach" || name == "cornell" || name == "glass" ||
+           name == "openpbr" || name == "openpbr-furnace";
 }
 
 namespace detail {
@@ -149,6 +151,8 @@ inline scene make_scene(const std::string& name, real aspect) {
     if (name == "enclosure") return make_enclosure(aspect);
     if (name == "veach") return make_veach(aspect);
     if (name == "cornell") return make_cornell(aspect);
+    if (name == "openpbr") return make_openpbr(aspect);
+    if (name == "openpbr-furnace") return make_openpbr_furnace(aspect);
     throw std::invalid_argument("unknown scene '" + name + "' (known: " + scene_names() + ")");
 }
 

@@ -103,15 +103,15 @@ template <std::floating_point T>
 }
 
 /// Coated plastic (this library's choice; no example file): a red rough dielectric
-/// (base_color (0.7, 0.08, 0.05), specular_roughness 0.4) under a full smooth coat of
-/// coat_ior 1.5.
+/// (base_color (0.7, 0.08, 0.05), specular_roughness 0.4) under a full, slightly rough coat
+/// (coat_roughness 0.1) of coat_ior 1.5.
 template <std::floating_point T>
 [[nodiscard]] inline openpbr_parameters<T> coated_plastic() noexcept {
     openpbr_parameters<T> p;
     p.base_color = rgb<T>(T(0.7), T(0.08), T(0.05));
     p.specular_roughness = T(0.4);
     p.coat_weight = T(1);
-    p.coat_roughness = T(0);
+    p.coat_roughness = T(0.1);
     p.coat_ior = T(1.5);
     return p;
 }
