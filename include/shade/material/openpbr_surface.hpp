@@ -14,6 +14,7 @@
 #include <concepts>
 #include <cstddef>
 #include <optional>
+#include <type_traits>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -734,11 +735,33 @@ private:
         const surface_point<T>& at = o.at;
         const T p_k = w.p[std::size_t(k)];
         const vec3<T> mirror = detail::reflect_about(v, at.n());
+        // The lobe's direction only (finish evaluates the whole mixture at it): a microfacet
+        // lobe's draw_local as its sample() draws, EON's sampler without its f, any other
+        // lobe's sample().
         const auto from_brdf = [&](const auto& model, bsdf_flags kind,
                                    bool through) -> std::optional<bsdf_sample<T>> {
-            const auto s = model.sample(v, uc, u, at);
-            if (!s) return std::nullopt;
-            const vec3<T> l = through ? mirrored(s->l, at) : s->l;
+            using model_type = std::remove_cvref_t<decltype(model)>;
+            vec3<T> l;
+            if constexpr (requires { typename model_type::scattering_type; }) {
+                const vec3<T> v_local = at.shading.to_local(v);
+                if (!(v_local.z > T(0))) return std::nullopt;
+                bool from_cosine = false;
+                if constexpr (std::derived_from<typename model_type::scattering_type, kulla_conty>)
+                    from_cosine = uc < model.multiple_scattering_probability(v_local.z);
+                l = at.shading.to_world(model.draw_local(v_local, from_cosine, u));
+            } else if constexpr (std::same_as<model_type, diffuse_lobe>) {
+                const auto s = model.sample_with(v, uc, u, at, [](const vec3<T>&) { return rgb<T>(1); });
+                if (!s) return std::nullopt;
+                l = s->l;
+            } else {
+                const auto s = model.sample(v, uc, u, at);
+                if (!s) return std::nullopt;
+                l = s->l;
+            }
+            // Every reflection lobe draws above the surface (a microfacet lobe's mirror
+            // direction can fall below it: no draw, as its sample() has it).
+            if (!(glm::dot(at.n(), l) > T(0))) return std::nullopt;
+            if (through) l = mirrored(l, at);
             return finish(l, v, o, kind, T(1), mode, &w);
         };
         const T M = p_.base_metalness;
