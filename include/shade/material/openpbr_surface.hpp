@@ -501,8 +501,7 @@ private:
         if (M < T(1)) {
             w.specular_albedo = specular_albedo(w.mu, at.shading.to_local(v));
             if (transmission_ && Tw > T(0)) {
-                const T e_s = transmission_anisotropic_ ? transmission_->single_scattering_albedo(v, at)
-                                                        : glm::clamp(transmission_albedo_.at(w.mu), T(0), T(1));
+                const T e_s = transmission_->single_scattering_albedo(v, at);
                 const T r_ss = transmission_anisotropic_
                                    ? dielectric_reflection_albedo(unchecked, w.mu,
                                                                   projected_alpha(transmission_->distribution(),
@@ -899,7 +898,6 @@ private:
     detail::reflection_albedo_row<T> coat_albedo_{};          // E_coat(mu)
     detail::reflection_albedo_row<T> specular_albedo_{};      // R_ss(mu) at eta'_s
     detail::reflection_albedo_row<T> transmission_reflection_{}; // R_ss(mu) at specular_ior
-    detail::dielectric_albedo_row<T, detail::dielectric_albedo_mu_nodes> transmission_albedo_{}; // its E_s(mu)
     bool transmission_anisotropic_ = false;
     bool coat_anisotropic_ = false;
     bool specular_anisotropic_ = false;
@@ -996,9 +994,6 @@ void openpbr_surface<T>::build() {
             const T eta = transmission_->eta();
             transmission_reflection_ = detail::reflection_albedo_row<T>(transmission_alpha_, eta);
             transmission_anisotropic_ = base_distribution->alpha_x() != base_distribution->alpha_y();
-            transmission_albedo_ = detail::dielectric_albedo_row<T, detail::dielectric_albedo_mu_nodes>(
-                detail::ggx_rough_dielectric_albedo, detail::dielectric_albedo_grid{},
-                detail::dielectric_albedo_locate(detail::dielectric_albedo_grid{}, transmission_alpha_, eta));
         }
     }
 
