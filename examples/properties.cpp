@@ -359,30 +359,6 @@ struct bsdf_row {
     check::verdict normalization = check::verdict::pass;
 };
 
-// The density part of a model with delta lobes, for the chi-square test and the pdf
-// integral: the same f and pdf, and sample() with its delta draws returned as nullopt. The
-// test's nullopt bin expects N (1 - ∫pdf), so it checks that the delta lobes are drawn
-// with the probability the density leaves them, and the bins over the sphere check the
-// density itself.
-template <class M>
-struct density_part {
-    using scalar_type = shade::scalar_of<M>;
-    M model;
-    [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v, const shade::surface_point<T>& at) const {
-        return model.f(l, v, at);
-    }
-    [[nodiscard]] T pdf(const vec3<T>& l, const vec3<T>& v, const shade::surface_point<T>& at) const {
-        return model.pdf(l, v, at);
-    }
-    [[nodiscard]] std::optional<shade::bsdf_sample<T>> sample(const vec3<T>& v, T uc, const shade::vec2<T>& u,
-                                                              const shade::surface_point<T>& at,
-                                                              shade::transport_mode mode) const {
-        auto s = model.sample(v, uc, u, at, mode);
-        if (s && shade::is_specular(s->flags)) return std::nullopt;
-        return s;
-    }
-};
-
 template <class B, class D>
 bsdf_row evaluate_bsdf(const std::string& name, const B& model, const D& density, double eta_inside,
                        bool has_density, const settings& s, bool opaque) {
@@ -547,7 +523,7 @@ std::vector<std::function<bsdf_row()>> bsdf_jobs(const settings& s) {
         jobs.emplace_back([name = std::move(name), point, &s] {
             const openpbr_surface<T> m(point.p, point.form);
             if (point.delta)
-                return evaluate_bsdf(name, m, density_part<openpbr_surface<T>>{m}, point.eta_inside(), true, s,
+                return evaluate_bsdf(name, m, check::density_part{m}, point.eta_inside(), true, s,
                                      point.opaque());
             return evaluate_bsdf(name, m, m, point.eta_inside(), true, s, point.opaque());
         });

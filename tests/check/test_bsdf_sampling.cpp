@@ -290,3 +290,41 @@ TEST_CASE_TEMPLATE("chi2_goodness_of_fit: the zoomed grid catches a sharp lobe 1
     const auto plain = check::pdf_normalization(narrow.model, v, at, coarse);
     CHECK(std::abs(right.pdf_integral - plain.worst) <= 4 * (right.integration_error + plain.error) + 1e-5);
 }
+
+TEST_CASE_TEMPLATE("density_part: a model with a delta lobe passes through its density, fails without it", T, float,
+                   double) {
+    // A mix of a smooth conductor (delta lobe, chosen with p_a = 0.3 / (0.3 + 0.7) = 0.3) and
+    // Lambert (density (1 - p_a) cos / pi): the density integrates to 1 - p_a = 0.7 over
+    // the sphere, and the nullopt bin of density_part expects N p_a, the delta draws. The
+    // model itself puts 30 % of its draws at the mirror direction, where pdf is 0: the
+    // same test on it fails. 2 scalar types x 2 views x 2 tests: family 8 at 1e-3.
+    namespace check = shade::check;
+    const auto at = check_test::model_point<T>();
+    const shade::smooth_conductor<T> metal(rgb<T>(T(0.2), T(0.9), T(1.1)), rgb<T>(T(3.9), T(2.4), T(2.2)));
+    const shade::mix m(metal, rgb<T>(T(0.3)), shade::lambert<T>(rgb<T>(T(0.6))), rgb<T>(T(0.7)));
+    const check::density_part density{m};
+    for (const double deg : {0.0, 60.0}) {
+        CAPTURE(deg);
+        const double t = deg * shade::pi<double> / 180;
+        const vec3<T> v = glm::normalize(at.shading.to_world(shade::spherical_direction(T(t), T(0))));
+        check::chi2_options options{.samples = 20000, .alpha = 1e-3, .tests = 8};
+        options.model = "smooth conductor 0.3 + Lambert 0.7, density part";
+        const auto d = check::chi2_goodness_of_fit(density, v, at, options);
+        check::doctest_expect(d);
+        CHECK(d.pdf_integral == doctest::Approx(0.7).epsilon(1e-3));
+        // Expected nullopt count N p_a = 6000, standard deviation sqrt(N p (1 - p)) = 65.
+        CHECK(std::abs(double(d.lost) - 6000.0) <= 5 * 65.0);
+        options.model = "smooth conductor 0.3 + Lambert 0.7, whole model";
+        check::doctest_expect_failure(check::chi2_goodness_of_fit(m, v, at, options));
+    }
+    // Draws of the density part are the model's draws, the delta ones removed.
+    const vec3<T> v = at.n();
+    for (int i = 0; i < 64; ++i) {
+        const T uc = T(i) / T(64);
+        const auto s = m.sample(v, uc, vec2<T>(T(0.3), T(0.7)), at);
+        const auto d = density.sample(v, uc, vec2<T>(T(0.3), T(0.7)), at);
+        REQUIRE(s.has_value());
+        CHECK(d.has_value() == !shade::is_specular(s->flags));
+        if (d) CHECK(d->l == s->l);
+    }
+}

@@ -213,30 +213,6 @@ std::pair<double, double> furnace(const surface<T>& m, const vec3<T>& v, const s
     return {mean, std::sqrt(std::max(sum2 / n - mean * mean, 0.0) / (n - 1))};
 }
 
-// The density part of a model for the chi-square test: the same f and pdf, and sample()
-// with its delta draws returned as nullopt. The test's nullopt bin expects N (1 - ∫pdf), so
-// it checks that the delta lobes are drawn with the probability the density leaves to them,
-// and the bins over the sphere check the density itself.
-template <class M>
-struct density_part {
-    using scalar_type = shade::scalar_of<M>;
-    using T = scalar_type;
-    const M& model;
-    [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v, const shade::surface_point<T>& at) const {
-        return model.f(l, v, at);
-    }
-    [[nodiscard]] T pdf(const vec3<T>& l, const vec3<T>& v, const shade::surface_point<T>& at) const {
-        return model.pdf(l, v, at);
-    }
-    [[nodiscard]] std::optional<shade::bsdf_sample<T>> sample(const vec3<T>& v, T uc, const vec2<T>& u,
-                                                              const shade::surface_point<T>& at,
-                                                              shade::transport_mode mode) const {
-        auto s = model.sample(v, uc, u, at, mode);
-        if (s && shade::is_specular(s->flags)) return std::nullopt;
-        return s;
-    }
-};
-
 // True when every draw of the model at v is a delta lobe's (no density to test).
 template <class M, class T = shade::scalar_of<M>>
 bool only_delta(const M& model, const vec3<T>& v, const shade::surface_point<T>& at) {
@@ -418,13 +394,13 @@ TEST_CASE_TEMPLATE("openpbr_surface: sample draws l with the density pdf at 23 p
     // by the sample consistency test instead) x 2 views x 2 scalar types = 92 chi-square
     // tests at a family-wise level of 1e-3 (shade::check::chi2_goodness_of_fit over the
     // sphere, zoomed for sharp lobes; delta draws fall into the nullopt bin, whose expected
-    // count is what the density leaves, see density_part), and the pdf integral (<= 1 + 1e-3).
+    // count is what the density leaves, see shade::check::density_part), and the pdf integral (<= 1 + 1e-3).
     const auto at = check_test::model_point<T>();
     int tested = 0;
     for (const auto& pt : sampling_points<T>()) {
         INFO(pt.name);
         const surface<T> m(pt.p);
-        const density_part<surface<T>> density{m};
+        const shade::check::density_part density{m};
         for (const double deg : {25.0, 70.0}) {
             CAPTURE(deg);
             const vec3<T> v = bsdf_test::view_deg(at, deg);

@@ -11,6 +11,7 @@
 #include <concepts>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -495,6 +496,44 @@ chi2_result<T> run_chi2_goodness_of_fit(const model_ref<T>& model, const vec3<T>
 }
 
 } // namespace detail
+
+/// The density part of a model with delta lobes (shade::bsdf_sampler): the same f and pdf,
+/// and a sample that returns nullopt in place of a delta lobe's draw (is_specular(flags)).
+/// chi2_goodness_of_fit and pdf_normalization test a model's density: a delta draw lands
+/// on a direction where pdf is 0, so the model itself fails them. Through density_part the
+/// delta draws fall in the nullopt bin, whose expected count is N (1 - ∫pdf), so the test
+/// checks both that the delta lobes are drawn with the probability the density leaves to
+/// them and, over the sphere's bins, the density itself. Holds a copy of the model.
+template <sampled_bsdf M>
+struct density_part {
+    using scalar_type = scalar_of<M>;
+
+    M model; ///< the model whose density is tested
+
+    /// The model's f(l, v, at) (1/sr, no cosine).
+    [[nodiscard]] rgb<scalar_type> f(const vec3<scalar_type>& l, const vec3<scalar_type>& v,
+                                     const surface_point<scalar_type>& at) const {
+        return model.f(l, v, at);
+    }
+
+    /// The model's pdf(l, v, at) (1/sr, solid angle; delta lobes contribute 0).
+    [[nodiscard]] scalar_type pdf(const vec3<scalar_type>& l, const vec3<scalar_type>& v,
+                                  const surface_point<scalar_type>& at) const {
+        return model.pdf(l, v, at);
+    }
+
+    /// shade::sample_bsdf(model, ...), with nullopt for a draw flagged specular.
+    [[nodiscard]] std::optional<bsdf_sample<scalar_type>>
+    sample(const vec3<scalar_type>& v, scalar_type uc, const vec2<scalar_type>& u,
+           const surface_point<scalar_type>& at, transport_mode mode = transport_mode::radiance) const {
+        auto s = sample_bsdf(model, v, uc, u, at, mode);
+        if (s && is_specular(s->flags)) return std::nullopt;
+        return s;
+    }
+};
+
+template <class M>
+density_part(M) -> density_part<M>;
 
 /// Chi-square goodness-of-fit test of `sample` against `pdf` for the view v (world space,
 /// above the surface) at `at`: the method of pbrt-v4's BSDF tests (Pharr, Jakob, Humphreys
