@@ -572,7 +572,10 @@ private:
                        const bvh_box& centroids, const bin_set* binned) {
         split_result result;
         const std::uint32_t n = end - begin;
-        if (n == 1) return result;
+        // A leaf without binning where no split can win: at most max_leaf primitives in one
+        // block cost area x 1 as a leaf, a split area + (A_L N_L + A_R N_R) >= area (the
+        // leaf wins ties), so the binning below would end in the same leaf.
+        if (n <= max_leaf_ && n <= block_) return result;
 
         std::uint32_t mid = begin;
         bool found = false;
