@@ -258,6 +258,10 @@ private:
                     leaf_batch& b = leaves_[k];
                     std::array<triangle<T>, batch_width> tri;
                     for (std::uint32_t j = 0; j < leaf_width; ++j) {
+                        // The triangles a block further on, fetched now: the leaf order
+                        // gathers the list given out of order, beyond the caches' reach.
+                        const std::size_t ahead = i + j + 2 * leaf_width;
+                        detail::bvh_prefetch(&triangles[ids_[ahead < ids_.size() ? ahead : ids_.size() - 1]]);
                         const std::uint32_t id = ids_[i + (j < n ? j : n - 1)];
                         tri[j] = triangles[id];
                         b.lane[j] = {tri[j].v1, tri[j].v2, id};

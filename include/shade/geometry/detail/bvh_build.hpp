@@ -450,6 +450,8 @@ private:
         std::array<std::array<bvh_box, bins>, 3> box;
         std::array<std::array<std::uint32_t, bins>, 3> count;
     };
+    /// bin_into's sets of bins, merged into the first.
+    using bin_sets = std::array<bin_set, 4>;
 
     /// Builds the binary subtree over refs_[begin, end), whose box and centroid box are
     /// given; returns its node's index.
@@ -491,7 +493,7 @@ private:
                 first[i + 1] = first[i] + (level[i].depth < median_depth ? tasks(level[i].end - level[i].begin) : 0);
                 owner.resize(first[i + 1], static_cast<std::uint32_t>(i));
             }
-            std::vector<std::array<bin_set, 2>> binned(first.back());
+            std::vector<bin_sets> binned(first.back());
             run(binned.size(), [&](std::size_t c) {
                 const pending& p = level[owner[c]];
                 const std::size_t nb = bins_for(p.end - p.begin);
@@ -627,10 +629,14 @@ private:
                 const float split_cost = area + best_cost; // C_trav A + (A_L N_L + A_R N_R)
                 const float leaf_cost = area * float(blocks(n));
                 if (n <= max_leaf_ && leaf_cost <= split_cost) return result;
-                // Partition (Hoare), gathering both sides' boxes on the way.
+                // Partition (Hoare), gathering both sides' boxes on the way. A primitive goes
+                // left when its bin (bin_index) is below best_split, an integer in [1, nb - 1]:
+                // for the scaled coordinate x that is !(x >= best_split) (the clamp to
+                // [0, nb - 1] and the truncation change no side; a NaN x, bin 0, goes left).
                 const float lo = c_lo[best_axis], sc = scale[best_axis];
+                const auto plane = static_cast<float>(best_split);
                 const auto goes_left = [&](const bvh_prim_ref& r) {
-                    return bin_index((r.centroid2()[best_axis] - lo) * sc, nb) < best_split;
+                    return !((r.centroid2()[best_axis] - lo) * sc >= plane);
                 };
                 std::uint32_t i = begin, j = end;
                 for (;;) {
@@ -689,11 +695,11 @@ private:
 
     /// Fills out[0] with refs_[begin, end) binned on each axis into nb bins (as bin_index).
     /// Successive primitives often share a bin, whose box then grows through a chain of
-    /// loads and stores: from 64 on, odd ones go to out[1], merged at the end.
+    /// loads and stores: from 64 on, they go round two sets of bins, from 256 on round all
+    /// four (out[i % 4]), merged at the end (exactly: min, max and integer sums).
     void bin_into(std::uint32_t begin, std::uint32_t end, const bvh_v4& c_lo, const bvh_v4& scale, std::size_t nb,
-                  std::array<bin_set, 2>& out) const noexcept {
-        constexpr std::uint32_t two_sets_from = 64;
-        const std::size_t sets = end - begin >= two_sets_from ? 2 : 1;
+                  bin_sets& out) const noexcept {
+        const std::size_t sets = end - begin >= 256 ? 4 : end - begin >= 64 ? 2 : 1;
         for (std::size_t s = 0; s < sets; ++s)
             for (std::size_t k = 0; k < 3; ++k)
                 for (std::size_t j = 0; j < nb; ++j) {
@@ -703,18 +709,32 @@ private:
         const bvh_v4 zero{0.0f, 0.0f, 0.0f, 0.0f};
         const auto top = float(nb - 1);
         const bvh_v4 last{top, top, top, top};
-        const std::uint32_t odd = sets == 2 ? 1u : 0u;
-        for (std::uint32_t i = begin; i < end; ++i) {
-            bin_set& set = out[(i - begin) & odd];
-            const bvh_v4 lo = refs_[i].lo, hi = refs_[i].hi; // copies: no reload after the stores
+        const bvh_v4 c_lo_v = c_lo, scale_v = scale; // copies: not reloaded after the stores
+        const auto bin_one = [&](bin_set& set, const bvh_prim_ref& r) {
+            const bvh_v4 lo = r.lo, hi = r.hi; // copies: no reload after the stores
             // Clamped without branches (a NaN lane gives 0), then truncated.
-            const std::array<std::uint32_t, 4> b = bvh_truncate(bvh_vmin(bvh_vmax((lo + hi - c_lo) * scale, zero), last));
+            const std::array<std::uint32_t, 4> b = bvh_truncate(bvh_vmin(bvh_vmax((lo + hi - c_lo_v) * scale_v, zero), last));
             set.box[0][b[0]].grow(lo, hi); // unrolled by hand (-O2 does not)
             set.box[1][b[1]].grow(lo, hi);
             set.box[2][b[2]].grow(lo, hi);
             ++set.count[0][b[0]], ++set.count[1][b[1]], ++set.count[2][b[2]];
+        };
+        std::uint32_t i = begin;
+        if (sets == 4) {
+            for (; i + 3 < end; i += 4) {
+                bin_one(out[0], refs_[i]);
+                bin_one(out[1], refs_[i + 1]);
+                bin_one(out[2], refs_[i + 2]);
+                bin_one(out[3], refs_[i + 3]);
+            }
+        } else if (sets == 2) {
+            for (; i + 1 < end; i += 2) {
+                bin_one(out[0], refs_[i]);
+                bin_one(out[1], refs_[i + 1]);
+            }
         }
-        if (sets == 2) merge_bins(out[0], out[1], nb);
+        for (; i < end; ++i) bin_one(out[0], refs_[i]);
+        for (std::size_t s = 1; s < sets; ++s) merge_bins(out[0], out[s], nb);
     }
 
     /// The bin of a scaled centroid coordinate x, clamped to [0, bins - 1]; written so that
@@ -763,7 +783,7 @@ private:
     std::vector<slot_plan> plans_;
     /// build_top's subtree tasks: the root's index and the range [begin, end) of the others.
     std::vector<std::array<std::uint32_t, 3>> subtrees_;
-    std::array<bin_set, 2> bins_; // the serial build's bins (bin_into's out)
+    bin_sets bins_; // the serial build's bins (bin_into's out)
 };
 
 /// Runs body(begin, end) through run on the ranges of `size` indices that [0, n) splits into.
