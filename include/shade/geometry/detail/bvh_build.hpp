@@ -636,7 +636,7 @@ private:
                 const float lo = c_lo[best_axis], sc = scale[best_axis];
                 const auto plane = static_cast<float>(best_split);
                 const auto goes_left = [&](const bvh_prim_ref& r) {
-                    return !((r.centroid2()[best_axis] - lo) * sc >= plane);
+                    return !((r.lo[best_axis] + r.hi[best_axis] - lo) * sc >= plane); // centroid2's lane
                 };
                 std::uint32_t i = begin, j = end;
                 for (;;) {
