@@ -630,7 +630,7 @@ private:
                 const float leaf_cost = area * float(blocks(n));
                 if (n <= max_leaf_ && leaf_cost <= split_cost) return result;
                 // Partition (Hoare), gathering both sides' boxes on the way. A primitive goes
-                // left when its bin (bin_index) is below best_split, an integer in [1, nb - 1]:
+                // left when its bin (bin_into's) is below best_split, an integer in [1, nb - 1]:
                 // for the scaled coordinate x that is !(x >= best_split) (the clamp to
                 // [0, nb - 1] and the truncation change no side; a NaN x, bin 0, goes left).
                 const float lo = c_lo[best_axis], sc = scale[best_axis];
@@ -693,7 +693,9 @@ private:
             }
     }
 
-    /// Fills out[0] with refs_[begin, end) binned on each axis into nb bins (as bin_index).
+    /// Fills out[0] with refs_[begin, end) binned on each axis into nb bins: the bin of a
+    /// scaled centroid coordinate x is x clamped to [0, nb - 1] and truncated (a NaN x, from
+    /// infinite bounds, lands in bin 0, never in a conversion).
     /// Successive primitives often share a bin, whose box then grows through a chain of
     /// loads and stores: from 64 on, they go round two sets of bins, from 256 on round all
     /// four (out[i % 4]), merged at the end (exactly: min, max and integer sums).
@@ -735,15 +737,6 @@ private:
         }
         for (; i < end; ++i) bin_one(out[0], refs_[i]);
         for (std::size_t s = 1; s < sets; ++s) merge_bins(out[0], out[s], nb);
-    }
-
-    /// The bin of a scaled centroid coordinate x, clamped to [0, bins - 1]; written so that
-    /// a NaN x (from infinite bounds) lands in bin 0, never in a cast.
-    [[nodiscard]] static std::size_t bin_index(float x, std::size_t nb) noexcept {
-        // Branch-free (minss, maxss): the bins of successive primitives are unpredictable.
-        const float lo = x > 0.0f ? x : 0.0f; // NaN compares false: 0
-        const auto top = float(nb - 1);
-        return static_cast<std::size_t>(lo < top ? lo : top);
     }
 
     /// Reorders refs_[begin, end) so that refs_[mid] holds the reference whose doubled
