@@ -35,6 +35,14 @@
 // cosine average; and, as the stated accuracy, the largest node standard error and the range
 // of E_iso + Delta (the table) minus a fresh estimate at random points of the domain with
 // mu >= 0.1.
+//
+//   dielectric_albedo_tables --anisotropic --reflection --out include/shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp
+//
+// writes instead, on the same grid, the correction of the anisotropic
+// shade::dielectric_reflection_albedo: at each node Delta_R = R_ss(w) - R_ss,iso(mu,
+// alpha_phi, eta_s), R_ss(w) the reflected part alone (estimated as for --reflection) and
+// R_ss,iso the committed reflection table at the roughness projected on the node's azimuth
+// (the smoother alpha at azimuth 0); no row averages; the stated accuracy per side.
 
 #include <algorithm>
 #include <atomic>
@@ -57,6 +65,8 @@
 #include <shade/bsdf/detail/dielectric_albedo_data.hpp>
 #include <shade/bsdf/dielectric_albedo_table.hpp>
 #include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>
+#include <shade/bsdf/dielectric_anisotropic_reflection_albedo.hpp>
+#include <shade/bsdf/dielectric_reflection_albedo.hpp>
 #include <shade/bsdf/rough_dielectric.hpp>
 #include <shade/check/energy.hpp>
 #include <shade/core/random.hpp>
@@ -75,7 +85,8 @@ using T = double;
 constexpr std::string_view usage =
     R"(usage: dielectric_albedo_tables [--beckmann | --reflection] [--out FILE.hpp] [--mu-nodes N] [--alpha-nodes N]
                                 [--eta-nodes N] [--strata S] [--threads K] [--quiet]
-       dielectric_albedo_tables --anisotropic [--out FILE.hpp] [--strata S] [--threads K] [--quiet]
+       dielectric_albedo_tables --anisotropic [--reflection] [--out FILE.hpp] [--strata S] [--points N]
+                                [--verbose] [--threads K] [--quiet]
 
 Computes E(mu, alpha, eta_s) = R + T (importance mode) of
 shade::rough_dielectric over GGX, for light entering (eta_s in
@@ -96,7 +107,12 @@ writes the header of constants.
   --anisotropic     write instead the corrections Delta = E(w) - E_iso(mu, sqrt(alpha_x
                     alpha_y), eta_s) of anisotropic GGX interfaces on the fixed grid of
                     dielectric_anisotropic_albedo_table.hpp, and their row averages (default
-                    output dielectric_anisotropic_albedo_data.hpp; the node options do not apply)
+                    output dielectric_anisotropic_albedo_data.hpp; the node options do not apply);
+                    with --reflection, the corrections Delta_R = R(w) - R_iso(mu, alpha_phi,
+                    eta_s) of the reflected part, alpha_phi the roughness projected on w's
+                    azimuth (default output dielectric_anisotropic_reflection_albedo_data.hpp)
+  --points N        with --anisotropic: random points the table is checked at (default 4000)
+  --verbose         with --anisotropic: print each check point
   --threads K       worker threads, 1 to 64 (default 2)
   --quiet           no progress bar
 )";
@@ -110,6 +126,8 @@ struct settings {
     bool anisotropic = false;
     bool beckmann = false;
     bool reflection = false;
+    bool verbose = false;       // print every check point (--anisotropic)
+    std::size_t points = 4000;  // random check points (--anisotropic)
 };
 
 // E of a model of index eta_s at view cosine mu: the importance-mode weight of its sampler.
@@ -178,6 +196,23 @@ shade::check::albedo_sample<T> estimate_view(double alpha_x, double alpha_y, dou
         const double reflected = F > 0 ? F * weight(u, 0) : 0.0;
         const double refracted = F < 1 ? (1 - F) * weight(u, std::nextafter(1.0, 0.0)) : 0.0;
         return glm::dvec3(reflected + refracted);
+    });
+}
+
+// R_ss of an interface of roughnesses (alpha_x, alpha_y) and index eta_s for the unit local
+// view v (v.z > 0), estimated as estimate_reflection() does.
+shade::check::albedo_sample<T> estimate_view_reflection(double alpha_x, double alpha_y, double eta_s,
+                                                        const shade::vec3<T>& v, std::size_t strata,
+                                                        std::uint64_t seed) {
+    const shade::rough_dielectric<shade::ggx<T>> model{shade::ggx<T>(alpha_x, alpha_y), eta_s};
+    shade::surface_point<T> at;
+    at.shading = shade::frame<T>::from_normal_tangent({0, 0, 1}, {1, 0, 0});
+    return shade::check::detail::stratified_estimate<T>(v, strata, seed, true, [&](const shade::vec2<T>& u, shade::rng&) {
+        const shade::vec3<T> m = model.distribution().sample_visible_normal(v, u);
+        const double F = shade::F_dielectric(glm::dot(v, m), eta_s);
+        if (!(F > 0)) return glm::dvec3(0);
+        const auto s = model.sample(v, 0, u, at, shade::transport_mode::importance);
+        return glm::dvec3(s ? F * s->weight.x : 0.0);
     });
 }
 
@@ -329,6 +364,8 @@ struct anisotropic_table {
     double max_delta = 0;       // largest |Delta|
     double lowest = 0;          // smallest table - fresh estimate at the random points
     double highest = 0;         // largest
+    double side_lowest[2] = {0, 0};  // lowest per side (0 entering, 1 exiting)
+    double side_highest[2] = {0, 0}; // highest per side
     std::size_t points = 0;     // random points compared
 };
 
@@ -344,12 +381,19 @@ double iso_albedo(double mu, double alpha, double eta_s) {
     return d::dielectric_albedo_lookup(d::ggx_rough_dielectric_albedo, g, d::dielectric_albedo_locate(g, alpha, eta_s), mu);
 }
 
+// E(w) (R_ss(w) with --reflection) of an anisotropic interface, estimated.
+shade::check::albedo_sample<T> estimate_anisotropic(const settings& s, double alpha_x, double alpha_y, double eta_s,
+                                                    const shade::vec3<T>& v, std::uint64_t seed) {
+    return s.reflection ? estimate_view_reflection(alpha_x, alpha_y, eta_s, v, s.strata, seed)
+                        : estimate_view(alpha_x, alpha_y, eta_s, v, s.strata, seed);
+}
+
 anisotropic_table compute_anisotropic(const settings& s, ex::progress& bar, std::size_t points) {
     constexpr std::size_t nx = d::dielectric_anisotropic_mu_nodes, nu = d::dielectric_anisotropic_azimuth_nodes;
     constexpr std::size_t ny = d::dielectric_anisotropic_roughness_nodes, nr = d::dielectric_anisotropic_ratio_nodes;
     constexpr std::size_t ne = d::dielectric_anisotropic_eta_nodes;
     anisotropic_table out{std::vector<float>(d::dielectric_anisotropic_size, 0.0f),
-                          std::vector<float>(d::dielectric_anisotropic_rows, 0.0f), 0, 0, 0, 0, points};
+                          std::vector<float>(d::dielectric_anisotropic_rows, 0.0f), 0, 0, 0, 0, {0, 0}, {0, 0}, points};
     std::vector<double> errors(d::dielectric_anisotropic_size, 0.0);
     parallel_for(d::dielectric_anisotropic_size, s.threads, [&](std::size_t index) {
         const std::size_t i_x = index % nx, i_u = index / nx % nu, j = index / (nx * nu) % ny,
@@ -368,9 +412,16 @@ anisotropic_table compute_anisotropic(const settings& s, ex::progress& bar, std:
             const double sin2 = std::sin(phi) * std::sin(phi);
             // The seed leaves out the azimuth: the pole column (mu = 1) is then the same
             // estimate for every u, as Delta there is.
-            const auto a = estimate_view(alpha / std::sqrt(q), alpha * std::sqrt(q), eta_s, view_of(mu, sin2), s.strata,
-                                         1 + index / (nx * nu) * nx + i_x);
-            out.delta[index] = as_written(std::min(a.albedo.x, 1.0) - iso_albedo(mu, alpha, eta_s), 4);
+            const auto a = estimate_anisotropic(s, alpha / std::sqrt(q), alpha * std::sqrt(q), eta_s, view_of(mu, sin2),
+                                                1 + index / (nx * nu) * nx + i_x);
+            // The isotropic value Delta is measured from: E_iso at the mean roughness; with
+            // --reflection, R_ss,iso at the roughness projected on the node's azimuth (the
+            // smoother alpha at azimuth 0, which the pole column reads).
+            const double alpha_x = alpha / std::sqrt(q), alpha_y = alpha * std::sqrt(q);
+            const double projected = std::sqrt(alpha_x * alpha_x * (1 - sin2) + alpha_y * alpha_y * sin2);
+            const double base = s.reflection ? shade::dielectric_reflection_albedo(shade::unchecked, mu, projected, eta_s)
+                                             : iso_albedo(mu, alpha, eta_s);
+            out.delta[index] = as_written(std::min(a.albedo.x, 1.0) - base, 4);
             errors[index] = a.standard_error.x;
         }
         bar.advance();
@@ -398,16 +449,25 @@ anisotropic_table compute_anisotropic(const settings& s, ex::progress& bar, std:
         const double alpha_y = swap ? alpha / std::sqrt(q) : alpha * std::sqrt(q);
         const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
         const shade::vec3<T> v(sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu);
-        const auto fresh = estimate_view(alpha_x, alpha_y, eta_s, v, s.strata, 0x0f00000 + p);
+        const auto fresh = estimate_anisotropic(s, alpha_x, alpha_y, eta_s, v, 0x0f00000 + p);
         const auto cell = d::dielectric_anisotropic_locate(alpha_x, alpha_y, eta_s);
-        const double table = iso_albedo(mu, std::sqrt(alpha_x * alpha_y), eta_s) +
-                             d::dielectric_anisotropic_delta(out.delta.data(), cell, side, v.x, v.y, v.z);
+        const double table =
+            s.reflection ? d::anisotropic_reflection_albedo<double>(alpha_x, alpha_y, eta_s).at(v, out.delta.data())
+                         : iso_albedo(mu, std::sqrt(alpha_x * alpha_y), eta_s) +
+                               d::dielectric_anisotropic_delta(out.delta.data(), cell, side, v.x, v.y, v.z);
         difference[p] = table - fresh.albedo.x;
+        if (s.verbose)
+            std::fprintf(stderr, "point side %zu eta_hat %.4f q %.3f mean_alpha %.4f mu %.4f phi %.4f swap %d: table %.5f fresh %.5f +- %.1e\n",
+                         side, eta_hat, q, alpha, mu, phi, int(swap), table, fresh.albedo.x, fresh.standard_error.x);
         bar.advance();
     });
     if (points > 0) {
         out.lowest = *std::min_element(difference.begin(), difference.end());
         out.highest = *std::max_element(difference.begin(), difference.end());
+        for (std::size_t p = 0; p < points; ++p) {
+            out.side_lowest[p % 2] = std::min(out.side_lowest[p % 2], difference[p]);
+            out.side_highest[p % 2] = std::max(out.side_highest[p % 2], difference[p]);
+        }
     }
     return out;
 }
@@ -415,37 +475,53 @@ anisotropic_table compute_anisotropic(const settings& s, ex::progress& bar, std:
 void write_anisotropic(std::FILE* f, const anisotropic_table& t, const settings& s) {
     constexpr std::size_t nx = d::dielectric_anisotropic_mu_nodes, nu = d::dielectric_anisotropic_azimuth_nodes;
     std::fprintf(f, "#pragma once\n");
-    std::fprintf(f, "// Generated by examples/dielectric_albedo_tables.cpp (--anisotropic --strata %zu); do not edit by hand.\n",
-                 s.strata);
-    std::fprintf(f, "// The anisotropic corrections of shade/bsdf/dielectric_anisotropic_albedo_table.hpp (grid,\n");
-    std::fprintf(f, "// interpolation, meaning): 2 sides x %zu (e) x %zu (r) x %zu (y) x %zu (u) rows of %zu (x) nodes,\n",
-                 d::dielectric_anisotropic_eta_nodes, d::dielectric_anisotropic_ratio_nodes,
-                 d::dielectric_anisotropic_roughness_nodes, nu, nx);
-    std::fprintf(f, "// one row per line; each node E(w), the mean importance-mode weight of %zu jittered samples of\n",
-                 s.strata * s.strata);
-    std::fprintf(f, "// the interface's own sampler, minus the isotropic table (dielectric_albedo_data.hpp) at the\n");
-    std::fprintf(f, "// geometric-mean roughness, written with 4 significant digits.\n\n");
+    std::fprintf(f, "// Generated by examples/dielectric_albedo_tables.cpp (--anisotropic%s --strata %zu); do not edit by hand.\n",
+                 s.reflection ? " --reflection" : "", s.strata);
+    std::fprintf(f, "// The anisotropic corrections of %s (meaning) on the grid of\n",
+                 s.reflection ? "shade/bsdf/dielectric_anisotropic_reflection_albedo.hpp" : "shade/bsdf/dielectric_anisotropic_albedo_table.hpp");
+    std::fprintf(f, "// shade/bsdf/dielectric_anisotropic_albedo_table.hpp (grid, interpolation): 2 sides x %zu (e) x %zu (r)\n",
+                 d::dielectric_anisotropic_eta_nodes, d::dielectric_anisotropic_ratio_nodes);
+    std::fprintf(f, "// x %zu (y) x %zu (u) rows of %zu (x) nodes, %s; each node %s, the mean\n",
+                 d::dielectric_anisotropic_roughness_nodes, nu, nx,
+                 s.reflection ? "the 9 azimuth rows of one node per line" : "one row per line",
+                 s.reflection ? "R_ss(w)" : "E(w)");
+    std::fprintf(f, "// importance-mode weight of %zu jittered samples of the interface's own sampler%s, minus\n",
+                 s.strata * s.strata, s.reflection ? " (reflections only)" : "");
+    std::fprintf(f, "// the isotropic table (%s) at the %s roughness,\n",
+                 s.reflection ? "dielectric_reflection_albedo_data.hpp" : "dielectric_albedo_data.hpp",
+                 s.reflection ? "projected (azimuth 0: the smoother alpha)" : "geometric-mean");
+    std::fprintf(f, "// written with 4 significant digits.\n\n");
     std::fprintf(f, "#include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>\n\n");
     std::fprintf(f, "namespace shade::detail {\n\n");
-    std::fprintf(f, "/// Delta_s(w) of shade::rough_dielectric<ggx> with alpha_x != alpha_y.\n");
-    std::fprintf(f, "/// Node standard error <= %.1e; |Delta| <= %.3f. The isotropic table plus Delta minus a fresh\n",
+    const char* name = s.reflection ? "ggx_dielectric_anisotropic_reflection_delta" : "ggx_dielectric_anisotropic_delta";
+    std::fprintf(f, "/// %s of shade::rough_dielectric<ggx> with alpha_x != alpha_y.\n",
+                 s.reflection ? "Delta_R,s(w), the reflected part's" : "Delta_s(w)");
+    std::fprintf(f, "/// Node standard error <= %.1e; |Delta| <= %.3f. The table read minus a fresh\n",
                  t.max_error, t.max_delta);
     std::fprintf(f, "/// estimate at %zu random points with mu >= 0.1 (interpolation, both estimates' noise and the\n",
                  t.points);
-    std::fprintf(f, "/// isotropic table's error): from %.1e to %.1e.\n", t.lowest, t.highest);
-    std::fprintf(f, "inline constexpr float ggx_dielectric_anisotropic_delta[dielectric_anisotropic_size] = {\n");
-    for (std::size_t row = 0; row < d::dielectric_anisotropic_rows; ++row) {
-        ex::write_float_literals(f, t.delta.data() + row * nx, nx, 4);
+    std::fprintf(f, "/// isotropic table's error): from %.1e to %.1e", t.lowest, t.highest);
+    if (s.reflection)
+        std::fprintf(f, " (entering side %.1e to %.1e, exiting side %.1e to %.1e)", t.side_lowest[0], t.side_highest[0],
+                     t.side_lowest[1], t.side_highest[1]);
+    std::fprintf(f, ".\ninline constexpr float %s[dielectric_anisotropic_size] = {\n", name);
+    const std::size_t rows_per_line = s.reflection ? nu : 1;
+    for (std::size_t row = 0; row < d::dielectric_anisotropic_rows; row += rows_per_line) {
+        ex::write_float_literals(f, t.delta.data() + row * nx, nx * rows_per_line, 4);
         std::fprintf(f, ",\n");
     }
-    std::fprintf(f, "};\n\n/// The cosine averages of the rows of ggx_dielectric_anisotropic_delta\n");
-    std::fprintf(f, "/// (dielectric_anisotropic_row_average), the %zu azimuth rows of one node per line.\n", nu);
-    std::fprintf(f, "inline constexpr float ggx_dielectric_anisotropic_delta_average[dielectric_anisotropic_rows] = {\n");
-    for (std::size_t n = 0; n < d::dielectric_anisotropic_rows / nu; ++n) {
-        ex::write_float_literals(f, t.average.data() + n * nu, nu);
-        std::fprintf(f, ",\n");
+    std::fprintf(f, "};\n\n");
+    if (!s.reflection) {
+        std::fprintf(f, "/// The cosine averages of the rows of ggx_dielectric_anisotropic_delta\n");
+        std::fprintf(f, "/// (dielectric_anisotropic_row_average), the %zu azimuth rows of one node per line.\n", nu);
+        std::fprintf(f, "inline constexpr float ggx_dielectric_anisotropic_delta_average[dielectric_anisotropic_rows] = {\n");
+        for (std::size_t n = 0; n < d::dielectric_anisotropic_rows / nu; ++n) {
+            ex::write_float_literals(f, t.average.data() + n * nu, nu);
+            std::fprintf(f, ",\n");
+        }
+        std::fprintf(f, "};\n\n");
     }
-    std::fprintf(f, "};\n\n} // namespace shade::detail\n");
+    std::fprintf(f, "} // namespace shade::detail\n");
 }
 
 } // namespace
@@ -481,15 +557,17 @@ int main(int argc, char** argv) {
             else if (args.flag("--anisotropic")) s.anisotropic = true;
             else if (args.flag("--beckmann")) s.beckmann = true;
             else if (args.flag("--reflection")) s.reflection = true;
+            else if (args.flag("--verbose")) s.verbose = true;
+            else if (args.option("--points")) s.points = args.integer<std::size_t>(0, 1000000);
             else args.unknown();
         }
         (void)ex::output_format("--out", s.out, {".hpp", ".h"});
         if (s.anisotropic && s.beckmann)
             throw ex::usage_error("--beckmann does not apply to --anisotropic (the correction is tabulated for GGX)");
         if (s.beckmann && s.out == "dielectric_albedo_data.hpp") s.out = "beckmann_dielectric_albedo_data.hpp";
-        if (s.reflection && (s.anisotropic || s.beckmann))
-            throw ex::usage_error("--reflection does not apply to --anisotropic or --beckmann (it is tabulated for isotropic GGX)");
-        if (s.reflection) {
+        if (s.reflection && s.beckmann)
+            throw ex::usage_error("--reflection does not apply to --beckmann (it is tabulated for GGX)");
+        if (s.reflection && !s.anisotropic) {
             if (s.out == "dielectric_albedo_data.hpp") s.out = "dielectric_reflection_albedo_data.hpp";
             s.grid = d::dielectric_reflection_albedo_grid;
         }
@@ -499,18 +577,22 @@ int main(int argc, char** argv) {
         if (s.anisotropic && nodes_given)
             throw ex::usage_error("--mu-nodes, --alpha-nodes and --eta-nodes do not apply to --anisotropic (its grid is fixed)");
         if (s.anisotropic) {
-            if (s.out == "dielectric_albedo_data.hpp") s.out = "dielectric_anisotropic_albedo_data.hpp";
+            if (s.out == "dielectric_albedo_data.hpp")
+                s.out = s.reflection ? "dielectric_anisotropic_reflection_albedo_data.hpp"
+                                     : "dielectric_anisotropic_albedo_data.hpp";
             if (!strata_given) s.strata = 128;
             ex::output_file header(s.out);
-            constexpr std::size_t points = 4000;
+            const std::size_t points = s.points;
             std::optional<ex::progress> bar(std::in_place, "dielectric_albedo_tables", d::dielectric_anisotropic_size + points,
                                             !s.quiet);
             const anisotropic_table t = compute_anisotropic(s, *bar, points);
             bar.reset();
             std::fprintf(stderr,
                          "dielectric_albedo_tables: anisotropic: largest node standard error %.2e, |Delta| <= %.3f, table - "
-                         "fresh estimate from %.2e to %.2e at %zu points with mu >= 0.1\n",
-                         t.max_error, t.max_delta, t.lowest, t.highest, t.points);
+                         "fresh estimate from %.2e to %.2e at %zu points with mu >= 0.1 (entering %.2e to %.2e, "
+                         "exiting %.2e to %.2e)\n",
+                         t.max_error, t.max_delta, t.lowest, t.highest, t.points, t.side_lowest[0], t.side_highest[0],
+                         t.side_lowest[1], t.side_highest[1]);
             std::FILE* f = std::fopen(header.temporary().c_str(), "w");
             if (!f) throw std::runtime_error("cannot write " + header.temporary().string());
             write_anisotropic(f, t, s);

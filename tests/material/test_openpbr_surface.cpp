@@ -13,6 +13,7 @@
 
 #include <shade/brdf/eon.hpp>
 #include <shade/brdf/sheen.hpp>
+#include <shade/bsdf/dielectric_anisotropic_reflection_albedo.hpp>
 #include <shade/bsdf/dielectric_reflection_albedo.hpp>
 #include <shade/check/bsdf_energy.hpp>
 #include <shade/check/bsdf_reciprocity.hpp>
@@ -23,6 +24,7 @@
 #include <shade/core/random.hpp>
 #include <shade/material/openpbr_surface.hpp>
 
+#include "bsdf/dielectric_albedo.hpp"
 #include "bsdf/support.hpp"
 #include "check/model_point.hpp"
 
@@ -705,19 +707,19 @@ TEST_CASE_TEMPLATE("openpbr_surface: random parameters at the ends of their rang
     CHECK(bad == 0);
 }
 
-TEST_CASE_TEMPLATE("openpbr_surface: white furnace with anisotropic specular, coat and glass (measured band)", T,
-                   float, double) {
+TEST_CASE_TEMPLATE("openpbr_surface: white furnace with anisotropic specular, coat and glass", T, float, double) {
     // E of an anisotropic GGX reflection lobe depends on the view's azimuth; the material
-    // reads the isotropic table at the roughness the view's masking sees,
-    // sqrt(alpha_x^2 cos^2 phi + alpha_y^2 sin^2 phi). That is an approximation: over
-    // anisotropy 0.5 and 0.9, roughness 0.2 to 1, mu 1 to 0.1 and three azimuths the
-    // readings measured 0.894 to 1.0071 (the low end at roughness 1, anisotropy 0.9, where
-    // alpha_t = 1.41 lies beyond the table's alpha = 1; the issue's band [0.99, 1.001] is
-    // met at anisotropy 0.5 up to roughness 0.5 but not everywhere). This test holds the
-    // measured range, each reading widened by 4 standard errors.
+    // reads shade::dielectric_reflection_albedo's anisotropic form (the isotropic table at
+    // sqrt(alpha_x alpha_y) plus the tabulated correction at the view's azimuth). In a white
+    // furnace its error is the furnace's: albedo(v) = 1 + E_true(v) - E_read(v). The issue's
+    // band [0.99, 1.001] (each reading widened by 4 standard errors) over anisotropy 0.5 and
+    // 0.9, roughness 0.1 to 1, mu 1 to 0.1 and four azimuths, for an anisotropic specular over
+    // white diffuse, an anisotropic coat over white diffuse and over white metal, and
+    // anisotropic glass.
     const auto at = check_test::model_point<T>();
+    double low = 2, high = 0;
     for (const T aniso : {T(0.5), T(0.9)}) {
-        for (const T r : {T(0.2), T(0.5), T(1)}) {
+        for (const T r : {T(0.1), T(0.2), T(0.3), T(0.5), T(0.7), T(1)}) {
             params<T> p = white<T>();
             p.specular_roughness = r;
             p.specular_roughness_anisotropy = aniso;
@@ -726,26 +728,74 @@ TEST_CASE_TEMPLATE("openpbr_surface: white furnace with anisotropic specular, co
             coat.coat_roughness = r;
             coat.coat_roughness_anisotropy = aniso;
             coat.specular_roughness_anisotropy = T(0);
+            params<T> coat_metal = coat;
+            coat_metal.base_metalness = T(1);
             params<T> glass = p;
             glass.transmission_weight = T(1);
-            for (const auto& q : {p, coat, glass}) {
+            for (const auto& q : {p, coat, coat_metal, glass}) {
                 const surface<T> m(q);
                 for (const double mu : {1.0, 0.5, 0.2, 0.1}) {
-                    for (const double phi : {0.0, 0.8, 1.5708}) {
-                        const auto reading = furnace(m, view_at_cosine(at, mu, phi), at, 96);
+                    for (const double phi : {0.0, 0.8, 1.5708, 2.4}) {
+                        const auto reading = furnace(m, view_at_cosine(at, mu, phi), at, 64);
                         INFO("anisotropy ", double(aniso), " roughness ", double(r), " coat ", double(q.coat_weight),
-                             " glass ", double(q.transmission_weight), " mu ", mu, " phi ", phi, ": ", reading.first,
-                             " +- ", reading.second);
-                        CHECK(reading.first >= 0.894 - 4 * reading.second);
-                        CHECK(reading.first <= 1.0071 + 4 * reading.second);
-                        if (aniso == T(0.5) && r <= T(0.5)) {
-                            CHECK(reading.first >= 0.99 - 4 * reading.second);
-                            CHECK(reading.first <= 1.001 + 4 * reading.second);
-                        }
+                             " metal ", double(q.base_metalness), " glass ", double(q.transmission_weight), " mu ", mu,
+                             " phi ", phi, ": ", reading.first, " +- ", reading.second);
+                        CHECK(reading.first >= 0.99 - 4 * reading.second);
+                        CHECK(reading.first <= 1.001 + 4 * reading.second);
+                        low = std::min(low, reading.first);
+                        high = std::max(high, reading.first);
                     }
                 }
             }
         }
+    }
+    MESSAGE("anisotropic white furnace: " << low << " to " << high);
+}
+
+TEST_CASE("openpbr_surface: the anisotropic reflection albedo's furnace error, without sampling noise") {
+    // Over a white, energy-conserving base the furnace reads 1 + E_true(v) - E_read(v) for
+    // the coat and the dielectric specular, E_read the anisotropic
+    // shade::dielectric_reflection_albedo at the lobe's alphas (openpbr::roughness_to_alpha,
+    // alpha_b at least openpbr::smallest_alpha) and E_true a fresh 64^2 estimate by
+    // rough_dielectric's own sampler (standard error below 2e-4 here). Views mu 1 to 0.1 at
+    // eight azimuths. Seen from outside at the default indices (specular 1.5, coat 1.6):
+    // the issue's band [0.99, 1.001] for anisotropy 0.5 and 0.9 at every roughness
+    // 0.1 to 1 but for the largest readings (measured 0.9990 to 1.0024, the top at roughness
+    // 1 and anisotropy 0.5); anisotropy 1 (a 1-D rough surface, read as 20:1) measured 0.8397
+    // to 1.0033, the low end at roughness 1. The specular under a coat of higher index
+    // (specular_ior / coat_ior = 1.5 / 1.6, total internal reflection; anisotropy 0.5, 0.9)
+    // measured 0.9724 to 1.0194. Each reading is held to its measured range widened by
+    // 4 standard errors of E_true.
+    struct band {
+        double eta_s;
+        double anisotropy;
+        double low, high;
+    };
+    const band bands[] = {{1.5, 0.5, 0.999, 1.0025},   {1.6, 0.5, 0.999, 1.0025},   {1.5, 0.9, 0.999, 1.0019},
+                          {1.6, 0.9, 0.999, 1.0019},   {1.5, 1.0, 0.839, 1.0034},   {1 / 1.0666666666666667, 0.5, 0.996, 1.0049},
+                          {1 / 1.0666666666666667, 0.9, 0.972, 1.0195}};
+    for (const band& b : bands) {
+        double low = 2, high = 0;
+        for (const double r : {0.1, 0.2, 0.3, 0.5, 0.7, 1.0}) {
+            const auto alpha = shade::openpbr::roughness_to_alpha(r, b.anisotropy);
+            const double alpha_x = alpha.t, alpha_y = std::max(alpha.b, shade::openpbr::smallest_alpha<double>);
+            const shade::rough_dielectric<shade::ggx<double>> model(shade::ggx<double>(alpha_x, alpha_y),
+                                                                    b.eta_s > 1 ? b.eta_s : 1 / b.eta_s);
+            for (const double mu : {0.1, 0.2, 0.3, 0.5, 0.8, 1.0})
+                for (int k = 0; k < 8; ++k) {
+                    const double phi = k * shade::pi<double> / 8, s = std::sqrt((1 - mu) * (1 + mu));
+                    const vec3<double> v(s * std::cos(phi), s * std::sin(phi), b.eta_s > 1 ? mu : -mu);
+                    const auto fresh = bsdf_test::single_scattering_reflection(model, v, 64, std::uint64_t(5 + k));
+                    const double reading = 1 + fresh.albedo.x - shade::dielectric_reflection_albedo(v, alpha_x, alpha_y, b.eta_s);
+                    INFO("eta_s ", b.eta_s, " anisotropy ", b.anisotropy, " roughness ", r, " mu ", mu, " phi ", phi, ": ",
+                         reading);
+                    CHECK(reading >= b.low - 4 * fresh.standard_error.x);
+                    CHECK(reading <= b.high + 4 * fresh.standard_error.x);
+                    low = std::min(low, reading);
+                    high = std::max(high, reading);
+                }
+        }
+        MESSAGE("eta_s " << b.eta_s << ", anisotropy " << b.anisotropy << ": furnace " << low << " to " << high);
     }
 }
 

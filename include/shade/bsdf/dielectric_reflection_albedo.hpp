@@ -83,20 +83,21 @@ template <std::floating_point T>
     return dielectric_reflection_albedo(unchecked, mu, alpha, eta_s);
 }
 
-/// The reflection albedo of an anisotropic GGX interface (roughnesses alpha_x, alpha_y),
-/// approximated by the isotropic table at the geometric mean sqrt(alpha_x alpha_y),
-/// whatever the azimuth of the view: R_ss of an anisotropic interface depends on the
-/// azimuth, and this is its value for no azimuth in particular. The measured error against
-/// direct estimates at 2:1 and 10:1 anisotropy is in docs/properties.md
-/// ("Reflection albedo of the rough dielectric"). Preconditions as the isotropic form
-/// (alpha_x, alpha_y >= 0). Dimensionless, in [0, 1].
+/// The reflection albedo of an anisotropic GGX interface (roughnesses alpha_x, alpha_y) for
+/// no view azimuth in particular: the isotropic table at the geometric mean
+/// sqrt(alpha_x alpha_y). R_ss of an anisotropic interface depends on the azimuth; the form
+/// that takes the view's direction (shade/bsdf/dielectric_anisotropic_reflection_albedo.hpp)
+/// reads it there. The error of this one against
+/// direct estimates at 2:1 and 10:1 anisotropy is in docs/properties.md ("Reflection albedo
+/// of the rough dielectric"). Preconditions as the isotropic form (alpha_x, alpha_y >= 0).
+/// Dimensionless, in [0, 1].
 template <std::floating_point T>
 [[nodiscard]] inline T dielectric_reflection_albedo(unchecked_t, T mu, T alpha_x, T alpha_y, T eta_s) noexcept {
     return dielectric_reflection_albedo(unchecked, mu, std::sqrt(alpha_x * alpha_y), eta_s);
 }
 
-/// The anisotropic form, validated first: throws shade::invalid_parameter naming "mu",
-/// "alpha_x", "alpha_y" or "eta_s" as the isotropic checked form does.
+/// The azimuth-free anisotropic form, validated first: throws shade::invalid_parameter naming
+/// "mu", "alpha_x", "alpha_y" or "eta_s" as the isotropic checked form does.
 template <std::floating_point T>
 [[nodiscard]] inline T dielectric_reflection_albedo(T mu, T alpha_x, T alpha_y, T eta_s) {
     require_in_range("mu", mu, T(0), T(1));

@@ -34,6 +34,7 @@
 #include <shade/bsdf/detail/delta.hpp>
 #include <shade/bsdf/detail/dielectric_albedo_row.hpp>
 #include <shade/bsdf/detail/lobe_pair.hpp>
+#include <shade/bsdf/dielectric_anisotropic_reflection_albedo.hpp>
 #include <shade/bsdf/dielectric_reflection_albedo.hpp>
 #include <shade/bsdf/layer.hpp>
 #include <shade/bsdf/refract.hpp>
@@ -171,7 +172,8 @@ private:
 ///   * f_fuzz: shade::zeltner_sheen (fuzz_color, fuzz_roughness); E_fuzz its albedo table.
 ///   * f_coat: shade::microfacet_reflection over anisotropic GGX with the exact dielectric
 ///     Fresnel of coat_ior (coat_roughness, coat_roughness_anisotropy; openpbr::
-///     roughness_to_alpha); E_coat = shade::dielectric_reflection_albedo.
+///     roughness_to_alpha); E_coat = shade::dielectric_reflection_albedo (anisotropic: its
+///     form at the view's azimuth).
 ///   * f_metal: microfacet_reflection with the F82-tint Fresnel (base_weight base_color,
 ///     specular_color, specular_weight clamped to 1 so the metal creates no energy) and
 ///     Kulla-Conty compensation at every azimuth (shade::kulla_conty_anisotropic), so a white
@@ -180,7 +182,8 @@ private:
 ///   * f_spec: microfacet_reflection with openpbr::surface_fresnel (specular_color times the
 ///     exact Fresnel of the modulated index eta'_s, openpbr::modulated_ior_ratio of
 ///     openpbr::specular_ior_ratio; with a thin film); E_spec its albedo:
-///     specular_color times dielectric_reflection_albedo at eta'_s, the film's part
+///     specular_color times dielectric_reflection_albedo at eta'_s (anisotropic: at the
+///     view's azimuth), the film's part
 ///     estimated as F_film(mu) E_1(mu), E_1 the albedo of the lobe with F = 1 (the
 ///     Kulla-Conty table).
 ///   * f_transmission: the transmitted part of shade::compensated_rough_dielectric at the
@@ -424,20 +427,10 @@ private:
         return keep * glm::mix(rgb<T>(1), absorbed, C) * glm::sqrt(darkening_l * w.darkening);
     }
 
-    // The roughness of an anisotropic GGX seen along the local direction w: the alpha of
-    // the isotropic surface whose masking of w equals the anisotropic one's,
-    // sqrt(alpha_x^2 cos^2 phi + alpha_y^2 sin^2 phi) (Heitz 2014, "Understanding the
-    // Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT 3(2), eq. 80).
-    [[nodiscard]] static T projected_alpha(const ggx<T>& d, const vec3<T>& w) noexcept {
-        const T s2 = w.x * w.x + w.y * w.y;
-        if (!(s2 > T(0))) return std::sqrt(d.alpha_x() * d.alpha_y());
-        return std::sqrt((sqr(d.alpha_x() * w.x) + sqr(d.alpha_y() * w.y)) / s2);
-    }
-
     // E_coat(mu): the coat's directional albedo (white).
     [[nodiscard]] T coat_albedo(T mu, const vec3<T>& w_local = vec3<T>(0)) const noexcept {
         if (coat_ && coat_anisotropic_ && w_local != vec3<T>(0))
-            return dielectric_reflection_albedo(unchecked, mu, projected_alpha(coat_->distribution(), w_local), coat_eta_);
+            return coat_albedo_anisotropic_.at(w_local);
         if (coat_) return coat_albedo_.at(mu);
         return F_dielectric(mu, coat_eta_);
     }
@@ -447,7 +440,7 @@ private:
         const T e_dielectric =
             specular_eta_ == T(1) ? T(0)
             : specular_ && specular_anisotropic_ && w_local != vec3<T>(0)
-                ? dielectric_reflection_albedo(unchecked, mu, projected_alpha(specular_->distribution(), w_local), specular_eta_)
+                ? specular_albedo_anisotropic_.at(w_local)
             : specular_ ? specular_albedo_.at(mu)
                         : F_dielectric(mu, specular_eta_);
         rgb<T> e(e_dielectric);
@@ -503,10 +496,7 @@ private:
             if (transmission_ && Tw > T(0)) {
                 const T e_s = transmission_->single_scattering_albedo(v, at);
                 const T r_ss = transmission_anisotropic_
-                                   ? dielectric_reflection_albedo(unchecked, w.mu,
-                                                                  projected_alpha(transmission_->distribution(),
-                                                                                  at.shading.to_local(v)),
-                                                                  transmission_->eta())
+                                   ? transmission_reflection_anisotropic_.at(at.shading.to_local(v))
                                    : transmission_reflection_.at(w.mu);
                 w.transmittance = glm::max(e_s - r_ss + transmission_->transmitted_share(false) * (T(1) - e_s),
                                            T(1e-6));
@@ -898,6 +888,9 @@ private:
     detail::reflection_albedo_row<T> coat_albedo_{};          // E_coat(mu)
     detail::reflection_albedo_row<T> specular_albedo_{};      // R_ss(mu) at eta'_s
     detail::reflection_albedo_row<T> transmission_reflection_{}; // R_ss(mu) at specular_ior
+    detail::anisotropic_reflection_albedo<T> coat_albedo_anisotropic_{};         // E_coat(v), anisotropic coat
+    detail::anisotropic_reflection_albedo<T> specular_albedo_anisotropic_{};     // R_ss(v) at eta'_s, anisotropic
+    detail::anisotropic_reflection_albedo<T> transmission_reflection_anisotropic_{}; // R_ss(v), anisotropic
     bool transmission_anisotropic_ = false;
     bool coat_anisotropic_ = false;
     bool specular_anisotropic_ = false;
@@ -941,6 +934,9 @@ void openpbr_surface<T>::build() {
             coat_alpha_ = iso(*d);
             coat_albedo_ = detail::reflection_albedo_row<T>(coat_alpha_, coat_eta_);
             coat_anisotropic_ = d->alpha_x() != d->alpha_y();
+            if (coat_anisotropic_)
+                coat_albedo_anisotropic_ =
+                    detail::anisotropic_reflection_albedo<T>(d->alpha_x(), d->alpha_y(), coat_eta_);
         }
     }
 
@@ -977,6 +973,9 @@ void openpbr_surface<T>::build() {
         specular_alpha_ = iso(*base_distribution);
         specular_albedo_ = detail::reflection_albedo_row<T>(specular_alpha_, specular_eta_);
         specular_anisotropic_ = base_distribution->alpha_x() != base_distribution->alpha_y();
+        if (specular_anisotropic_ && specular_eta_ != T(1))
+            specular_albedo_anisotropic_ = detail::anisotropic_reflection_albedo<T>(
+                base_distribution->alpha_x(), base_distribution->alpha_y(), specular_eta_);
     }
 
     // Transmission.
@@ -994,6 +993,9 @@ void openpbr_surface<T>::build() {
             const T eta = transmission_->eta();
             transmission_reflection_ = detail::reflection_albedo_row<T>(transmission_alpha_, eta);
             transmission_anisotropic_ = base_distribution->alpha_x() != base_distribution->alpha_y();
+            if (transmission_anisotropic_)
+                transmission_reflection_anisotropic_ = detail::anisotropic_reflection_albedo<T>(
+                    base_distribution->alpha_x(), base_distribution->alpha_y(), eta);
         }
     }
 

@@ -1,0 +1,131 @@
+#pragma once
+// shade::dielectric_reflection_albedo for a view's direction on an anisotropic GGX interface:
+// the reflection albedo of shade/bsdf/dielectric_reflection_albedo.hpp read at the view's
+// azimuth, with a tabulated correction (data in
+// shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp). A header of its own so
+// that the isotropic form stays cheap for the models that need only it.
+
+#include <cmath>
+#include <concepts>
+#include <cstddef>
+
+#include <glm/common.hpp>
+
+#include <shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp>
+#include <shade/bsdf/dielectric_albedo_table.hpp>
+#include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>
+#include <shade/bsdf/dielectric_reflection_albedo.hpp>
+#include <shade/core/error.hpp>
+#include <shade/core/types.hpp>
+
+namespace shade {
+
+namespace detail {
+
+/// The roughness at which the anisotropic reflection albedo reads the isotropic table for the
+/// local direction w: the roughness projected on w's azimuth phi (from t),
+/// sqrt(alpha_x^2 cos^2 phi + alpha_y^2 sin^2 phi), the alpha of the isotropic surface whose
+/// masking of w is the anisotropic one's (Heitz 2014, "Understanding the Masking-Shadowing
+/// Function in Microfacet-Based BRDFs", JCGT 3(2), eq. 80). At the pole (w along n), where
+/// the azimuth is undefined, the smoother alpha: the azimuth 0 from the smoother axis at
+/// which the correction table is read there, so that the two agree.
+template <std::floating_point T>
+[[nodiscard]] inline T reflection_projected_alpha(T alpha_x, T alpha_y, const vec3<T>& w) noexcept {
+    const T s2 = w.x * w.x + w.y * w.y;
+    if (!(s2 > T(0))) return glm::min(alpha_x, alpha_y);
+    return std::sqrt((alpha_x * alpha_x * w.x * w.x + alpha_y * alpha_y * w.y * w.y) / s2);
+}
+
+/// The anisotropic reflection albedo of one interface (roughnesses alpha_x, alpha_y >= 0,
+/// index ratio eta_s > 0; unchecked) for many directions: what
+/// shade::dielectric_reflection_albedo(unchecked, w, alpha_x, alpha_y, eta_s) returns, with
+/// the correction table's cell located once. Where the correction's grid ends:
+///   * an anisotropy max / min beyond dielectric_anisotropic_ratio_max (20; OpenPBR's
+///     anisotropy 1 puts alpha_b at its smallest alpha) reads the correction of the 20:1
+///     interface with the rougher alpha kept, the projected roughness of the true alphas
+///     (of the two readings measured, the one that errs toward reflecting more: see
+///     docs/properties.md);
+///   * below eta_hat = 1.05 the correction is scaled by (eta_hat - 1) / 0.05, so that an
+///     index-matched interface reflects nothing; above 3 it is read at 3;
+///   * a mean roughness sqrt(alpha_x alpha_y) above 1 reads 1.
+template <std::floating_point T>
+class anisotropic_reflection_albedo {
+public:
+    anisotropic_reflection_albedo() = default;
+
+    anisotropic_reflection_albedo(T alpha_x, T alpha_y, T eta_s) noexcept
+        : alpha_x_(alpha_x), alpha_y_(alpha_y), eta_s_(eta_s) {
+        const T hi = glm::max(alpha_x, alpha_y);
+        const T lo = glm::max(glm::min(alpha_x, alpha_y), hi / T(dielectric_anisotropic_ratio_max));
+        side_ = eta_s > T(1) ? 0 : 1;
+        const T eta_hat = eta_s > T(1) ? eta_s : T(1) / eta_s;
+        // Equal alphas (or both 0: a smooth interface) need no correction.
+        if (!(lo < hi) || eta_hat == T(1)) return;
+        cell_ = dielectric_anisotropic_locate(alpha_x > alpha_y ? hi : lo, alpha_x > alpha_y ? lo : hi, eta_s);
+        scale_ = glm::min((eta_hat - T(1)) / T(dielectric_albedo_eta_min - 1), T(1));
+    }
+
+    /// R_ss(w) for the unit local direction w on the view's side (only its azimuth and |w.z|
+    /// are used), read with the correction `delta` (a table of dielectric_anisotropic_size
+    /// values on the grid of shade/bsdf/dielectric_anisotropic_albedo_table.hpp; the committed
+    /// one by default). Dimensionless, in [0, 1].
+    [[nodiscard]] T at(const vec3<T>& w, const float* delta = ggx_dielectric_anisotropic_reflection_delta) const noexcept {
+        const T mu = glm::min(std::abs(w.z), T(1));
+        const T alpha = alpha_x_ == alpha_y_ ? alpha_x_ : reflection_projected_alpha(alpha_x_, alpha_y_, w);
+        T r = dielectric_reflection_albedo(unchecked, mu, alpha, eta_s_);
+        if (scale_ > T(0)) r += scale_ * dielectric_anisotropic_delta(delta, cell_, side_, w.x, w.y, mu);
+        return glm::clamp(r, T(0), T(1));
+    }
+
+private:
+    T alpha_x_ = 0, alpha_y_ = 0, eta_s_ = 1;
+    T scale_ = 0; // the correction's factor: 0 when isotropic or index-matched
+    std::size_t side_ = 0;
+    dielectric_anisotropic_cell<T> cell_{};
+};
+
+} // namespace detail
+
+/// The reflection albedo R_ss(w) of an anisotropic GGX interface, shade::rough_dielectric over
+/// ggx(alpha_x, alpha_y) (alpha_x along the tangent t, alpha_y along b), for the unit local
+/// direction w on the view's side (w = (w·t, w·b, w·n); the sign of w.z is not used: eta_s
+/// names the side, as in the isotropic form). R_ss of an anisotropic interface depends on
+/// the azimuth of the view as well as on its cosine mu = |w.z|. It is read as
+///
+///     R_ss(w) = R_ss,iso(mu, alpha_phi, eta_s) + Delta_R(w)
+///
+/// with R_ss,iso the isotropic table above at the roughness projected on w's azimuth,
+/// alpha_phi = sqrt(alpha_x^2 cos^2 phi + alpha_y^2 sin^2 phi) (Heitz 2014, "Understanding
+/// the Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT 3(2), eq. 80: the view's
+/// masking is exact there, so the reading is close for nearly smooth interfaces, and clamped
+/// to the table's alpha = 1), and Delta_R a tabulated correction
+/// (shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp, written by
+/// examples/dielectric_albedo_tables --anisotropic --reflection on the grid and with the
+/// interpolation of shade/bsdf/dielectric_anisotropic_albedo_table.hpp: sqrt(mu), the view's
+/// azimuth, the mean roughness sqrt(alpha_x alpha_y) up to 1, the anisotropy up to 20:1 and
+/// eta_hat in [1.05, 3], both sides). Where the grid ends: detail::anisotropic_reflection_albedo.
+/// Its accuracy against fresh estimates is stated in the data header and in
+/// docs/properties.md ("Reflection albedo of the rough dielectric"). Equal alphas return the
+/// isotropic form exactly. Returns a dimensionless value in [0, 1].
+///
+/// Preconditions (unchecked): w finite and of unit length, alpha_x, alpha_y >= 0 and finite,
+/// eta_s finite and > 0. The checked overload below throws instead.
+template <std::floating_point T>
+[[nodiscard]] inline T dielectric_reflection_albedo(unchecked_t, const vec3<T>& w, T alpha_x, T alpha_y,
+                                                    T eta_s) noexcept {
+    return detail::anisotropic_reflection_albedo<T>(alpha_x, alpha_y, eta_s).at(w);
+}
+
+/// The anisotropic form, validated first: throws shade::invalid_parameter naming "w" unless
+/// w is a finite unit vector (|w|^2 within 1e-3 of 1), "alpha_x" or "alpha_y" unless finite
+/// and >= 0, "eta_s" unless it lies in [1e-4, 1e4].
+template <std::floating_point T>
+[[nodiscard]] inline T dielectric_reflection_albedo(const vec3<T>& w, T alpha_x, T alpha_y, T eta_s) {
+    (void)require_unit_length("w", w);
+    require_non_negative("alpha_x", alpha_x);
+    require_non_negative("alpha_y", alpha_y);
+    require_in_range("eta_s", eta_s, dielectric_eta_min<T>, dielectric_eta_max<T>);
+    return dielectric_reflection_albedo(unchecked, w, alpha_x, alpha_y, eta_s);
+}
+
+} // namespace shade
