@@ -18,6 +18,12 @@
 // whose centre has mu >= 0.05
 // (the views the compensation promises R + T for).
 //
+//   dielectric_albedo_tables --beckmann --strata 256 --envelope 64 --out include/shade/bsdf/detail/beckmann_dielectric_albedo_data.hpp
+//
+// stores an upper envelope of E instead of point values (raise_to_envelope): the
+// compensation's R + T is 1 + E_true - E_table, so a table that errs high by design keeps
+// R + T from exceeding 1 where interpolation would err low.
+//
 //   dielectric_albedo_tables --reflection --out include/shade/bsdf/detail/dielectric_reflection_albedo_data.hpp
 //
 // writes instead the reflection table of shade/bsdf/dielectric_reflection_albedo.hpp on its
@@ -84,7 +90,7 @@ using T = double;
 
 constexpr std::string_view usage =
     R"(usage: dielectric_albedo_tables [--beckmann | --reflection] [--out FILE.hpp] [--mu-nodes N] [--alpha-nodes N]
-                                [--eta-nodes N] [--strata S] [--threads K] [--quiet]
+                                [--eta-nodes N] [--strata S] [--envelope S] [--threads K] [--quiet]
        dielectric_albedo_tables --anisotropic [--reflection] [--out FILE.hpp] [--strata S] [--points N]
                                 [--verbose] [--threads K] [--quiet]
 
@@ -113,6 +119,10 @@ writes the header of constants.
                     azimuth (default output dielectric_anisotropic_reflection_albedo_data.hpp)
   --points N        with --anisotropic: random points the table is checked at (default 4000)
   --verbose         with --anisotropic: print each check point
+  --envelope S      store an upper envelope of E instead of point values: after the nodes,
+                    E is estimated (S^2 samples) at the middle of every cell edge, face and
+                    interior with mu >= 0.05, and the nodes of each cell whose interpolated
+                    value falls below an estimate are raised by the shortfall, until none does
   --threads K       worker threads, 1 to 64 (default 2)
   --quiet           no progress bar
 )";
@@ -128,6 +138,7 @@ struct settings {
     bool reflection = false;
     bool verbose = false;       // print every check point (--anisotropic)
     std::size_t points = 4000;  // random check points (--anisotropic)
+    std::size_t envelope = 0; // S^2 samples per check point of the upper envelope (0: point values)
 };
 
 // E of a model of index eta_s at view cosine mu: the importance-mode weight of its sampler.
@@ -227,6 +238,12 @@ struct table {
     double max_domain = 0;       // the same over the cell centres with mu >= 0.05
     double max_side[2] = {0, 0}; // max_domain of each side (0 entering, 1 exiting)
     std::string worst;           // where the largest difference is (for the log)
+    double lowest = 0;           // smallest table - estimate at the cell centres with mu >= 0.05
+    double highest = 0;          // largest
+    std::size_t checks = 0;      // check points of the upper envelope (0: point values)
+    double max_raise = 0;        // largest raise of a node by the envelope
+    std::size_t raised = 0;      // nodes raised
+    int passes = 0;              // raising passes until no check point was above the table
 };
 
 void parallel_for(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& job) {
@@ -241,6 +258,94 @@ void parallel_for(std::size_t count, unsigned threads, const std::function<void(
 
 // The eta_s of side `side` (0 entering, 1 exiting) at eta_hat.
 double eta_of_side(std::size_t side, double eta_hat) { return side == 0 ? eta_hat : 1 / eta_hat; }
+
+// A check point of the upper envelope: a side and the half-integer place (2 i + 1 a cell's
+// middle, 2 i a node) along each axis, not every coordinate a node.
+struct check_point {
+    std::size_t side, mu2, alpha2, eta2;
+    double mu, alpha, eta_s;
+};
+
+// Every check point of grid g with mu >= 0.05: the middles of the cells' edges, faces and
+// interiors (each axis at a node or halfway between two, in the table's own coordinates:
+// the view coordinate, sqrt(alpha), log(eta_hat - 1)), where interpolation errs most.
+std::vector<check_point> envelope_points(const d::dielectric_albedo_grid& g) {
+    std::vector<check_point> points;
+    for (std::size_t side = 0; side < 2; ++side)
+        for (std::size_t e2 = 0; e2 + 1 < 2 * g.eta_nodes; ++e2)
+            for (std::size_t a2 = 0; a2 + 1 < 2 * g.alpha_nodes; ++a2)
+                for (std::size_t m2 = 0; m2 + 1 < 2 * g.mu_nodes; ++m2) {
+                    if (e2 % 2 == 0 && a2 % 2 == 0 && m2 % 2 == 0) continue;
+                    const double y = 0.5 * double(a2) / double(g.alpha_nodes - 1);
+                    const double alpha = std::max(y * y, d::albedo_grid_alpha_min);
+                    const double eta_hat =
+                        e2 % 2 == 0 ? d::dielectric_albedo_eta(g, e2 / 2)
+                                    : 1 + std::sqrt((d::dielectric_albedo_eta(g, e2 / 2) - 1) *
+                                                    (d::dielectric_albedo_eta(g, e2 / 2 + 1) - 1));
+                    const double mu = d::dielectric_albedo_view_mu(0.5 * double(m2) / double(g.mu_nodes - 1), alpha,
+                                                                   eta_hat, side, g.near_critical);
+                    if (mu < 0.05) continue;
+                    points.push_back({side, m2, a2, e2, mu, alpha, eta_of_side(side, eta_hat)});
+                }
+    return points;
+}
+
+// Turns the point values of `out` into an upper envelope of E (the total albedo only): E is
+// estimated afresh (s.envelope^2 samples) at every check point of envelope_points, and the
+// nodes of each cell whose interpolated value falls below an estimate there are raised by
+// the shortfall (at most to 1), pass after pass until no check point is above the table
+// (a raised node also lifts its neighbours' cells, and the spline's outer weights are
+// negative, so one pass is not always enough). The compensation's R + T is
+// 1 + E_true - E_table, so a table that errs high keeps R + T below 1 + its residual error.
+void raise_to_envelope(table& out, const estimator& albedo, const settings& s, ex::progress& bar) {
+    const d::dielectric_albedo_grid& g = s.grid;
+    const std::vector<check_point> points = envelope_points(g);
+    std::vector<double> estimate(points.size());
+    parallel_for(points.size(), s.threads, [&](std::size_t p) {
+        const check_point& c = points[p];
+        estimate[p] = albedo(c.mu, c.alpha, c.eta_s, s.envelope, 2000003 + p).albedo.x;
+        bar.advance();
+    });
+    const std::vector<float> start = out.e;
+    std::vector<double> raise(g.size());
+    for (int pass = 1; pass <= 200; ++pass) {
+        std::fill(raise.begin(), raise.end(), 0.0);
+        bool any = false;
+        for (std::size_t p = 0; p < points.size(); ++p) {
+            const check_point& c = points[p];
+            const auto cell = d::dielectric_albedo_locate(g, c.alpha, c.eta_s);
+            const double shortfall = estimate[p] - d::dielectric_albedo_interpolate(out.e.data(), g, cell, c.mu);
+            // Below 1e-6 the shortfall is the float rounding of the raised nodes.
+            if (!(shortfall > 1e-6)) continue;
+            any = true;
+            const auto c_mu = d::albedo_grid_locate(
+                d::dielectric_albedo_view(c.mu, double(cell.alpha_clamped), double(cell.eta_clamped), cell.side,
+                                          g.near_critical),
+                g.mu_nodes);
+            for (std::size_t k = cell.eta.i; k <= cell.eta.i + 1; ++k)
+                for (std::size_t j = cell.alpha.i; j <= cell.alpha.i + 1; ++j)
+                    for (std::size_t i = c_mu.i; i <= c_mu.i + 1; ++i) {
+                        double& r = raise[g.row(cell.side, k, j) + i];
+                        r = std::max(r, shortfall);
+                    }
+        }
+        out.passes = pass;
+        if (!any) break;
+        for (std::size_t n = 0; n < g.size(); ++n)
+            if (raise[n] > 0) out.e[n] = float(std::min(double(out.e[n]) + raise[n], 1.0));
+        // Nodes at 1 cannot rise: a check point whose cell is all at 1 stops the passes.
+        bool stuck = true;
+        for (std::size_t n = 0; n < g.size(); ++n)
+            if (raise[n] > 0 && out.e[n] < 1.0f) stuck = false;
+        if (stuck) break;
+    }
+    out.checks = points.size();
+    for (std::size_t n = 0; n < g.size(); ++n) {
+        const double r = double(out.e[n]) - double(start[n]);
+        out.max_raise = std::max(out.max_raise, r);
+        if (r > 0) ++out.raised;
+    }
+}
 
 table compute(const std::string& name, const std::string& what, const estimator& albedo, const settings& s,
               ex::progress& bar) {
@@ -263,9 +368,13 @@ table compute(const std::string& name, const std::string& what, const estimator&
         bar.advance();
     });
     out.max_error = *std::max_element(errors.begin(), errors.end());
+    if (s.envelope > 0) raise_to_envelope(out, albedo, s, bar);
+    // With an envelope the centres are compared at the check points' sample count.
+    const std::size_t centre_strata = s.envelope > 0 ? s.envelope : s.strata;
     // Every cell centre, estimated afresh and compared with the interpolated table.
     const std::size_t cells = 2 * (g.eta_nodes - 1) * (g.alpha_nodes - 1) * (g.mu_nodes - 1);
     std::vector<double> differences(cells);
+    std::vector<double> signed_differences(cells);
     std::vector<char> in_domain(cells);
     std::vector<std::string> where(cells);
     parallel_for(cells, s.threads, [&](std::size_t index) {
@@ -279,11 +388,12 @@ table compute(const std::string& name, const std::string& what, const estimator&
         const double mu = d::dielectric_albedo_view_mu((double(i) + 0.5) / double(g.mu_nodes - 1), alpha, eta_hat, side,
                                                        g.near_critical);
         const double eta_s = eta_of_side(side, eta_hat);
-        const auto a = albedo(mu, alpha, eta_s, s.strata, 1000003 + index);
+        const auto a = albedo(mu, alpha, eta_s, centre_strata, 1000003 + index);
         const auto cell = d::dielectric_albedo_locate(g, alpha, eta_s);
         const double table_value =
             std::min(std::max(d::dielectric_albedo_interpolate(out.e.data(), g, cell, mu) + baseline(s, mu, eta_s), 0.0), 1.0);
         differences[index] = std::abs(table_value - a.albedo.x);
+        signed_differences[index] = table_value - a.albedo.x;
         in_domain[index] = mu >= 0.05;
         where[index] = "side " + std::to_string(side) + ", mu " + std::to_string(mu) + ", alpha " + std::to_string(alpha) +
                        ", eta_hat " + std::to_string(eta_hat) + ": estimate " + std::to_string(a.albedo.x) + ", table " +
@@ -299,6 +409,8 @@ table compute(const std::string& name, const std::string& what, const estimator&
             out.max_domain = std::max(out.max_domain, differences[index]);
             double& side_max = out.max_side[index / side_cells];
             side_max = std::max(side_max, differences[index]);
+            out.lowest = std::min(out.lowest, signed_differences[index]);
+            out.highest = std::max(out.highest, signed_differences[index]);
         }
     return out;
 }
@@ -308,9 +420,9 @@ void write(std::FILE* f, const std::vector<table>& tables, const settings& s) {
     std::fprintf(f, "#pragma once\n");
     std::fprintf(f,
                  "// Generated by examples/dielectric_albedo_tables.cpp (%s--mu-nodes %zu --alpha-nodes %zu --eta-nodes %zu "
-                 "--strata %zu);\n// do not edit by hand.\n",
+                 "--strata %zu%s);\n// do not edit by hand.\n",
                  s.beckmann ? "--beckmann " : s.reflection ? "--reflection " : "", g.mu_nodes, g.alpha_nodes, g.eta_nodes,
-                 s.strata);
+                 s.strata, s.envelope > 0 ? (" --envelope " + std::to_string(s.envelope)).c_str() : "");
     if (s.reflection) {
         std::fprintf(f, "// The reflection table of shade/bsdf/dielectric_reflection_albedo.hpp (meaning) on the grid\n");
         std::fprintf(f, "// detail::dielectric_reflection_albedo_grid of shade/bsdf/dielectric_albedo_table.hpp (grid,\n");
@@ -334,6 +446,16 @@ void write(std::FILE* f, const std::vector<table>& tables, const settings& s) {
                      t.max_interpolation);
         std::fprintf(f, "/// at the cell centres with mu >= 0.05 <= %.1e (entering side <= %.1e, exiting side <= %.1e).\n",
                      t.max_domain, t.max_side[0], t.max_side[1]);
+        if (t.checks > 0) {
+            std::fprintf(f, "/// An upper envelope, not point values: %zu nodes raised (by at most %.1e) so that the\n", t.raised,
+                         t.max_raise);
+            std::fprintf(f, "/// interpolated table is at least a fresh estimate (%zu samples each) at %zu check points\n",
+                         s.envelope * s.envelope, t.checks);
+            std::fprintf(f, "/// with mu >= 0.05, the middles of every cell's edges, faces and interior (%d passes).\n",
+                         t.passes);
+            std::fprintf(f, "/// Table minus a fresh estimate at the cell centres with mu >= 0.05: from %.1e to %.1e.\n",
+                         t.lowest, t.highest);
+        }
         std::fprintf(f, "inline constexpr float %s[%zu] = {\n", t.name.c_str(), g.size());
         // The reflection table, four rows (of one alpha block) per line: its header is
         // included by compensated_rough_dielectric.hpp, whose preprocessed lines are budgeted.
@@ -559,6 +681,7 @@ int main(int argc, char** argv) {
             else if (args.flag("--reflection")) s.reflection = true;
             else if (args.flag("--verbose")) s.verbose = true;
             else if (args.option("--points")) s.points = args.integer<std::size_t>(0, 1000000);
+            else if (args.option("--envelope")) s.envelope = args.integer<std::size_t>(16, 2048);
             else args.unknown();
         }
         (void)ex::output_format("--out", s.out, {".hpp", ".h"});
@@ -567,6 +690,8 @@ int main(int argc, char** argv) {
         if (s.beckmann && s.out == "dielectric_albedo_data.hpp") s.out = "beckmann_dielectric_albedo_data.hpp";
         if (s.reflection && s.beckmann)
             throw ex::usage_error("--reflection does not apply to --beckmann (it is tabulated for GGX)");
+        if (s.envelope > 0 && (s.reflection || s.anisotropic))
+            throw ex::usage_error("--envelope applies to the total-albedo tables only (not --reflection or --anisotropic)");
         if (s.reflection && !s.anisotropic) {
             if (s.out == "dielectric_albedo_data.hpp") s.out = "dielectric_reflection_albedo_data.hpp";
             s.grid = d::dielectric_reflection_albedo_grid;
@@ -604,7 +729,8 @@ int main(int argc, char** argv) {
         ex::output_file header(s.out);
         const d::dielectric_albedo_grid& g = s.grid;
         const std::size_t cells = 2 * (g.eta_nodes - 1) * (g.alpha_nodes - 1) * (g.mu_nodes - 1);
-        std::optional<ex::progress> bar(std::in_place, "dielectric_albedo_tables", g.size() + cells, !s.quiet);
+        const std::size_t checks = s.envelope > 0 ? envelope_points(g).size() : 0;
+        std::optional<ex::progress> bar(std::in_place, "dielectric_albedo_tables", g.size() + cells + checks, !s.quiet);
         std::vector<table> tables;
         if (s.reflection)
             tables.push_back(compute("ggx_rough_dielectric_reflection_albedo",
@@ -621,9 +747,11 @@ int main(int argc, char** argv) {
         for (const auto& t : tables)
             std::fprintf(stderr,
                          "dielectric_albedo_tables: %s: largest node standard error %.2e, largest interpolation "
-                         "difference %.2e (%.2e where mu >= 0.05: %.2e entering, %.2e exiting; the largest at %s)\n",
+                         "difference %.2e (%.2e where mu >= 0.05: %.2e entering, %.2e exiting; the largest at %s); "
+                         "table - estimate where mu >= 0.05 from %.2e to %.2e; envelope: %zu check points, %zu nodes "
+                         "raised by at most %.2e in %d passes\n",
                          t.name.c_str(), t.max_error, t.max_interpolation, t.max_domain, t.max_side[0], t.max_side[1],
-                         t.worst.c_str());
+                         t.worst.c_str(), t.lowest, t.highest, t.checks, t.raised, t.max_raise, t.passes);
         std::FILE* f = std::fopen(header.temporary().c_str(), "w");
         if (!f) throw std::runtime_error("cannot write " + header.temporary().string());
         write(f, tables, s);

@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <doctest/doctest.h>
 #include <glm/geometric.hpp>
@@ -84,15 +85,23 @@ namespace {
 // issue #31's acceptance for the compensated rough dielectric over `make(alpha)`: R + T in
 // [0.99, upper] (upper = 1.001 in the issue) for alpha <= 1, mu >= 0.05, eta in [1.05, 3],
 // both sides.
+// The views: every eta x alpha x mu of the lists, from the given sides.
+struct view_set {
+    std::vector<double> etas{1.05, 1.2, 1.5, 2.4, 3.0};
+    std::vector<double> alphas{0.02, 0.1, 0.3, 0.6, 1.0};
+    std::vector<double> mus{0.05, 0.2, 0.5, 0.9};
+    std::vector<bool> sides{false, true}; ///< inside?
+};
+
 template <class Make>
-void expect_energy_conserved(const Make& make, const std::string& name, double upper) {
+void expect_energy_conserved(const Make& make, const std::string& name, double upper, const view_set& set = {}) {
     double lowest = 2, highest = 0, largest_error = 0;
     int views = 0;
-    for (const double eta : {1.05, 1.2, 1.5, 2.4, 3.0}) {
-        for (const double alpha : {0.02, 0.1, 0.3, 0.6, 1.0}) {
+    for (const double eta : set.etas) {
+        for (const double alpha : set.alphas) {
             const auto model = make(alpha, eta);
-            for (const bool inside : {false, true}) {
-                for (const double mu : {0.05, 0.2, 0.5, 0.9}) {
+            for (const bool inside : set.sides) {
+                for (const double mu : set.mus) {
                     CAPTURE(name);
                     CAPTURE(eta);
                     CAPTURE(alpha);
@@ -132,18 +141,28 @@ TEST_CASE("compensated_rough_dielectric: R + T in [0.99, 1.001] for alpha <= 1, 
         "GGX", 1.001);
 }
 
-TEST_CASE("compensated_rough_dielectric over Beckmann: R + T in [0.99, 1.0025] for m <= 1, mu >= 0.05, eta in [1.05, 3], "
+TEST_CASE("compensated_rough_dielectric over Beckmann: R + T in [0.99, 1.001] for m <= 1, mu >= 0.05, eta in [1.05, 3], "
           "both sides") {
-    // Measured 0.9981 to 1.00195 over these 200 views: six views seen from inside glass
-    // (eta 1.2 to 2.4, m 0.02 to 0.6, mu 0.05 and 0.2) exceed issue #31's 1.001 by up to
-    // 1e-3. The Beckmann table has GGX's grid and its interpolation error (stated in its
-    // header: up to 6.9e-3 at the cell centres with mu >= 0.05) reaches the views there;
-    // this test holds the measured state, not the issue's band.
-    expect_energy_conserved(
-        [](double m, double eta) {
-            return shade::compensated_rough_dielectric<double, shade::beckmann<double>>{shade::beckmann<double>(m), eta};
-        },
-        "Beckmann", 1.0025);
+    // The Beckmann table is an upper envelope of E (its generated header: every node raised
+    // until the interpolated table is at least a fresh estimate at the middle of every cell
+    // edge, face and interior with mu >= 0.05), so R + T = 1 + E_true - E_table stays at or
+    // below 1 up to the estimates' noise; the point-value table it replaced gave up to
+    // 1.0020 over these views and 1.0040 between its nodes.
+    const auto make = [](double m, double eta) {
+        return shade::compensated_rough_dielectric<double, shade::beckmann<double>>{shade::beckmann<double>(m), eta};
+    };
+    expect_energy_conserved(make, "Beckmann", 1.001);
+    // Between the table's nodes in eta, m and mu, seen from inside (where interpolation
+    // erred low before the envelope): measured 0.9946 to 1.0015, the largest at eta 1.05,
+    // m 0.05, mu 0.2 (1.0040 with the point-value table), between the envelope's check
+    // points, below the critical angle (mu_c = 0.30) of so weak an interface, where E falls
+    // steeply: that view misses issue #31's 1.001, so these views are held to 1.002.
+    view_set between;
+    between.etas = {1.05, 1.1, 1.35, 1.8, 2.7};
+    between.alphas = {0.05, 0.2, 0.45, 0.8};
+    between.mus = {0.1, 0.2, 0.35, 0.7};
+    between.sides = {true};
+    expect_energy_conserved(make, "Beckmann, between nodes, inside", 1.002, between);
 }
 
 TEST_CASE("compensated_rough_dielectric: the uncompensated model loses energy where the compensated one does not") {

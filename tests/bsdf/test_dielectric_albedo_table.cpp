@@ -33,9 +33,11 @@ double eta_of_side(std::size_t side, double eta_hat) { return side == 0 ? eta_ha
 // Regenerates every 4th view node, every 5th alpha node and eta nodes 0, 5 and 11 (and
 // the last of each axis) of both sides of `committed` with the model family make(alpha,
 // eta_s), 32^2 samples each, and counts nodes whose difference exceeds 5 standard
-// deviations of the difference (fresh SE + committed SE bound).
+// deviations of the difference (fresh SE + committed SE bound), below, or above by more
+// than `raised` as well (a table stored as an upper envelope: its nodes raised by at most
+// that, as its header states).
 template <class Make>
-int count_drifted(const float* committed, const Make& make) {
+int count_drifted(const float* committed, const Make& make, double raised = 0) {
     int drifted = 0, compared = 0;
     for (std::size_t side = 0; side < 2; ++side)
         for (const std::size_t k : {std::size_t(0), std::size_t(5), grid.eta_nodes - 1})
@@ -52,7 +54,8 @@ int count_drifted(const float* committed, const Make& make) {
                     ++compared;
                     // Single scattering never creates energy: R + T <= 1 within the estimate's noise.
                     CHECK(fresh.albedo.x <= 1 + 4 * fresh.standard_error.x + 1e-12);
-                    if (std::abs(double(committed[grid.row(side, k, j) + i]) - fresh.albedo.x) > tolerance) ++drifted;
+                    const double difference = double(committed[grid.row(side, k, j) + i]) - fresh.albedo.x;
+                    if (difference < -tolerance || difference > raised + tolerance) ++drifted;
                 }
             }
     CHECK(compared == 2 * 3 * 4 * int((grid.mu_nodes + 3) / 4));
@@ -73,7 +76,8 @@ TEST_CASE("dielectric albedo tables: the committed GGX table agrees with a coars
 }
 
 TEST_CASE("dielectric albedo tables: the committed Beckmann table agrees with a coarse regeneration by the model's sampler") {
-    CHECK(count_drifted(d::beckmann_rough_dielectric_albedo, make_beckmann) == 0);
+    // An upper envelope: nodes raised by at most 7.5e-3 (its header).
+    CHECK(count_drifted(d::beckmann_rough_dielectric_albedo, make_beckmann, 7.5e-3) == 0);
 }
 
 TEST_CASE("dielectric albedo tables: the regeneration check catches a table that does not belong to its model") {

@@ -110,7 +110,10 @@ struct dielectric_albedo_tables_of<beckmann<T>> {
 /// give R + T = 1 as well but not the adjoint relation; hence Kulla and Conty's product.
 /// A type of its own rather than a policy of rough_dielectric (as shade::kulla_conty is of
 /// cook_torrance), so that rough_dielectric's users do not compile the tables.
-/// One table per distribution (GGX and Beckmann, Beckmann's m read as alpha).
+/// One table per distribution (GGX and Beckmann, Beckmann's m read as alpha). The GGX table
+/// holds point values; the Beckmann table an upper envelope of E_s (it errs high by design,
+/// shade/bsdf/dielectric_albedo_table.hpp), so that R + T = 1 + E_true - E_table errs below 1
+/// rather than above (measured ranges in docs/properties.md).
 /// The tables cover alpha in [1e-4, 1] and eta_hat = max(eta, 1 / eta) in [1.05, 3];
 /// outside that range the nearest end is read, so the compensation is approximate there
 /// (and partial for alpha > 1).
