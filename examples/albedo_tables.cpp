@@ -18,6 +18,13 @@
 // at each node, Delta = E(w) - E_iso(mu, sqrt(alpha_x alpha_y)), E(w) estimated the same
 // way for the anisotropic lobe and E_iso read from the committed isotropic table, and per
 // (r, y) node the exact cosine-weighted average of the slice's interpolant.
+//
+//   albedo_tables --cosine-weights --strata 384 --out include/shade/brdf/microfacet/detail/cosine_weight_data.hpp
+//
+// writes instead the weights of the c nodes of shade/brdf/microfacet/cosine_weights.hpp
+// (detail::ggx_cosine_weights at each node, a deterministic quadrature) and, as their stated
+// accuracy, the largest difference at the cell centres with mu >= 0.1 between the table's
+// sum for a few Fresnel factors (F = 1, dielectrics, thin films) and the quadrature itself.
 
 #include <algorithm>
 #include <atomic>
@@ -37,6 +44,8 @@
 
 #include <shade/brdf/microfacet/albedo_table.hpp>
 #include <shade/brdf/microfacet/anisotropic_albedo_table.hpp>
+#include <shade/brdf/microfacet/cosine_weights.hpp>
+#include <shade/brdf/thin_film.hpp>
 #include <shade/brdf/microfacet/detail/albedo_data.hpp>
 #include <shade/check/energy.hpp>
 #include <shade/shade.hpp>
@@ -53,6 +62,7 @@ using T = double;
 
 constexpr std::string_view usage = R"(usage: albedo_tables [--out FILE.hpp] [--nodes N] [--strata S] [--threads K] [--quiet]
        albedo_tables --anisotropic [--out FILE.hpp] [--strata S] [--threads K] [--quiet]
+       albedo_tables --cosine-weights [--out FILE.hpp] [--strata S] [--threads K] [--quiet]
 
 Computes E(mu, alpha) and E_avg(alpha) of the single-scattering GGX and Beckmann lobes
 with F = 1 and of the GGX lobe with the dielectric Fresnel of eta = 1.5, on an N x N grid
@@ -63,6 +73,11 @@ With --anisotropic, computes instead the corrections Delta = E(w) - E_iso(mu, sq
 alpha_y)) of the anisotropic GGX and Beckmann lobes with F = 1 on the fixed grid of
 anisotropic_albedo_table.hpp (S^2 samples per node) and their averages.
 
+With --cosine-weights, computes instead the weights w_k(mu, alpha) of the c nodes of the
+GGX reflection lobe (cosine_weights.hpp) on its fixed grid, by the midpoint rule on S^2
+cells of the visible-normal square, and their stated accuracy.
+
+  --cosine-weights write the cosine weights (default output cosine_weight_data.hpp)
   --anisotropic   write the anisotropic corrections (default output anisotropic_albedo_data.hpp)
   --out FILE.hpp  output, a C++ header (.hpp or .h; default albedo_data.hpp)
   --nodes N       nodes per axis, 4 to 512 (default 128)
@@ -79,6 +94,7 @@ struct settings {
     unsigned threads = 2;
     bool quiet = false;
     bool anisotropic = false;
+    bool cosine_weights = false;
 };
 
 // E(mu, alpha) estimated for one model family: make(alpha) builds the lobe.
@@ -314,6 +330,119 @@ void write_anisotropic(std::FILE* f, const std::vector<anisotropic_table>& table
     std::fprintf(f, "\n} // namespace shade::detail\n");
 }
 
+// --cosine-weights: the GGX reflection lobe's weights of the c nodes
+// (shade/brdf/microfacet/cosine_weights.hpp), written to `header`. The stated accuracy: at
+// the centre of every cell with mu >= 0.1 (halfway in x = mu^(2/3) and in sqrt(alpha)), the
+// row built from the new table (sum of the weights interpolated bilinearly times F at the
+// nodes) against the same quadrature with F read at every sample's own cosine, for the
+// Fresnel factors of check_fresnels (F = 1, a dielectric, and thin films less the
+// dielectric of their base, the difference openpbr_surface sums); the range of the difference
+// per factor.
+struct check_fresnel {
+    std::string what;
+    std::vector<double> fine; // F on 4097 cosines uniform in [0, 1], interpolated linearly
+    [[nodiscard]] double operator()(double c) const {
+        const double x = std::clamp(c, 0.0, 1.0) * double(fine.size() - 1);
+        const std::size_t k = std::min(std::size_t(x), fine.size() - 2);
+        const double t = x - double(k);
+        return (1 - t) * fine[k] + t * fine[k + 1];
+    }
+};
+
+std::vector<check_fresnel> check_fresnels() {
+    using namespace shade;
+    std::vector<check_fresnel> out;
+    const auto add = [&](std::string what, const std::function<double(double)>& F) {
+        check_fresnel f{std::move(what), std::vector<double>(4097)};
+        for (std::size_t k = 0; k < f.fine.size(); ++k) f.fine[k] = F(double(k) / double(f.fine.size() - 1));
+        out.push_back(std::move(f));
+    };
+    add("F = 1", [](double) { return 1.0; });
+    add("dielectric eta 1.5", [](double c) { return F_dielectric(c, 1.5); });
+    for (const auto& [film_ior, thickness] : {std::pair{1.1, 300.0}, {1.4, 500.0}, {2.0, 800.0}, {3.0, 1000.0}}) {
+        const auto film = thin_film_fresnel<double>::over_dielectric(1.5, film_ior, thickness);
+        char what[96];
+        std::snprintf(what, sizeof what, "film %.1f, %.0f nm over 1.5 minus dielectric 1.5 (green)", film_ior, thickness);
+        add(what, [film](double c) { return film.F(c).y - F_dielectric(c, 1.5); });
+    }
+    return out;
+}
+
+int run_cosine_weights(const settings& s, ex::output_file& header) {
+    namespace d = shade::detail;
+    constexpr std::size_t n = d::cosine_weight_nodes, m = d::cosine_weight_alpha_nodes;
+    std::vector<double> table(m * n * n);
+    const std::vector<check_fresnel> fresnels = check_fresnels();
+    std::vector<std::pair<std::size_t, std::size_t>> cells; // (mu cell i, alpha cell j)
+    for (std::size_t j = 0; j + 1 < m; ++j)
+        for (std::size_t i = 0; i + 1 < n; ++i) {
+            const double x = (double(i) + 0.5) / double(n - 1);
+            if (x * std::sqrt(x) >= 0.1) cells.emplace_back(i, j);
+        }
+    std::optional<ex::progress> bar(std::in_place, "albedo_tables", m * n + cells.size(), !s.quiet);
+    parallel_for(m * n, s.threads, [&](std::size_t k) {
+        const std::size_t j = k / n, i = k % n;
+        d::ggx_cosine_weights(d::cosine_weight_node(i), d::cosine_weight_alpha(j), s.strata, table.data() + k * n);
+        bar->advance();
+    });
+    std::vector<std::vector<double>> differences(cells.size(), std::vector<double>(fresnels.size()));
+    parallel_for(cells.size(), s.threads, [&](std::size_t q) {
+        const auto [i, j] = cells[q];
+        const double x = (double(i) + 0.5) / double(n - 1), r = (double(j) + 0.5) / double(m - 1);
+        const double mu = x * std::sqrt(x), alpha = r * r;
+        std::vector<double> fresh(fresnels.size(), 0.0);
+        d::visit_ggx_cosine_measure(mu, alpha, s.strata, [&](double c, double w) {
+            for (std::size_t f = 0; f < fresnels.size(); ++f) fresh[f] += w * fresnels[f](c);
+        });
+        for (std::size_t f = 0; f < fresnels.size(); ++f) {
+            double row = 0;
+            for (std::size_t a = 0; a < 2; ++a)
+                for (std::size_t b = 0; b < 2; ++b)
+                    for (std::size_t k = 0; k < n; ++k)
+                        row += 0.25 * table[((j + a) * n + i + b) * n + k] * fresnels[f](d::cosine_weight_node(k));
+            differences[q][f] = row - fresh[f];
+        }
+        bar->advance();
+    });
+    bar.reset();
+    std::vector<double> lowest(fresnels.size(), 0.0), highest(fresnels.size(), 0.0);
+    for (const auto& row : differences)
+        for (std::size_t f = 0; f < fresnels.size(); ++f) {
+            lowest[f] = std::min(lowest[f], row[f]);
+            highest[f] = std::max(highest[f], row[f]);
+        }
+    std::vector<float> values(table.begin(), table.end());
+    std::FILE* f = std::fopen(header.temporary().c_str(), "w");
+    if (!f) throw std::runtime_error("cannot write " + header.temporary().string());
+    std::fprintf(f, "#pragma once\n");
+    std::fprintf(f, "// Generated by examples/albedo_tables.cpp (--cosine-weights --strata %zu); do not edit by hand.\n", s.strata);
+    std::fprintf(f, "// The weights of shade/brdf/microfacet/cosine_weights.hpp (grid, meaning: detail::ggx_cosine_weights,\n");
+    std::fprintf(f, "// the midpoint rule on %zu^2 cells of the visible-normal square): %zu rows of alpha, each %zu\n", s.strata, m, n);
+    std::fprintf(f, "// views mu_i, each %zu weights of the c nodes, one view per line.\n", n);
+    std::fprintf(f, "// Accuracy (measured by the generator): at the centre of each cell with mu >= 0.1, the\n");
+    std::fprintf(f, "// table's sum_k w_k F(c_k) (bilinear in x = mu^(2/3) and sqrt(alpha)) minus the same\n");
+    std::fprintf(f, "// quadrature with F at each sample's own cosine, the range of the difference per Fresnel factor:\n");
+    for (std::size_t k = 0; k < fresnels.size(); ++k)
+        std::fprintf(f, "//   %-70s [%+.2e, %+.2e]\n", fresnels[k].what.c_str(), lowest[k], highest[k]);
+    std::fprintf(f, "\n#include <cstddef>\n\nnamespace shade::detail {\n\n");
+    std::fprintf(f, "inline constexpr std::size_t cosine_weight_nodes = %zu;       ///< nodes in c and in mu\n", n);
+    std::fprintf(f, "inline constexpr std::size_t cosine_weight_alpha_nodes = %zu; ///< rows in sqrt(alpha)\n\n", m);
+    std::fprintf(f, "/// w_k(mu_i, alpha_j) at [(j n + i) n + k], n = cosine_weight_nodes.\n");
+    std::fprintf(f, "inline constexpr float cosine_weight_table[cosine_weight_alpha_nodes * cosine_weight_nodes * cosine_weight_nodes] = {\n");
+    for (std::size_t row = 0; row < m * n; ++row) {
+        ex::write_float_literals(f, values.data() + row * n, n, 6);
+        std::fprintf(f, ",\n");
+    }
+    std::fprintf(f, "};\n\n} // namespace shade::detail\n");
+    if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + header.temporary().string());
+    header.commit();
+    for (std::size_t k = 0; k < fresnels.size(); ++k)
+        std::fprintf(stderr, "albedo_tables: cosine weights, %s: [%+.2e, %+.2e]\n", fresnels[k].what.c_str(), lowest[k],
+                     highest[k]);
+    std::fprintf(stderr, "albedo_tables: wrote %s\n", s.out.string().c_str());
+    return 0;
+}
+
 // --anisotropic: the GGX and Beckmann corrections, written to `header`.
 int run_anisotropic(const settings& s, ex::output_file& header) {
     using namespace shade;
@@ -362,14 +491,19 @@ int main(int argc, char** argv) {
             else if (args.option("--threads")) s.threads = args.integer<unsigned>(1, 64);
             else if (args.flag("--quiet")) s.quiet = true;
             else if (args.flag("--anisotropic")) s.anisotropic = true;
+            else if (args.flag("--cosine-weights")) s.cosine_weights = true;
             else args.unknown();
         }
         if (s.anisotropic && nodes_given)
             throw ex::usage_error("option --nodes does not apply with --anisotropic (its grid is fixed by anisotropic_albedo_table.hpp)");
+        if (s.cosine_weights && (nodes_given || s.anisotropic))
+            throw ex::usage_error("options --nodes and --anisotropic do not apply with --cosine-weights (its grid is fixed by cosine_weight_data.hpp)");
         if (s.anisotropic && s.out == "albedo_data.hpp") s.out = "anisotropic_albedo_data.hpp";
+        if (s.cosine_weights && s.out == "albedo_data.hpp") s.out = "cosine_weight_data.hpp";
         (void)ex::output_format("--out", s.out, {".hpp", ".h"});
         ex::output_file header(s.out);
         if (s.anisotropic) return run_anisotropic(s, header);
+        if (s.cosine_weights) return run_cosine_weights(s, header);
         constexpr std::size_t table_count = 3;
         std::optional<ex::progress> bar(std::in_place, "albedo_tables",
                                         table_count * (s.nodes * s.nodes + check_cells(s.nodes).size()), !s.quiet);

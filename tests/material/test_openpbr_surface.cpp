@@ -6,12 +6,14 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <doctest/doctest.h>
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/eon.hpp>
+#include <shade/brdf/microfacet/cosine_weights.hpp>
 #include <shade/brdf/sheen.hpp>
 #include <shade/bsdf/dielectric_anisotropic_reflection_albedo.hpp>
 #include <shade/bsdf/dielectric_reflection_albedo.hpp>
@@ -799,31 +801,101 @@ TEST_CASE("openpbr_surface: the anisotropic reflection albedo's furnace error, w
     }
 }
 
-TEST_CASE_TEMPLATE("openpbr_surface: white furnace with a thin film (measured band)", T, float, double) {
-    // The film is non-absorbing, so the specification's furnace holds with it. Its
-    // reflection lobe's albedo has no table; the material estimates it as E1 F_film(c), c
-    // where the base's Fresnel equals the lobe's mean Fresnel (exact when smooth). Measured
-    // (double, 160^2 draws, every channel, mu 1 to 0.1, thickness 0.3 and 0.6 um): over
-    // white diffuse and in glass 0.9945 to 1.0099 (the issue's band [0.99, 1.001] met at
-    // roughness 0, not above); over a white metal 0.998 to 1.0000 (its complex index from
-    // F0 = 1 clamped to 0.9999, Gulbrandsen's mapping). This test holds the measured range,
-    // each reading widened by 4 standard errors.
+// Film parameters of the thin-film furnace tests: weight, thickness (um), film index, base
+// index; thin to thick films, the specification's soft index range [1, 3] and both weights.
+template <class T>
+struct film_point {
+    T weight, thickness_um, ior, base_ior;
+};
+
+template <class T>
+std::vector<film_point<T>> film_points() {
+    return {{1, T(0.1), T(1.1), T(1.5)}, {1, T(0.3), T(1.1), T(1.5)}, {1, T(0.5), T(1.4), T(1.5)},
+            {1, T(0.8), T(2), T(1.5)},   {1, T(1), T(3), T(1.5)},     {1, T(3), T(2), T(1.5)},
+            {1, T(0.4), T(1), T(1.33)},  {1, T(0.6), T(1.6), T(2)},   {T(0.5), T(0.3), T(2), T(1.5)},
+            {T(0.5), T(1.5), T(1.3), T(1.8)}};
+}
+
+TEST_CASE_TEMPLATE("openpbr_surface: white furnace with a thin film, read through the specular albedo", T, float,
+                   double) {
+    // Over a white Lambertian base (base_diffuse_roughness 0) f = f_spec + (1 - E_R(v)) / pi,
+    // so the material's E_R(v) is 1 - pi (f - f_spec) at any l, f_spec the public specular
+    // lobe built here; and the white furnace reads 1 + E_R,true(v) - E_R(v) exactly. The
+    // true albedo with the film is R_ss (dielectric_reflection_albedo, the table the
+    // material reads without a film, tested on its own) plus w times the integral of
+    // F_film - F against the lobe's measure of c = v·h, here by the midpoint rule on 160^2
+    // cells of the visible-normal square with F_film read at each cell's own cosine
+    // (ggx_cosine_weights' quadrature at this very mu and alpha, not the table's nodes).
+    // The issue's band [0.99, 1.001] for mu >= 0.1 and roughness 0.1 to 1 is E_R - E_R,true
+    // in [-1e-3, 1e-2]; the table's stated accuracy is [-2.9e-4, +1.6e-3] for these sums.
     const auto at = check_test::model_point<T>();
-    for (const T r : {T(0), T(0.3), T(1)}) {
-        for (const int base : {0, 1, 2}) {
+    double lowest = 1, highest = -1;
+    for (const auto& fl : film_points<T>()) {
+        const T thickness_nm = fl.thickness_um * T(1000);
+        const auto film = shade::thin_film_fresnel<T>::over_dielectric(fl.base_ior, fl.ior, thickness_nm);
+        const auto fresnel = shade::openpbr::surface_fresnel<T>::dielectric(fl.base_ior, rgb<T>(1), fl.weight, film);
+        for (const T r : {T(0.1), T(0.3), T(0.6), T(1)}) {
             params<T> p = white<T>();
             p.specular_roughness = r;
-            p.thin_film_weight = T(1);
-            p.thin_film_thickness = T(0.45);
-            if (base == 1) p.base_metalness = T(1);
-            if (base == 2) p.transmission_weight = T(1);
+            p.specular_ior = fl.base_ior;
+            p.thin_film_weight = fl.weight;
+            p.thin_film_thickness = fl.thickness_um;
+            p.thin_film_ior = fl.ior;
             const surface<T> m(p);
+            const T alpha = shade::openpbr::roughness_to_alpha(r, T(0)).t;
+            const typename surface<T>::specular_lobe spec(shade::ggx<T>(alpha), fresnel);
             for (const double mu : {1.0, 0.5, 0.2, 0.1}) {
-                const auto reading = furnace(m, view_at_cosine(at, mu), at, 96);
-                INFO("base ", base, " roughness ", double(r), " mu ", mu, ": ", reading.first, " +- ", reading.second);
-                CHECK(reading.first >= (base == 1 ? 0.998 : 0.9945) - 4 * reading.second);
-                CHECK(reading.first <= (base == 1 ? 1.001 : 1.0099) + 4 * reading.second);
-                if (r == T(0)) {
+                const vec3<T> v = view_at_cosine(at, mu);
+                const vec3<T> l = at.n();
+                const rgb<T> diffuse_part = m.f(l, v, at) - spec.f(l, v, at);
+                const double r_ss = double(shade::dielectric_reflection_albedo(T(mu), alpha, fl.base_ior));
+                rgb<double> film_part(0);
+                shade::detail::visit_ggx_cosine_measure(mu, double(alpha), 160, [&](double c, double w) {
+                    film_part += w * (rgb<double>(film.F(T(c))) - rgb<double>(shade::F_dielectric(c, double(fl.base_ior))));
+                });
+                for (int k = 0; k < 3; ++k) {
+                    const double e_read = 1 - shade::pi<double> * double(diffuse_part[k]);
+                    const double e_true = r_ss + double(fl.weight) * film_part[k];
+                    INFO("film weight ", double(fl.weight), " thickness ", double(fl.thickness_um), " film ior ",
+                         double(fl.ior), " base ior ", double(fl.base_ior), " roughness ", double(r), " mu ", mu,
+                         " channel ", k, ": E_R read ", e_read, ", true ", e_true);
+                    const double tol = std::is_same_v<T, float> ? 2e-5 : 0.0; // float rounding of f
+                    CHECK(e_read - e_true >= -1e-3 - tol);
+                    CHECK(e_read - e_true <= 1e-2 + tol);
+                    lowest = std::min(lowest, e_read - e_true);
+                    highest = std::max(highest, e_read - e_true);
+                }
+            }
+        }
+    }
+    MESSAGE("thin film: E_R read - true in [", lowest, ", ", highest, "] (white furnace 1 - that)");
+}
+
+TEST_CASE_TEMPLATE("openpbr_surface: white furnace with a thin film over metal and glass, and smooth", T, float,
+                   double) {
+    // End to end through sample(): the film over a white metal (Kulla-Conty compensation
+    // with the film's Fresnel average), in glass, and at roughness 0 (exact: the film's
+    // Fresnel at the view). Allowed: the issue's band widened by 4 standard errors of the
+    // stratified estimate (48^2 draws; they are larger than the read-through test's error).
+    const auto at = check_test::model_point<T>();
+    const auto films = film_points<T>();
+    for (std::size_t i = 0; i < films.size(); i += 3) {
+        const auto& fl = films[i];
+        for (const T r : {T(0), T(0.3), T(1)}) {
+            for (const int base : {0, 1, 2}) {
+                params<T> p = white<T>();
+                p.specular_roughness = r;
+                p.specular_ior = fl.base_ior;
+                p.thin_film_weight = fl.weight;
+                p.thin_film_thickness = fl.thickness_um;
+                p.thin_film_ior = fl.ior;
+                if (base == 1) p.base_metalness = T(1);
+                if (base == 2) p.transmission_weight = T(1);
+                const surface<T> m(p);
+                for (const double mu : {1.0, 0.3, 0.1}) {
+                    const auto reading = furnace(m, view_at_cosine(at, mu), at, 48);
+                    INFO("base ", base, " film ", i, " roughness ", double(r), " mu ", mu, ": ", reading.first, " +- ",
+                         reading.second);
                     CHECK(reading.first >= 0.99 - 4 * reading.second);
                     CHECK(reading.first <= 1.001 + 4 * reading.second);
                 }

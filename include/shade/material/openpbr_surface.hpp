@@ -24,6 +24,7 @@
 #include <shade/brdf/eon.hpp>
 #include <shade/brdf/f82_tint.hpp>
 #include <shade/brdf/fresnel.hpp>
+#include <shade/brdf/microfacet/cosine_weights.hpp>
 #include <shade/brdf/microfacet/ggx.hpp>
 #include <shade/brdf/microfacet/masking.hpp>
 #include <shade/brdf/microfacet_reflection.hpp>
@@ -183,9 +184,10 @@ private:
 ///     exact Fresnel of the modulated index eta'_s, openpbr::modulated_ior_ratio of
 ///     openpbr::specular_ior_ratio; with a thin film); E_spec its albedo:
 ///     specular_color times dielectric_reflection_albedo at eta'_s (anisotropic: at the
-///     view's azimuth), the film's part
-///     estimated as F_film(mu) E_1(mu), E_1 the albedo of the lobe with F = 1 (the
-///     Kulla-Conty table).
+///     view's azimuth) plus, with a film, thin_film_weight times the integral of
+///     F_film - F (F the exact dielectric Fresnel at eta'_s) against the lobe's measure of
+///     c = v·h (shade/brdf/microfacet/cosine_weights.hpp, summed once per material at
+///     sqrt(alpha_x alpha_y)).
 ///   * f_transmission: the transmitted part of shade::compensated_rough_dielectric at the
 ///     index specular_ior, divided by its transmittance from v, so that it carries all
 ///     the energy the specular reflection leaves (the specification's "the transmission
@@ -218,8 +220,8 @@ private:
 ///
 /// Energy: the white furnace of the specification's section "White furnace testing"
 /// holds by construction wherever E_X is the lobe's exact albedo (each layer passes on
-/// exactly what its top reflects); what remains is the accuracy of the albedo tables and
-/// the thin film's estimate. Reciprocal: no (albedo scaling depends on v; the
+/// exactly what its top reflects); what remains is the accuracy of the albedo tables (the
+/// thin film's share included: cosine_weights.hpp). Reciprocal: no (albedo scaling depends on v; the
 /// specification's choice); f in importance mode is the adjoint f(v, l) (shade/bsdf/bsdf.hpp).
 ///
 /// Sampling: one lobe chosen with probability proportional to its share of the energy at
@@ -445,24 +447,12 @@ private:
                         : F_dielectric(mu, specular_eta_);
         rgb<T> e(e_dielectric);
         if (p_.thin_film_weight > T(0)) {
-            // The film's part: E1 F_film(c), E1 the lobe's albedo with F = 1 and c the cosine
-            // at which the base's Fresnel equals the lobe's mean Fresnel, F(c) = R_ss / E1
-            // (found by bisection, F decreasing in c): the film's reflectance read where the
-            // lobe's microfacets see the interface on average. Exact for a smooth lobe (c = mu).
-            const T e1 = specular_ ? detail::albedo_lookup(detail::albedo_tables_of<ggx<T>>::e,
-                                                           detail::albedo_grid_nodes, mu, specular_alpha_)
-                                   : T(1);
-            T c = mu;
-            if (specular_ && specular_eta_ != T(1) && e1 > T(0)) {
-                const T target = e_dielectric / e1;
-                T lo = T(0), hi = T(1);
-                for (int i = 0; i < 16; ++i) {
-                    const T mid = T(0.5) * (lo + hi);
-                    (F_dielectric(mid, specular_eta_) > target ? lo : hi) = mid;
-                }
-                c = T(0.5) * (lo + hi);
-            }
-            e = glm::mix(e, glm::min(film_dielectric_->F(c) * e1, rgb<T>(1)), p_.thin_film_weight);
+            // The film's part: the lobe's albedo with F_film is R_ss plus the integral of
+            // F_film - F against the lobe's measure of c = v·h (cosine_weights.hpp), summed
+            // once per material in film_albedo_; exact for a smooth lobe (c = mu).
+            const rgb<T> film_part = specular_ ? film_albedo_.at(mu)
+                                               : film_dielectric_->F(mu) - rgb<T>(e_dielectric);
+            e = glm::clamp(e + p_.thin_film_weight * film_part, rgb<T>(0), rgb<T>(1));
         }
         return p_.specular_color * e;
     }
@@ -877,6 +867,7 @@ private:
     std::optional<openpbr::surface_fresnel<T>> metal_fresnel_;
     std::optional<openpbr::surface_fresnel<T>> specular_fresnel_;
     std::optional<thin_film_fresnel<T>> film_dielectric_;
+    detail::fresnel_albedo_row<T> film_albedo_{}; // integral of F_film - F at eta'_s (rough, with a film)
     rgb<T> transmission_tint_{1};
     rgb<T> subsurface_tint_{1};
     rgb<T> base_albedo_{1};
@@ -976,6 +967,13 @@ void openpbr_surface<T>::build() {
         if (specular_anisotropic_ && specular_eta_ != T(1))
             specular_albedo_anisotropic_ = detail::anisotropic_reflection_albedo<T>(
                 base_distribution->alpha_x(), base_distribution->alpha_y(), specular_eta_);
+        if (film_dielectric_) {
+            const T eta = specular_eta_;
+            const thin_film_fresnel<T>& film = *film_dielectric_;
+            film_albedo_ = detail::fresnel_albedo_row<T>(specular_alpha_, [&](T c) {
+                return film.F(c) - rgb<T>(eta == T(1) ? T(0) : F_dielectric(c, eta));
+            });
+        }
     }
 
     // Transmission.
