@@ -666,7 +666,7 @@ void print_openpbr_furnace(const std::vector<openpbr_furnace_row>& rows, const s
                 "of the material's own sampler, with the standard error of independent draws (an upper bound: "
                 "the draws are stratified). Radiance mode: weight * eta^2, what a camera along v sees in a "
                 "uniform white environment (the specification's white furnace, which its albedo scaling makes 1 "
-                "for white colours up to the albedo tables and the thin film's estimate). Importance mode: the "
+                "for white colours up to the albedo tables, the thin film's included). Importance mode: the "
                 "plain weight, which integrates the adjoint f(v, l) over l (shade/bsdf/bsdf.hpp), i.e. "
                 "integral f(l', v) |n.l'| over the views l' that scatter into v -- the BSDF table's energy column; "
                 "the two differ because albedo scaling weighs the base by 1 - E(v), a function of the view "

@@ -39,7 +39,7 @@ namespace shade::detail {
 /// surface, weight = G2(v, l) / G1(v) / strata^2, so that sum weight F(c) is the lobe's
 /// albedo with the Fresnel F; alpha <= 0 visits (mu, 1) once. mu is clamped to [1e-4, 1].
 template <class Visit>
-void visit_ggx_cosine_measure(double mu, double alpha, std::size_t strata, Visit&& visit) noexcept {
+void visit_ggx_cosine_measure(double mu, double alpha, std::size_t strata, Visit&& visit) {
     mu = glm::clamp(mu, 1e-4, 1.0);
     if (!(alpha > 0)) {
         visit(mu, 1.0);
@@ -56,7 +56,8 @@ void visit_ggx_cosine_measure(double mu, double alpha, std::size_t strata, Visit
             const double c = glm::dot(v, h);
             const vec3<double> l = 2 * c * h - v;
             if (!(l.z > 0) || !(c > 0)) continue;
-            // G2 / G1(v) = (1 + Lambda(v)) / (1 + Lambda(v) + Lambda(l)) (height-correlated).
+            // G2 / G1(v) = (1 + Lambda(v)) / (1 + Lambda(v) + Lambda(l)), the height-correlated
+            // G2 (Heitz 2014, JCGT 3(2), eq. 99) over G1(v) = 1 / (1 + Lambda(v)).
             visit(c, cell * (1 + lambda_v) / (1 + lambda_v + d.Lambda(l)));
         }
     }
