@@ -816,59 +816,101 @@ std::vector<film_point<T>> film_points() {
             {T(0.5), T(1.5), T(1.3), T(1.8)}};
 }
 
+// E_R(v) read by the material minus the true E_R(v), per channel, for the film fl at
+// roughness r and view cosine mu over a white Lambertian base (base_diffuse_roughness 0):
+// there f = f_spec + (1 - E_R(v)) / pi, so the material's E_R(v) is 1 - pi (f - f_spec) at
+// any l, f_spec the public specular lobe built here, and the white furnace reads
+// 1 + E_R,true(v) - E_R(v) exactly. The true albedo with the film is R_ss
+// (dielectric_reflection_albedo, the table the material reads without a film, tested on its
+// own) plus w times the integral of F_film - F against the lobe's measure of c = v·h, here
+// by the midpoint rule on 160^2 cells of the visible-normal square with F_film read at each
+// cell's own cosine (ggx_cosine_weights' quadrature at this very mu and alpha, not the
+// table's nodes).
+template <class T>
+rgb<double> film_albedo_error(const film_point<T>& fl, T r, double mu) {
+    const auto at = check_test::model_point<T>();
+    const auto film = shade::thin_film_fresnel<T>::over_dielectric(fl.base_ior, fl.ior, fl.thickness_um * T(1000));
+    const auto fresnel = shade::openpbr::surface_fresnel<T>::dielectric(fl.base_ior, rgb<T>(1), fl.weight, film);
+    params<T> p = white<T>();
+    p.specular_roughness = r;
+    p.specular_ior = fl.base_ior;
+    p.thin_film_weight = fl.weight;
+    p.thin_film_thickness = fl.thickness_um;
+    p.thin_film_ior = fl.ior;
+    const surface<T> m(p);
+    const T alpha = shade::openpbr::roughness_to_alpha(r, T(0)).t;
+    const typename surface<T>::specular_lobe spec(shade::ggx<T>(alpha), fresnel);
+    const vec3<T> v = view_at_cosine(at, mu);
+    const vec3<T> l = at.n();
+    const rgb<T> diffuse_part = m.f(l, v, at) - spec.f(l, v, at);
+    const double r_ss = double(shade::dielectric_reflection_albedo(T(mu), alpha, fl.base_ior));
+    rgb<double> film_part(0);
+    shade::detail::visit_ggx_cosine_measure(mu, double(alpha), 160, [&](double c, double w) {
+        film_part += w * (rgb<double>(film.F(T(c))) - rgb<double>(shade::F_dielectric(c, double(fl.base_ior))));
+    });
+    rgb<double> error;
+    for (int k = 0; k < 3; ++k)
+        error[k] = (1 - shade::pi<double> * double(diffuse_part[k])) - (r_ss + double(fl.weight) * film_part[k]);
+    return error;
+}
+
 TEST_CASE_TEMPLATE("openpbr_surface: white furnace with a thin film, read through the specular albedo", T, float,
                    double) {
-    // Over a white Lambertian base (base_diffuse_roughness 0) f = f_spec + (1 - E_R(v)) / pi,
-    // so the material's E_R(v) is 1 - pi (f - f_spec) at any l, f_spec the public specular
-    // lobe built here; and the white furnace reads 1 + E_R,true(v) - E_R(v) exactly. The
-    // true albedo with the film is R_ss (dielectric_reflection_albedo, the table the
-    // material reads without a film, tested on its own) plus w times the integral of
-    // F_film - F against the lobe's measure of c = v·h, here by the midpoint rule on 160^2
-    // cells of the visible-normal square with F_film read at each cell's own cosine
-    // (ggx_cosine_weights' quadrature at this very mu and alpha, not the table's nodes).
-    // The band [0.99, 1.001] for mu >= 0.1 and roughness 0.1 to 1 is E_R - E_R,true
-    // in [-1e-3, 1e-2]; the table's stated accuracy is [-2.9e-4, +1.6e-3] for these sums.
-    const auto at = check_test::model_point<T>();
+    // film_albedo_error at the film points, roughness 0.1 to 1, mu 0.1 to 1. The issue's
+    // band [0.99, 1.001] is E_R - E_R,true in [-1e-3, 1e-2]; the table's stated accuracy is
+    // [-2.9e-4, +1.6e-3] for these sums. float: f's rounding adds 2e-5.
+    const double tol = std::is_same_v<T, float> ? 2e-5 : 0.0;
     double lowest = 1, highest = -1;
     for (const auto& fl : film_points<T>()) {
-        const T thickness_nm = fl.thickness_um * T(1000);
-        const auto film = shade::thin_film_fresnel<T>::over_dielectric(fl.base_ior, fl.ior, thickness_nm);
-        const auto fresnel = shade::openpbr::surface_fresnel<T>::dielectric(fl.base_ior, rgb<T>(1), fl.weight, film);
         for (const T r : {T(0.1), T(0.3), T(0.6), T(1)}) {
-            params<T> p = white<T>();
-            p.specular_roughness = r;
-            p.specular_ior = fl.base_ior;
-            p.thin_film_weight = fl.weight;
-            p.thin_film_thickness = fl.thickness_um;
-            p.thin_film_ior = fl.ior;
-            const surface<T> m(p);
-            const T alpha = shade::openpbr::roughness_to_alpha(r, T(0)).t;
-            const typename surface<T>::specular_lobe spec(shade::ggx<T>(alpha), fresnel);
             for (const double mu : {1.0, 0.5, 0.2, 0.1}) {
-                const vec3<T> v = view_at_cosine(at, mu);
-                const vec3<T> l = at.n();
-                const rgb<T> diffuse_part = m.f(l, v, at) - spec.f(l, v, at);
-                const double r_ss = double(shade::dielectric_reflection_albedo(T(mu), alpha, fl.base_ior));
-                rgb<double> film_part(0);
-                shade::detail::visit_ggx_cosine_measure(mu, double(alpha), 160, [&](double c, double w) {
-                    film_part += w * (rgb<double>(film.F(T(c))) - rgb<double>(shade::F_dielectric(c, double(fl.base_ior))));
-                });
+                const rgb<double> error = film_albedo_error(fl, r, mu);
                 for (int k = 0; k < 3; ++k) {
-                    const double e_read = 1 - shade::pi<double> * double(diffuse_part[k]);
-                    const double e_true = r_ss + double(fl.weight) * film_part[k];
                     INFO("film weight ", double(fl.weight), " thickness ", double(fl.thickness_um), " film ior ",
                          double(fl.ior), " base ior ", double(fl.base_ior), " roughness ", double(r), " mu ", mu,
-                         " channel ", k, ": E_R read ", e_read, ", true ", e_true);
-                    const double tol = std::is_same_v<T, float> ? 2e-5 : 0.0; // float rounding of f
-                    CHECK(e_read - e_true >= -1e-3 - tol);
-                    CHECK(e_read - e_true <= 1e-2 + tol);
-                    lowest = std::min(lowest, e_read - e_true);
-                    highest = std::max(highest, e_read - e_true);
+                         " channel ", k, ": E_R read - true ", error[k]);
+                    CHECK(error[k] >= -1e-3 - tol);
+                    CHECK(error[k] <= 1e-2 + tol);
+                    lowest = std::min(lowest, error[k]);
+                    highest = std::max(highest, error[k]);
                 }
             }
         }
     }
     MESSAGE("thin film: E_R read - true in [", lowest, ", ", highest, "] (white furnace 1 - that)");
+}
+
+TEST_CASE_TEMPLATE("openpbr_surface: a thin film's fringes finer than the cosine nodes, on a narrow lobe (measured band)",
+                   T, float, double) {
+    // Where the film's reflectance oscillates in c faster than the 64 nodes of
+    // cosine_weights.hpp resolve (a low film index, whose refraction angle, and so its
+    // optical path, changes most with c, at 1.5 to 5 um; or a thin film of high index) and
+    // the lobe is narrower than a node spacing (roughness <= 0.2), the sum is the linear
+    // interpolation of F_film between two nodes and misses the fringe: over the sweep of
+    // docs/conventions.md (film index 1 to 3, 0.05 to 10 um, base 1.33 to 2, roughness 0.05
+    // to 1, mu 0.1 to 1) 113 of 57330 channel readings fall below the band's -1e-3, down to
+    // -3.2e-3 (white furnace 1.0032), all at roughness <= 0.2. This test holds the measured
+    // range at the worst points found ([-3.18e-3, +4.31e-3]).
+    const double tol = std::is_same_v<T, float> ? 2e-5 : 0.0;
+    const std::vector<film_point<T>> corners = {
+        {1, T(2), T(1.05), T(1.5)}, {1, T(3), T(1.05), T(1.5)}, {1, T(3), T(1.1), T(1.5)}, {1, T(0.05), T(3), T(1.5)}};
+    double lowest = 1, highest = -1;
+    for (const auto& fl : corners) {
+        for (const T r : {T(0.05), T(0.1), T(0.2)}) {
+            for (const double mu : {0.3, 0.2, 0.15}) {
+                const rgb<double> error = film_albedo_error(fl, r, mu);
+                for (int k = 0; k < 3; ++k) {
+                    INFO("thickness ", double(fl.thickness_um), " film ior ", double(fl.ior), " roughness ", double(r),
+                         " mu ", mu, " channel ", k, ": E_R read - true ", error[k]);
+                    CHECK(error[k] >= -3.3e-3 - tol);
+                    CHECK(error[k] <= 4.5e-3 + tol);
+                    lowest = std::min(lowest, error[k]);
+                    highest = std::max(highest, error[k]);
+                }
+            }
+        }
+    }
+    MESSAGE("thin film corners: E_R read - true in [", lowest, ", ", highest, "]");
 }
 
 TEST_CASE_TEMPLATE("openpbr_surface: white furnace with a thin film over metal and glass, and smooth", T, float,
