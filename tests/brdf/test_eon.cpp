@@ -451,3 +451,41 @@ TEST_CASE_TEMPLATE("eon: chi-square around the normal and per-sample consistency
         }
     }
 }
+
+TEST_CASE_TEMPLATE("eon: draw and the prepared view give sample's direction and pdf", T, float, double) {
+    // draw() and prepare() serve a mixture that evaluates the whole model at the drawn
+    // direction (shade::openpbr_surface): they must give what sample() and pdf() give.
+    // Equal to rounding (1e-6 float, 1e-13 double, relative: a compiler may contract a
+    // product into a fused multiply-add in one inlined copy and not in the other).
+    const T rel = sizeof(T) <= 4 ? T(1e-6) : T(1e-13);
+    int drawn = 0;
+    for (const T r : {T(0), T(0.5), T(1)}) {
+        const shade::eon<T> model(rgb<T>(T(0.8), T(0.5), T(0.2)), r);
+        for (const auto& at : {flat<T>(), tilted<T>()}) {
+            shade::rng random(23);
+            for (const auto& p : random_pairs(at, 200)) {
+                const auto view = model.prepare(p.v, at);
+                REQUIRE(view.valid == (glm::dot(at.n(), p.v) > T(0)));
+                CHECK(close(model.pdf(p.l, view, at), model.pdf(p.l, p.v, at), rel));
+                const T uc = random.uniform<T>();
+                const shade::vec2<T> u(random.uniform<T>(), random.uniform<T>());
+                const auto s = model.sample(p.v, uc, u, at);
+                const auto l = model.draw(p.v, uc, u, at);
+                const auto l_prepared = model.draw(view, uc, u, at);
+                REQUIRE(l.has_value() == l_prepared.has_value());
+                if (s) REQUIRE(l); // sample() fails wherever its direction does
+                if (!s) continue;
+                ++drawn;
+                CHECK(glm::length(*l - s->l) <= rel);
+                CHECK(glm::length(*l_prepared - s->l) <= rel);
+                CHECK(close(model.pdf(s->l, view, at), s->pdf, rel));
+            }
+        }
+    }
+    CHECK(drawn > 1000);
+    // Seen from below: nothing prepared or drawn.
+    const shade::eon<T> model(rgb<T>(T(0.8)), T(0.5));
+    const auto at = flat<T>();
+    CHECK(!model.prepare(vec3<T>(0, 0, -1), at).valid);
+    CHECK(!model.draw(vec3<T>(0, 0, -1), T(0.5), shade::vec2<T>(T(0.5)), at));
+}

@@ -333,3 +333,61 @@ TEST_CASE_TEMPLATE("compensated_rough_dielectric: single scattering kept; no NaN
         brdf_test::check_throws_naming(
             [&] { (void)shade::compensated_rough_dielectric<T>(shade::ggx<T>(T(0.3)), eta); }, "eta");
 }
+
+TEST_CASE_TEMPLATE("compensated_rough_dielectric: draw and the prepared view give sample's direction, f and pdf", T,
+                   float, double) {
+    // draw(), prepare() and f_and_pdf() serve a mixture that evaluates the whole model at
+    // the drawn direction (shade::openpbr_surface): they must give what sample(), f(),
+    // pdf() and single_scattering_albedo() give. Equal to rounding (1e-6 float, 1e-13
+    // double, relative: a compiler may contract a product into a fused multiply-add in one
+    // inlined copy and not in the other). Isotropic and anisotropic, both sides.
+    const auto at = brdf_test::tilted<T>();
+    const T rel = sizeof(T) <= 4 ? T(1e-6) : T(1e-13);
+    int drawn = 0;
+    for (const double eta : {1.33, 2.4, 1 / 1.5}) {
+        for (const shade::ggx<T>& d : {shade::ggx<T>(T(0.5)), shade::ggx<T>(T(0.6), T(0.1))}) {
+            const shade::compensated_rough_dielectric<T> model{d, T(eta)};
+            for (const double deg : {0.0, 45.0, 75.0, 180.0, 135.0, 105.0}) {
+                CAPTURE(eta);
+                CAPTURE(deg);
+                const auto v = view_deg(at, deg);
+                const auto view = model.prepare(v, at);
+                REQUIRE(view.valid);
+                CHECK(close(view.albedo, model.single_scattering_albedo(v, at), rel));
+                shade::rng random(22);
+                for (int i = 0; i < 200; ++i) {
+                    const T uc = random.uniform<T>();
+                    const vec2<T> u(random.uniform<T>(), random.uniform<T>());
+                    const auto s = model.sample(v, uc, u, at);
+                    const auto l = model.draw(v, uc, u, at);
+                    const auto l_prepared = model.draw(view, uc, u, at);
+                    REQUIRE(l.has_value() == l_prepared.has_value());
+                    if (s) REQUIRE(l); // sample() fails wherever its direction does
+                    if (!s) continue;
+                    ++drawn;
+                    CHECK(glm::length(*l - s->l) <= rel);
+                    CHECK(glm::length(*l_prepared - s->l) <= rel);
+                    const auto both = model.f_and_pdf(s->l, view, at);
+                    CHECK(close(both.f.x, model.f(s->l, v, at).x, rel));
+                    CHECK(close(both.pdf, model.pdf(s->l, v, at), rel));
+                    CHECK(close(both.pdf, s->pdf, rel));
+                    const auto plain = model.f_and_pdf(s->l, v, at);
+                    CHECK(close(plain.f.x, both.f.x, rel));
+                    CHECK(close(plain.pdf, both.pdf, rel));
+                }
+            }
+        }
+    }
+    CHECK(drawn > 6000);
+    // A view on the surface (exactly: the frame of n = +z): nothing prepared, drawn or
+    // evaluated.
+    const shade::compensated_rough_dielectric<T> model{shade::ggx<T>(T(0.5)), T(1.5)};
+    shade::surface_point<T> flat;
+    flat.shading = shade::frame<T>::from_normal_tangent({0, 0, 1}, {1, 0, 0});
+    const vec3<T> on_surface(1, 0, 0);
+    CHECK(!model.prepare(on_surface, flat).valid);
+    CHECK(!model.draw(on_surface, T(0.5), vec2<T>(T(0.5)), flat));
+    const auto none = model.f_and_pdf(vec3<T>(0, 0, 1), on_surface, flat);
+    CHECK(none.pdf == T(0));
+    CHECK(none.f == rgb<T>(0));
+}

@@ -151,17 +151,41 @@ public:
     /// The FON coefficient A = 1 / (1 + (1/2 - 2/(3 pi)) r); B = r A.
     [[nodiscard]] constexpr T a() const noexcept { return a_; }
 
+    /// What pdf() and draw() compute from the view v alone, computed once by prepare() for
+    /// a caller that draws and evaluates several directions for one view (a mixture of
+    /// lobes): the lobe frame's azimuth, the LTC fit and P_u at v.
+    struct prepared_view {
+        view_azimuth<T> turn{}; ///< the azimuth of v (the lobe frame)
+        eon_ltc<T> m{};         ///< detail::eon_ltc::fit at n·v
+        T p_uniform = 0;        ///< P_u at n·v
+        bool valid = false;     ///< n·v > 0
+    };
+
+    /// The prepared_view of v at `at` (the same `at` must be passed with it below).
+    [[nodiscard]] prepared_view prepare(const vec3<T>& v, const surface_point<T>& at) const noexcept {
+        prepared_view p;
+        if (!(glm::dot(at.n(), v) > T(0))) return p;
+        const vec3<T> v_local = at.shading.to_local(v);
+        p.turn = view_azimuth<T>::of(v_local);
+        p.m = eon_ltc<T>::fit(v_local.z, roughness_);
+        p.p_uniform = eon_uniform_probability(v_local.z, r_pow_);
+        p.valid = true;
+        return p;
+    }
+
     /// The density (1/sr) with which sample() draws l: P_u / (2 pi) + (1 - P_u) D_cltc(l),
     /// with P_u = detail::eon_uniform_probability and D_cltc = detail::cltc_pdf in the lobe
     /// frame of v; 0 unless n·l > 0 and n·v > 0.
     [[nodiscard]] T pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept {
-        if (!(glm::dot(at.n(), l) > T(0)) || !(glm::dot(at.n(), v) > T(0))) return T(0);
-        const vec3<T> v_local = at.shading.to_local(v);
-        const view_azimuth<T> turn = view_azimuth<T>::of(v_local);
-        const eon_ltc<T> m = eon_ltc<T>::fit(v_local.z, roughness_);
-        const T p_uniform = eon_uniform_probability(v_local.z, r_pow_);
-        const vec3<T> w = turn.to_lobe(at.shading.to_local(l));
-        return mixture_pdf(p_uniform, cltc_pdf(m, w), inv_pi<T> * T(0.5));
+        if (!(glm::dot(at.n(), l) > T(0))) return T(0);
+        return pdf(l, prepare(v, at), at);
+    }
+
+    /// pdf(l, v, at) for the prepared view of v.
+    [[nodiscard]] T pdf(const vec3<T>& l, const prepared_view& view, const surface_point<T>& at) const noexcept {
+        if (!view.valid || !(glm::dot(at.n(), l) > T(0))) return T(0);
+        const vec3<T> w = view.turn.to_lobe(at.shading.to_local(l));
+        return mixture_pdf(view.p_uniform, cltc_pdf(view.m, w), inv_pi<T> * T(0.5));
     }
 
     /// Draws l: from the uniform hemisphere when uc < P_u, else from the clipped LTC lobe,
@@ -175,6 +199,33 @@ public:
         const view_azimuth<T> turn = view_azimuth<T>::of(v_local);
         const eon_ltc<T> m = eon_ltc<T>::fit(v_local.z, roughness_);
         const T p_uniform = eon_uniform_probability(v_local.z, r_pow_);
+        const std::optional<vec3<T>> l = draw_with(turn, m, p_uniform, uc, u, at);
+        if (!l) return std::nullopt;
+        const T n_dot_l = glm::dot(at.n(), *l);
+        const T pdf = mixture_pdf(p_uniform, cltc_pdf(m, turn.to_lobe(at.shading.to_local(*l))), inv_pi<T> * T(0.5));
+        return make_brdf_sample(*l, f_at(*l), pdf, n_dot_l);
+    }
+
+    /// The direction l that sample_with(v, uc, u, at, f_at) draws, without its f and pdf
+    /// (for a mixture that evaluates the whole model at l itself); nullopt exactly when
+    /// sample_with's is.
+    [[nodiscard]] std::optional<vec3<T>> draw(const vec3<T>& v, T uc, const vec2<T>& u,
+                                              const surface_point<T>& at) const noexcept {
+        return draw(prepare(v, at), uc, u, at);
+    }
+
+    /// draw(v, uc, u, at) for the prepared view of v.
+    [[nodiscard]] std::optional<vec3<T>> draw(const prepared_view& view, T uc, const vec2<T>& u,
+                                              const surface_point<T>& at) const noexcept {
+        if (!view.valid) return std::nullopt;
+        return draw_with(view.turn, view.m, view.p_uniform, uc, u, at);
+    }
+
+protected:
+    // sample_with's direction for the view's lobe frame turn, LTC fit m and uniform
+    // probability p_uniform; nullopt on or below the horizon.
+    [[nodiscard]] std::optional<vec3<T>> draw_with(const view_azimuth<T>& turn, const eon_ltc<T>& m, T p_uniform, T uc,
+                                                   const vec2<T>& u, const surface_point<T>& at) const noexcept {
         vec3<T> w;
         if (uc < p_uniform) {
             w = square_to_uniform_hemisphere(u);
@@ -186,13 +237,10 @@ public:
         }
         if (!(w.z > T(0))) return std::nullopt;
         const vec3<T> l = at.shading.to_world(turn.from_lobe(w));
-        const T n_dot_l = glm::dot(at.n(), l);
-        if (!(n_dot_l > T(0))) return std::nullopt;
-        const T pdf = mixture_pdf(p_uniform, cltc_pdf(m, turn.to_lobe(at.shading.to_local(l))), inv_pi<T> * T(0.5));
-        return make_brdf_sample(l, f_at(l), pdf, n_dot_l);
+        if (!(glm::dot(at.n(), l) > T(0))) return std::nullopt;
+        return l;
     }
 
-protected:
     rgb<T> rho_;
     T roughness_;
     T a_;     // A = 1 / (1 + c1 r)
@@ -315,6 +363,8 @@ public:
         const T n_dot_v = glm::dot(at.n(), v);
         if (!(n_dot_l > T(0)) || !(n_dot_v > T(0))) return rgb<T>(0);
         const T single = detail::fon_white(this->a_, this->roughness_, detail::fon_s_over_t(l, v, n_dot_l, n_dot_v));
+        // k_ms = 0 (roughness 0, or black rho): no multiple-scattering term to add.
+        if (!has_multiple_) return this->rho_ * single;
         const T deficits = Albedo::deficit(n_dot_l) * Albedo::deficit(n_dot_v);
         return this->rho_ * single + k_ms_ * deficits;
     }
@@ -344,11 +394,13 @@ private:
         // 1 - rho (1 - E_avg) >= E_avg >= 0.83 for rho <= 1: no division by zero.
         rho_ms_ = rho * rho * e_avg_ / (rgb<T>(1) - rho * (T(1) - e_avg_));
         k_ms_ = rho_ms_ * (r * a * inv_pi<T> / (detail::fon_c1<T> - detail::fon_c2<T>));
+        has_multiple_ = k_ms_ != rgb<T>(0);
     }
 
     T e_avg_ = T(1);
     rgb<T> rho_ms_{0};
     rgb<T> k_ms_{0};
+    bool has_multiple_ = false; // k_ms != 0
 };
 
 } // namespace shade

@@ -236,17 +236,79 @@ public:
     /// The BSDF value in 1/sr without the cosine, radiance mode, f_ss + f_ms, for l and v
     /// on either side; 0 when either lies on the surface.
     [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept {
-        const rgb<T> f_ss = single_.f(l, v, at);
-        return f_ss + rgb<T>(multiple(at.shading.to_local(l), at.shading.to_local(v), transport_mode::radiance));
+        return f_and_pdf(l, v, at).f;
     }
 
     /// The density (1/sr, over the sphere) with which sample() draws l for v.
     [[nodiscard]] T pdf(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept {
-        const vec3<T> v_local = at.shading.to_local(v);
-        if (!(v_local.z != T(0)) || !std::isfinite(v_local.z)) return T(0);
-        const std::size_t s = v_local.z > T(0) ? 0 : 1;
-        const T p_ss = single_probability(s, v_local);
-        return p_ss * single_.pdf(l, v, at) + (T(1) - p_ss) * multiple_pdf(s, at.shading.to_local(l), v_local);
+        const prepared_view view = prepare(v, at);
+        if (!view.valid) return T(0);
+        const T p_ss = enabled_ ? view.albedo : T(1);
+        return p_ss * single_.pdf(l, v, at) + (T(1) - p_ss) * multiple_pdf(view.side, at.shading.to_local(l), view.v_local);
+    }
+
+    /// What depends on the view alone, for a caller that draws and evaluates several
+    /// directions for one view (a mixture of lobes): v, v_local (in the shading frame), its
+    /// side (0 outside, 1 inside), albedo E_s(v) (single_scattering_albedo(v, at)), and
+    /// valid, false when v lies on the surface (or is not finite).
+    struct prepared_view {
+        vec3<T> v{0, 0, 1}, v_local{0, 0, 1};
+        std::size_t side = 0;
+        T albedo = 0;
+        bool valid = false;
+    };
+
+    /// The prepared_view of v at `at` (pass the same `at` with it).
+    [[nodiscard]] prepared_view prepare(const vec3<T>& v, const surface_point<T>& at) const noexcept {
+        prepared_view p;
+        p.v = v;
+        p.v_local = at.shading.to_local(v);
+        if (!(p.v_local.z != T(0)) || !std::isfinite(p.v_local.z)) return p;
+        p.valid = true;
+        p.side = p.v_local.z > T(0) ? 0 : 1;
+        p.albedo = albedo(p.side, p.v_local);
+        return p;
+    }
+
+    /// f(l, v, at) and pdf(l, v, at) in one call, the shared terms computed once.
+    struct value_and_density {
+        rgb<T> f{0}; ///< as f()
+        T pdf = 0;   ///< as pdf()
+    };
+    [[nodiscard]] value_and_density f_and_pdf(const vec3<T>& l, const vec3<T>& v,
+                                              const surface_point<T>& at) const noexcept {
+        return f_and_pdf(l, prepare(v, at), at);
+    }
+
+    /// f_and_pdf(l, view.v, at).
+    [[nodiscard]] value_and_density f_and_pdf(const vec3<T>& l, const prepared_view& view,
+                                              const surface_point<T>& at) const noexcept {
+        if (!view.valid) return {};
+        return evaluate(at.shading.to_local(l), l, view, at, transport_mode::radiance);
+    }
+
+    /// The direction l that sample(v, uc, u, at) draws, without f and pdf (for a mixture
+    /// that evaluates itself at l); nullopt where sample()'s direction is.
+    [[nodiscard]] std::optional<vec3<T>> draw(const vec3<T>& v, T uc, const vec2<T>& u,
+                                              const surface_point<T>& at) const noexcept {
+        return draw(prepare(v, at), uc, u, at);
+    }
+
+    /// draw(view.v, uc, u, at).
+    [[nodiscard]] std::optional<vec3<T>> draw(const prepared_view& view, T uc, const vec2<T>& u,
+                                              const surface_point<T>& at) const noexcept {
+        if (!view.valid) return std::nullopt;
+        const T p_ss = enabled_ ? view.albedo : T(1);
+        if (uc < p_ss) {
+            const T uc_ss = glm::min(uc / p_ss, T(1) - std::numeric_limits<T>::epsilon() / 2);
+            return single_.draw(view.v, uc_ss, u, at);
+        }
+        const T uc_ms = (uc - p_ss) / (T(1) - p_ss);
+        const bool transmit = uc_ms < side_[view.side].tau;
+        vec3<T> w = square_to_cosine_hemisphere(u);
+        // Cosine-weighted about v's side (reflection) or the far side (transmission).
+        if ((view.v_local.z < T(0)) != transmit) w.z = -w.z;
+        return at.shading.to_world(w);
     }
 
     /// Draws l for v (either side) from the mixture above; f and weight in the given mode,
@@ -255,36 +317,20 @@ public:
     [[nodiscard]] std::optional<bsdf_sample<T>> sample(const vec3<T>& v, T uc, const vec2<T>& u,
                                                        const surface_point<T>& at,
                                                        transport_mode mode = transport_mode::radiance) const noexcept {
-        const vec3<T> v_local = at.shading.to_local(v);
-        if (!(v_local.z != T(0)) || !std::isfinite(v_local.z)) return std::nullopt;
-        const std::size_t s = v_local.z > T(0) ? 0 : 1;
-        const T p_ss = single_probability(s, v_local);
-        vec3<T> l;
-        if (uc < p_ss) {
-            const T uc_ss = glm::min(uc / p_ss, T(1) - std::numeric_limits<T>::epsilon() / 2);
-            const std::optional<bsdf_sample<T>> drawn = single_.sample(v, uc_ss, u, at, mode);
-            if (!drawn) return std::nullopt;
-            l = drawn->l;
-        } else {
-            const T uc_ms = (uc - p_ss) / (T(1) - p_ss);
-            const bool transmit = uc_ms < side_[s].tau;
-            vec3<T> w = square_to_cosine_hemisphere(u);
-            // Cosine-weighted about v's side (reflection) or the far side (transmission).
-            if ((v_local.z < T(0)) != transmit) w.z = -w.z;
-            l = at.shading.to_world(w);
-        }
+        const prepared_view view = prepare(v, at);
+        const std::optional<vec3<T>> drawn = draw(view, uc, u, at);
+        if (!drawn) return std::nullopt;
+        const vec3<T>& l = *drawn;
         const vec3<T> l_local = at.shading.to_local(l);
         if (!(l_local.z != T(0)) || !std::isfinite(l_local.z)) return std::nullopt;
-        const bool transmitted = (l_local.z < T(0)) != (v_local.z < T(0));
-        rgb<T> f = single_.f(l, v, at);
-        if (transmitted && mode == transport_mode::importance) f *= sqr(side_[s].eta_s);
-        f += rgb<T>(multiple(l_local, v_local, mode));
-        const T pdf_l = p_ss * single_.pdf(l, v, at) + (T(1) - p_ss) * multiple_pdf(s, l_local, v_local);
-        const std::optional<brdf_sample<T>> r = detail::make_brdf_sample(l, f, pdf_l, std::abs(l_local.z));
+        const bool transmitted = (l_local.z < T(0)) != (view.v_local.z < T(0));
+        const value_and_density value = evaluate(l_local, l, view, at, mode);
+        const std::optional<brdf_sample<T>> r =
+            detail::make_brdf_sample(l, value.f, value.pdf, std::abs(l_local.z));
         if (!r) return std::nullopt;
         return bsdf_sample<T>{r->l, r->f, r->pdf, r->weight,
                               transmitted ? bsdf_flags::glossy_transmission : bsdf_flags::glossy_reflection,
-                              transmitted ? side_[s].eta_s : T(1)};
+                              transmitted ? side_[view.side].eta_s : T(1)};
     }
 
 private:
@@ -352,6 +398,27 @@ private:
         }
     }
 
+    /// f_ss + f_ms (in the given mode) and the mixture density at l (l_local its local
+    /// form) for a valid view.
+    [[nodiscard]] value_and_density evaluate(const vec3<T>& l_local, const vec3<T>& l, const prepared_view& view,
+                                             const surface_point<T>& at, transport_mode mode) const noexcept {
+        const std::size_t s = view.side;
+        const auto single = single_.f_and_pdf(l, view.v, at);
+        value_and_density out{single.f, single.pdf};
+        if (!enabled_) return out;
+        if (!(l_local.z != T(0)) || !std::isfinite(l_local.z)) return out;
+        const bool transmitted = (l_local.z < T(0)) != (view.v_local.z < T(0));
+        const bool adjoint = transmitted && mode == transport_mode::importance; // times eta_s^2
+        if (adjoint) out.f *= sqr(side_[s].eta_s);
+        const T e_v = view.albedo;
+        const T loss_v = T(1) - e_v;
+        T f_ms = transmitted ? side_[s].transmit * (T(1) - albedo(1 - s, l_local)) * loss_v
+                             : side_[s].reflect * (T(1) - albedo(s, l_local)) * loss_v;
+        out.f += rgb<T>(adjoint ? f_ms * sqr(side_[s].eta_s) : f_ms);
+        out.pdf = e_v * single.pdf + (T(1) - e_v) * multiple_pdf(s, l_local, view.v_local);
+        return out;
+    }
+
     /// E_s(w) for the local direction w in medium s (only |w.z| and the azimuth are read):
     /// the isotropic table, plus Delta_s(w) when anisotropic; clamped to [0, 1] (near a
     /// smooth interface the tables' noise can carry E_s + Delta_s just past 1, and f_ms >= 0
@@ -369,25 +436,6 @@ private:
     [[nodiscard]] T single_reflectance(std::size_t s, const vec3<T>& v) const noexcept {
         const Distribution& d = single_.distribution();
         return dielectric_reflection_albedo(unchecked, std::abs(v.z), d.alpha_x(), d.alpha_y(), side_[s].eta_s);
-    }
-
-    /// The probability of drawing from rough_dielectric's sampler for the local view v in
-    /// medium s: E_s(v), the share of the energy single scattering carries (1 when the lobe
-    /// is off).
-    [[nodiscard]] T single_probability(std::size_t s, const vec3<T>& v) const noexcept {
-        return enabled_ ? albedo(s, v) : T(1);
-    }
-
-    /// f_ms for local l and v, in the given mode (1/sr, no cosine); 0 when either lies on
-    /// the surface.
-    [[nodiscard]] T multiple(const vec3<T>& l, const vec3<T>& v, transport_mode mode) const noexcept {
-        if (!enabled_) return T(0);
-        if (!(l.z != T(0)) || !(v.z != T(0)) || !std::isfinite(l.z) || !std::isfinite(v.z)) return T(0);
-        const std::size_t s = v.z > T(0) ? 0 : 1;
-        const T loss_v = T(1) - albedo(s, v);
-        if ((l.z > T(0)) == (v.z > T(0))) return side_[s].reflect * (T(1) - albedo(s, l)) * loss_v;
-        const T f = side_[s].transmit * (T(1) - albedo(1 - s, l)) * loss_v;
-        return mode == transport_mode::importance ? f * sqr(side_[s].eta_s) : f;
     }
 
     /// The density of the multiple-scattering lobe's sampler at local l for a view in

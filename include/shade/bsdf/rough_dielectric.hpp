@@ -91,10 +91,7 @@ public:
     /// The BSDF value in 1/sr without the cosine, radiance mode, for l and v on either side
     /// (eqs. 20 and 21 above); 0 when either lies on the surface.
     [[nodiscard]] rgb<T> f(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept {
-        detail::assert_unit_directions(l, v, at);
-        const view_side side = side_of(at.shading.to_local(v));
-        if (!side.valid) return rgb<T>(0);
-        return rgb<T>(evaluate(side.mirrored(at.shading.to_local(l)), side).f);
+        return f_and_pdf(l, v, at).f;
     }
 
     /// The density (1/sr, over the sphere) with which sample() draws l for v.
@@ -102,6 +99,31 @@ public:
         const view_side side = side_of(at.shading.to_local(v));
         if (!side.valid) return T(0);
         return evaluate(side.mirrored(at.shading.to_local(l)), side).pdf;
+    }
+
+    /// f(l, v, at) and pdf(l, v, at) from one evaluation of their shared terms.
+    struct value_and_density {
+        rgb<T> f{0}; ///< as f()
+        T pdf = 0;   ///< as pdf()
+    };
+    [[nodiscard]] value_and_density f_and_pdf(const vec3<T>& l, const vec3<T>& v,
+                                              const surface_point<T>& at) const noexcept {
+        detail::assert_unit_directions(l, v, at);
+        const view_side side = side_of(at.shading.to_local(v));
+        if (!side.valid) return {};
+        const lobe value = evaluate(side.mirrored(at.shading.to_local(l)), side);
+        return {rgb<T>(value.f), value.pdf};
+    }
+
+    /// The direction l that sample(v, uc, u, at) draws, without f and pdf (for a mixture
+    /// that evaluates itself at l); nullopt where sample()'s direction is.
+    [[nodiscard]] std::optional<vec3<T>> draw(const vec3<T>& v, T uc, const vec2<T>& u,
+                                              const surface_point<T>& at) const noexcept {
+        const view_side side = side_of(at.shading.to_local(v));
+        if (!side.valid) return std::nullopt;
+        const std::optional<vec3<T>> l_up = draw_up(side, uc, u);
+        if (!l_up) return std::nullopt;
+        return at.shading.to_world(side.mirrored(*l_up));
     }
 
     /// Draws l for v (either side): a visible normal m from u, then the reflection about m
@@ -113,20 +135,9 @@ public:
                                                        transport_mode mode = transport_mode::radiance) const noexcept {
         const view_side side = side_of(at.shading.to_local(v));
         if (!side.valid) return std::nullopt;
-        const vec3<T>& v_up = side.v;
-        const vec3<T> m = distribution_.sample_visible_normal(v_up, u);
-        const T v_dot_m = glm::dot(v_up, m);
-        if (!(v_dot_m > T(0))) return std::nullopt;
-        const T R = F_dielectric(v_dot_m, side.eta);
-        vec3<T> l_up;
-        if (uc < R) {
-            l_up = detail::reflect_about(v_up, m);
-            if (!(l_up.z > T(0))) return std::nullopt;
-        } else {
-            const std::optional<vec3<T>> t = refract(v_up, m, side.eta);
-            if (!t || !(t->z < T(0))) return std::nullopt;
-            l_up = *t;
-        }
+        const std::optional<vec3<T>> drawn = draw_up(side, uc, u);
+        if (!drawn) return std::nullopt;
+        const vec3<T>& l_up = *drawn;
         const lobe value = evaluate(l_up, side);
         const bool transmitted = l_up.z < T(0);
         const T f = transmitted && mode == transport_mode::importance ? value.f * sqr(side.eta) : value.f;
@@ -162,6 +173,23 @@ private:
         s.v = s.inside ? vec3<T>(v.x, v.y, -v.z) : v;
         s.eta = s.inside ? T(1) / eta_ : eta_;
         return s;
+    }
+
+    /// sample()'s direction in the mirrored frame; nullopt on the wrong side.
+    [[nodiscard]] std::optional<vec3<T>> draw_up(const view_side& side, T uc, const vec2<T>& u) const noexcept {
+        const vec3<T>& v_up = side.v;
+        const vec3<T> m = distribution_.sample_visible_normal(v_up, u);
+        const T v_dot_m = glm::dot(v_up, m);
+        if (!(v_dot_m > T(0))) return std::nullopt;
+        const T R = F_dielectric(v_dot_m, side.eta);
+        if (uc < R) {
+            const vec3<T> l_up = detail::reflect_about(v_up, m);
+            if (!(l_up.z > T(0))) return std::nullopt;
+            return l_up;
+        }
+        const std::optional<vec3<T>> t = refract(v_up, m, side.eta);
+        if (!t || !(t->z < T(0))) return std::nullopt;
+        return *t;
     }
 
     /// f (radiance mode) and pdf of a pair in the mirrored frame.

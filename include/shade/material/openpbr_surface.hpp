@@ -13,6 +13,7 @@
 #include <cmath>
 #include <concepts>
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <type_traits>
 
@@ -389,6 +390,8 @@ private:
         rgb<T> darkening{1};               // D, per channel
         rgb<T> specular_albedo{0};         // E_spec(v), per channel
         T transmittance = 1;               // of the transmission lobe's interface from v
+        typename transmission_lobe::prepared_view transmission_view{}; // when transmission_ and T > 0
+        typename diffuse_lobe::prepared_view diffuse_view{}; // with the probabilities, when p[diffuse] > 0
         std::array<T, lobe_count> p{};     // lobe probabilities
     };
 
@@ -422,7 +425,7 @@ private:
     [[nodiscard]] rgb<T> reciprocal_under_coat(T mu_l, const view& w) const noexcept {
         const T C = p_.coat_weight;
         if (C == T(0)) return rgb<T>(1);
-        const rgb<T> absorbed = openpbr::coat_absorption(p_.coat_color, mu_l, w.mu, coat_eta_);
+        const rgb<T> absorbed = coat_absorbed(mu_l, w.mu);
         const rgb<T> darkening_l = openpbr::coat_darkening_factor(
             base_albedo_, coat_eta_, coat_rough_reflection_, mu_l, base_roughness_estimate_, C, p_.coat_darkening);
         const T keep = (T(1) - C * coat_albedo(mu_l)) * (T(1) - C * w.coat_albedo) * coat_loss_inverse_;
@@ -457,11 +460,18 @@ private:
         return p_.specular_color * e;
     }
 
+    // openpbr::coat_absorption of the coat's colour for cosines mu_l, mu_v: exactly 1 for a
+    // white coat (1^x = 1, also at a grazing refracted cosine), which is not computed.
+    [[nodiscard]] rgb<T> coat_absorbed(T mu_l, T mu_v) const noexcept {
+        if (coat_white_) return rgb<T>(1);
+        return openpbr::coat_absorption(p_.coat_color, mu_l, mu_v, coat_eta_);
+    }
+
     // The base's factor under the coat for cosines mu_l, mu_v (per channel):
     // lerp(1, T_coat (1 - E_coat(v)), C) D.
     [[nodiscard]] rgb<T> under_coat(T mu_l, const view& w) const noexcept {
         if (p_.coat_weight == T(0)) return rgb<T>(1);
-        const rgb<T> absorbed = openpbr::coat_absorption(p_.coat_color, glm::min(mu_l, T(1)), w.mu, coat_eta_);
+        const rgb<T> absorbed = coat_absorbed(glm::min(mu_l, T(1)), w.mu);
         return glm::mix(rgb<T>(1), absorbed * (T(1) - w.coat_albedo), p_.coat_weight) * w.darkening;
     }
 
@@ -484,10 +494,12 @@ private:
         if (M < T(1)) {
             w.specular_albedo = specular_albedo(w.mu, at.shading.to_local(v));
             if (transmission_ && Tw > T(0)) {
-                const T e_s = transmission_->single_scattering_albedo(v, at);
+                w.transmission_view = transmission_->prepare(v, at);
+                const T e_s = w.transmission_view.albedo;
                 const T r_ss = transmission_anisotropic_
                                    ? transmission_reflection_anisotropic_.at(at.shading.to_local(v))
-                                   : transmission_reflection_.at(w.mu);
+                               : transmission_reflection_is_specular_ ? w.specular_albedo.x
+                                                                      : transmission_reflection_.at(w.mu);
                 w.transmittance = glm::max(e_s - r_ss + transmission_->transmitted_share(false) * (T(1) - e_s),
                                            T(1e-6));
             }
@@ -501,7 +513,7 @@ private:
         std::array<T, lobe_count> e{};
         e[std::size_t(lobe::fuzz)] = F * e_fuzz * max_channel(p_.fuzz_color);
         e[std::size_t(lobe::coat)] = w.fuzz_keep * C * w.coat_albedo;
-        e[std::size_t(lobe::metal)] = below * M * max_channel(metal_fresnel_->F(w.mu));
+        if (M > T(0)) e[std::size_t(lobe::metal)] = below * M * max_channel(metal_fresnel_->F(w.mu));
         e[std::size_t(lobe::specular)] = dielectric * max_channel(w.specular_albedo);
         e[std::size_t(lobe::transmission)] = rest * Tw * max_channel(transmission_tint_);
         const T opaque = rest * (T(1) - Tw);
@@ -523,6 +535,7 @@ private:
         } else {
             w.p[std::size_t(lobe::transparent)] = alpha < T(1) ? T(1) : T(0);
         }
+        if (w.p[std::size_t(lobe::diffuse)] > T(0)) w.diffuse_view = diffuse_->prepare(v, at);
         return w;
     }
 
@@ -548,6 +561,16 @@ private:
         if (!(n_dot_l != T(0)) || !std::isfinite(n_dot_l)) return out;
         if (n_dot_l > T(0)) {
             reflect<with_f, with_pdf>(l, v, n_dot_l, at, w, out);
+        } else if constexpr (with_f && with_pdf) {
+            if (transmission_ && !p_.geometry_thin_walled && p_.transmission_weight > T(0)) {
+                // The solid's transmission lobe alone below the surface: its f and pdf in one call.
+                const auto value = transmission_->f_and_pdf(l, w.transmission_view, at);
+                out.f = through_f(l, v, n_dot_l, at, w, &value.f);
+                out.pdf = w.p[std::size_t(lobe::transmission)] * value.pdf;
+            } else {
+                out.f = through_f(l, v, n_dot_l, at, w);
+                out.pdf = through_pdf(l, v, at, w);
+            }
         } else {
             if constexpr (with_f) out.f = through_f(l, v, n_dot_l, at, w);
             if constexpr (with_pdf) out.pdf = through_pdf(l, v, at, w);
@@ -624,7 +647,7 @@ private:
                 rgb<T> opaque(0);
                 if (diffuse_) {
                     if constexpr (with_f) opaque += (T(1) - S) * diffuse_->f(l, v, at);
-                    if (p(lobe::diffuse) > T(0)) out.pdf += p(lobe::diffuse) * diffuse_->pdf(l, v, at);
+                    if (p(lobe::diffuse) > T(0)) out.pdf += p(lobe::diffuse) * diffuse_->pdf(l, w.diffuse_view, at);
                 }
                 if (subsurface_) {
                     if constexpr (with_f)
@@ -639,9 +662,10 @@ private:
         if constexpr (with_f) out.f = top + fuzz_keep * coat_keep * base;
     }
 
-    // f of the transmitted part (l below the surface).
+    // f of the transmitted part (l below the surface); transmission_f, when given, is the
+    // transmission lobe's f(l, v, at) already evaluated.
     [[nodiscard]] rgb<T> through_f(const vec3<T>& l, const vec3<T>& v, T n_dot_l, const surface_point<T>& at,
-                                   const view& w) const noexcept {
+                                   const view& w, const rgb<T>* transmission_f = nullptr) const noexcept {
         const T M = p_.base_metalness;
         const T Tw = p_.transmission_weight;
         const T S = p_.subsurface_weight;
@@ -651,7 +675,8 @@ private:
             if (p_.geometry_thin_walled) {
                 if (sheet_) through += Tw * transmission_tint_ * sheet_->f(mirrored(l, at), v, at);
             } else if (transmission_) {
-                through += (Tw / w.transmittance) * transmission_tint_ * transmission_->f(l, v, at);
+                through += (Tw / w.transmittance) * transmission_tint_ *
+                           (transmission_f ? *transmission_f : transmission_->f(l, v, at));
             }
         }
         if (p_.geometry_thin_walled && subsurface_ && Tw < T(1))
@@ -715,8 +740,7 @@ private:
         const T p_k = w.p[std::size_t(k)];
         const vec3<T> mirror = detail::reflect_about(v, at.n());
         // The lobe's direction only (finish evaluates the whole mixture at it): a microfacet
-        // lobe's draw_local as its sample() draws, EON's sampler without its f, any other
-        // lobe's sample().
+        // lobe's draw_local as its sample() draws, EON's draw, any other lobe's sample().
         const auto from_brdf = [&](const auto& model, bsdf_flags kind,
                                    bool through) -> std::optional<bsdf_sample<T>> {
             using model_type = std::remove_cvref_t<decltype(model)>;
@@ -729,9 +753,9 @@ private:
                     from_cosine = uc < model.multiple_scattering_probability(v_local.z);
                 l = at.shading.to_world(model.draw_local(v_local, from_cosine, u));
             } else if constexpr (std::same_as<model_type, diffuse_lobe>) {
-                const auto s = model.sample_with(v, uc, u, at, [](const vec3<T>&) { return rgb<T>(1); });
-                if (!s) return std::nullopt;
-                l = s->l;
+                const std::optional<vec3<T>> drawn = model.draw(v, uc, u, at);
+                if (!drawn) return std::nullopt;
+                l = *drawn;
             } else {
                 const auto s = model.sample(v, uc, u, at);
                 if (!s) return std::nullopt;
@@ -769,9 +793,11 @@ private:
             }
             const T eta = p_.specular_ior;
             if (transmission_) {
-                const auto s = transmission_->sample(v, uc, u, at, transport_mode::radiance);
-                if (!s || !is_transmission(s->flags)) return std::nullopt;
-                return finish(s->l, v, o, bsdf_flags::glossy, s->eta, mode, &w);
+                // The interface's direction only, kept when it crosses (its reflections
+                // belong to the specular lobe).
+                const std::optional<vec3<T>> l = transmission_->draw(w.transmission_view, uc, u, at);
+                if (!l || !(glm::dot(at.n(), *l) < T(0))) return std::nullopt;
+                return finish(*l, v, o, bsdf_flags::glossy, transmission_->eta(), mode, &w);
             }
             if (index_matched_) return delta(-v, carried * under_coat(w.mu, w), p_k, o, bsdf_flags::transmission, T(1));
             const std::optional<vec3<T>> l = refract(v, at.n(), eta);
@@ -780,8 +806,11 @@ private:
             const T radiance = mode == transport_mode::radiance ? T(1) / (eta * eta) : T(1);
             return delta(*l, carried * under_coat(mu_l, w) * radiance, p_k, o, bsdf_flags::transmission, eta);
         }
-        case lobe::diffuse:
-            return from_brdf(*diffuse_, bsdf_flags::diffuse, false);
+        case lobe::diffuse: {
+            const std::optional<vec3<T>> l = diffuse_->draw(w.diffuse_view, uc, u, at);
+            if (!l) return std::nullopt;
+            return finish(*l, v, o, bsdf_flags::diffuse, T(1), mode, &w);
+        }
         case lobe::subsurface_reflection:
             return from_brdf(*subsurface_, bsdf_flags::diffuse, false);
         case lobe::subsurface_transmission:
@@ -874,6 +903,7 @@ private:
     T subsurface_reflection_weight_ = 1;
     T subsurface_transmission_weight_ = 0;
     T coat_eta_ = T(1.6);
+    bool coat_white_ = false;       // coat_color = (1, 1, 1): no absorption
     T coat_rough_reflection_ = 0;   // K_r of the coat (openpbr::coat_rough_reflection)
     T coat_alpha_ = 0;
     detail::reflection_albedo_row<T> coat_albedo_{};          // E_coat(mu)
@@ -883,6 +913,7 @@ private:
     detail::anisotropic_reflection_albedo<T> specular_albedo_anisotropic_{};     // R_ss(v) at eta'_s, anisotropic
     detail::anisotropic_reflection_albedo<T> transmission_reflection_anisotropic_{}; // R_ss(v), anisotropic
     bool transmission_anisotropic_ = false;
+    bool transmission_reflection_is_specular_ = false; // transmission_reflection_ = E_spec (build)
     bool coat_anisotropic_ = false;
     bool specular_anisotropic_ = false;
     T specular_eta_ = T(1.5);
@@ -918,6 +949,7 @@ void openpbr_surface<T>::build() {
 
     // Coat.
     coat_eta_ = p.coat_ior;
+    coat_white_ = p.coat_color == rgb<T>(1);
     if (C > T(0)) coat_rough_reflection_ = openpbr::coat_rough_reflection(coat_eta_);
     if (C > T(0)) {
         if (const auto d = distribution(p.coat_roughness, p.coat_roughness_anisotropy)) {
@@ -994,6 +1026,15 @@ void openpbr_surface<T>::build() {
             if (transmission_anisotropic_)
                 transmission_reflection_anisotropic_ = detail::anisotropic_reflection_albedo<T>(
                     base_distribution->alpha_x(), base_distribution->alpha_y(), eta);
+            // R_ss at the view is the specular lobe's E_spec itself when both read the same
+            // row and E_spec has no tint or film: one lookup serves both. eta'_s is
+            // specular_ior up to rounding when uncoated at specular_weight 1
+            // (modulated_ior_ratio's round trip through F0): equal within 8 ulp here.
+            transmission_reflection_is_specular_ =
+                specular_ && !specular_anisotropic_ && !transmission_anisotropic_ &&
+                specular_alpha_ == transmission_alpha_ &&
+                std::abs(specular_eta_ - eta) <= T(8) * std::numeric_limits<T>::epsilon() * eta &&
+                p.specular_color == rgb<T>(1) && !(film_weight > T(0));
         }
     }
 

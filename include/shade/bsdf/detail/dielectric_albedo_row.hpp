@@ -3,7 +3,6 @@
 // and index for many view cosines: the interpolation along sqrt(alpha) and the index is done
 // once, into one row over the view coordinate, so that each lookup is one spline in mu.
 
-#include <array>
 #include <cmath>
 #include <concepts>
 #include <cstddef>
@@ -17,16 +16,24 @@
 
 namespace shade::detail {
 
+/// Four interpolation weights, one per node i - 1 .. i + 2 (catmull_rom_axis_weights).
+template <std::floating_point T>
+struct axis_weights {
+    T w[4]; ///< a plain array: this header stays free of <array>, which costs its includers ~400 lines
+    [[nodiscard]] constexpr T& operator[](std::size_t i) noexcept { return w[i]; }
+    [[nodiscard]] constexpr T operator[](std::size_t i) const noexcept { return w[i]; }
+};
+
 /// The weights of catmull_rom_axis on the nodes i - 1 .. i + 2 of an axis piece lo..hi at
 /// t (the same combination of node values, so a row combined with them and then read
 /// along another axis equals the table read along both): the cubic's weights
 /// ((-t + 2t^2 - t^3), (2 - 5t^2 + 3t^3), (t + 4t^2 - 3t^3), (-t^2 + t^3)) / 2, with a
 /// neighbour outside the piece replaced by its linear extrapolation as catmull_rom_axis does.
 template <std::floating_point T>
-[[nodiscard]] inline std::array<T, 4> catmull_rom_axis_weights(std::size_t i, std::size_t lo, std::size_t hi, T t) noexcept {
+[[nodiscard]] inline axis_weights<T> catmull_rom_axis_weights(std::size_t i, std::size_t lo, std::size_t hi, T t) noexcept {
     const T t2 = t * t, t3 = t2 * t;
-    std::array<T, 4> w{T(0.5) * (-t + T(2) * t2 - t3), T(0.5) * (T(2) - T(5) * t2 + T(3) * t3),
-                       T(0.5) * (t + T(4) * t2 - T(3) * t3), T(0.5) * (-t2 + t3)};
+    axis_weights<T> w{{T(0.5) * (-t + T(2) * t2 - t3), T(0.5) * (T(2) - T(5) * t2 + T(3) * t3),
+                       T(0.5) * (t + T(4) * t2 - T(3) * t3), T(0.5) * (-t2 + t3)}};
     if (i <= lo) { // p0 = 2 p1 - p2
         w[1] += T(2) * w[0];
         w[2] -= w[0];
@@ -53,11 +60,11 @@ public:
     dielectric_albedo_row(const float* table, const dielectric_albedo_grid& g, const dielectric_albedo_cell<T>& cell)
         : cell_(cell), near_critical_(g.near_critical) {
         const auto alpha_w = catmull_rom_axis_weights<T>(cell.alpha.i, 0, g.alpha_nodes - 1, cell.alpha.t);
-        std::array<T, 4> eta_w{};
+        axis_weights<T> eta_w{};
         if (g.eta_spline) {
             eta_w = catmull_rom_axis_weights<T>(cell.eta.i, 0, g.eta_nodes - 1, cell.eta.t);
         } else {
-            eta_w = {T(0), T(1) - cell.eta.t, cell.eta.t, T(0)};
+            eta_w = {{T(0), T(1) - cell.eta.t, cell.eta.t, T(0)}};
         }
         for (std::size_t a = 0; a < 4; ++a) {
             if (eta_w[a] == T(0)) continue;
@@ -86,7 +93,7 @@ public:
 
 private:
     dielectric_albedo_cell<T> cell_{};
-    std::array<T, MuNodes> row_{};
+    T row_[MuNodes]{};
     bool near_critical_ = false;
 };
 
