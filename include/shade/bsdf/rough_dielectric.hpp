@@ -121,9 +121,18 @@ public:
                                               const surface_point<T>& at) const noexcept {
         const view_side side = side_of(at.shading.to_local(v));
         if (!side.valid) return std::nullopt;
-        const std::optional<vec3<T>> l_up = draw_up(side, uc, u);
-        if (!l_up) return std::nullopt;
-        return at.shading.to_world(side.mirrored(*l_up));
+        const vec3<T>& v_up = side.v;
+        const vec3<T> m = distribution_.sample_visible_normal(v_up, u);
+        const T v_dot_m = glm::dot(v_up, m);
+        if (!(v_dot_m > T(0))) return std::nullopt;
+        if (uc < F_dielectric(v_dot_m, side.eta)) {
+            const vec3<T> l_up = detail::reflect_about(v_up, m);
+            if (!(l_up.z > T(0))) return std::nullopt;
+            return at.shading.to_world(side.mirrored(l_up));
+        }
+        const std::optional<vec3<T>> t = refract(v_up, m, side.eta);
+        if (!t || !(t->z < T(0))) return std::nullopt;
+        return at.shading.to_world(side.mirrored(*t));
     }
 
     /// Draws l for v (either side): a visible normal m from u, then the reflection about m
@@ -135,9 +144,20 @@ public:
                                                        transport_mode mode = transport_mode::radiance) const noexcept {
         const view_side side = side_of(at.shading.to_local(v));
         if (!side.valid) return std::nullopt;
-        const std::optional<vec3<T>> drawn = draw_up(side, uc, u);
-        if (!drawn) return std::nullopt;
-        const vec3<T>& l_up = *drawn;
+        // draw()'s steps, with the direction kept in the mirrored frame for evaluate.
+        const vec3<T>& v_up = side.v;
+        const vec3<T> m = distribution_.sample_visible_normal(v_up, u);
+        const T v_dot_m = glm::dot(v_up, m);
+        if (!(v_dot_m > T(0))) return std::nullopt;
+        vec3<T> l_up;
+        if (uc < F_dielectric(v_dot_m, side.eta)) {
+            l_up = detail::reflect_about(v_up, m);
+            if (!(l_up.z > T(0))) return std::nullopt;
+        } else {
+            const std::optional<vec3<T>> t = refract(v_up, m, side.eta);
+            if (!t || !(t->z < T(0))) return std::nullopt;
+            l_up = *t;
+        }
         const lobe value = evaluate(l_up, side);
         const bool transmitted = l_up.z < T(0);
         const T f = transmitted && mode == transport_mode::importance ? value.f * sqr(side.eta) : value.f;
@@ -173,23 +193,6 @@ private:
         s.v = s.inside ? vec3<T>(v.x, v.y, -v.z) : v;
         s.eta = s.inside ? T(1) / eta_ : eta_;
         return s;
-    }
-
-    /// sample()'s direction in the mirrored frame; nullopt on the wrong side.
-    [[nodiscard]] std::optional<vec3<T>> draw_up(const view_side& side, T uc, const vec2<T>& u) const noexcept {
-        const vec3<T>& v_up = side.v;
-        const vec3<T> m = distribution_.sample_visible_normal(v_up, u);
-        const T v_dot_m = glm::dot(v_up, m);
-        if (!(v_dot_m > T(0))) return std::nullopt;
-        const T R = F_dielectric(v_dot_m, side.eta);
-        if (uc < R) {
-            const vec3<T> l_up = detail::reflect_about(v_up, m);
-            if (!(l_up.z > T(0))) return std::nullopt;
-            return l_up;
-        }
-        const std::optional<vec3<T>> t = refract(v_up, m, side.eta);
-        if (!t || !(t->z < T(0))) return std::nullopt;
-        return *t;
     }
 
     /// f (radiance mode) and pdf of a pair in the mirrored frame.
