@@ -44,6 +44,9 @@ public:
     /// The next byte, or 0 once the input is exhausted.
     [[nodiscard]] std::uint8_t byte() noexcept { return pos_ < size_ ? data_[pos_++] : 0; }
 
+    /// True once every byte has been read (further reads give zeros).
+    [[nodiscard]] bool exhausted() const noexcept { return pos_ >= size_; }
+
     /// The next byte's lowest bit.
     [[nodiscard]] bool flag() noexcept { return (byte() & 1u) != 0; }
 

@@ -175,6 +175,49 @@ def brdfs():
                     write('brdf_' + model, f'{prefix}{sname}_{scalar}', byte(head) + p + s)
 
 
+def bsdfs():
+    """fuzz_bsdf_dielectric: head, model byte (0-6), alpha_x, alpha_y, eta, the conductor's
+    eta and kappa, a situation. fuzz_bsdf_openpbr: head, thin-walled byte, a situation, then
+    edits of the default parameters: parameter byte (index into kParameters), a channel byte
+    for a colour (3: all three), the value."""
+    sits = {k: SITUATIONS[k] for k in ('generic', 'below_horizon', 'grazing', 'mirror_h_is_n', 'v_is_n',
+                                      'sample_grazing_view', 'raw_unnormalised')}
+    sits['inside_view'] = situation(0, a=(0.5, 0.25, -1), b=(-0.25, 0.5, -1))
+    for model in range(7):
+        for sname, st in sits.items():
+            for scalar, head in (('float', 0), ('double', 1)):
+                if scalar == 'double' and sname not in ('generic', 'inside_view'):
+                    continue
+                write('bsdf_dielectric', f'model{model}_{sname}_{scalar}',
+                      byte(head, model) + fx(0.25) + fx(0.125) + fx(1.5) + vec(0.25, 0.875, 1.125) +
+                      vec(3.875, 2.375, 2.25) + st)
+    def edit(index, value, colour=False):
+        return byte(index) + (byte(3) if colour else b'') + (value if isinstance(value, bytes) else fx(value))
+    materials = {
+        'default': b'',
+        'metal': edit(3, 1),
+        'glass': edit(9, 1),
+        'smooth_glass': edit(9, 1) + edit(6, 0),
+        'coated_plastic': edit(21, 1) + edit(23, 0.125),
+        'fuzz': edit(27, 1) + edit(29, 0.5),
+        'thin_film': edit(30, 1) + edit(31, 0.5),
+        'subsurface': edit(16, 1),
+        'opacity': edit(35, 0.5),
+        'anisotropic_metal': edit(3, 1) + edit(7, 0.875),
+        'emission': edit(33, 1) + edit(21, 1),
+    }
+    for name, edits in materials.items():
+        for thin in (0, 1):
+            if thin and name not in ('glass', 'smooth_glass', 'thin_film', 'subsurface'):
+                continue
+            for sname, st in sits.items():
+                for scalar, head in (('float', 0), ('double', 1)):
+                    if scalar == 'double' and sname not in ('generic', 'inside_view'):
+                        continue
+                    write('bsdf_openpbr', f'{name}{"_thin" if thin else ""}_{sname}_{scalar}',
+                          byte(head, thin) + st + edits)
+
+
 def bvhs():
     """fuzz_bvh: head (bit 0 double, bits 1-2 structure, bit 3 cull), count, primitives,
     then four rays: aimed flag, origin, (target byte + weights | direction), t_min, t_max."""
@@ -283,6 +326,7 @@ if __name__ == '__main__':
     sphere()
     color()
     brdfs()
+    bsdfs()
     bvhs()
     sums()
     lights()

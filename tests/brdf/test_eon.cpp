@@ -489,3 +489,20 @@ TEST_CASE_TEMPLATE("eon: draw and the prepared view give sample's direction and 
     CHECK(!model.prepare(vec3<T>(0, 0, -1), at).valid);
     CHECK(!model.draw(vec3<T>(0, 0, -1), T(0.5), shade::vec2<T>(T(0.5)), at));
 }
+
+TEST_CASE("eon: a view whose tangent part is subnormal when squared still samples unit directions") {
+    // v = (1, 1.8e-22, 0) over n = (1, 0, 0) in float: the azimuth of v from x^2 + y^2 =
+    // 3.3e-44 (subnormal) came out off unit length, and so did the sampled l (|l| 1.0027;
+    // found by fuzz_bsdf_openpbr).
+    using T = float;
+    shade::surface_point<T> at;
+    at.shading = shade::frame<T>::from_normal_tangent(shade::vec3<T>(1, 0, 0), shade::vec3<T>(0, 0, -1));
+    const shade::vec3<T> v(1, T(1.8144775e-22), 0);
+    const shade::eon<T> model(shade::rgb<T>(T(0.8)), T(0.5));
+    for (const T uc : {T(0.1), T(0.9)})
+        for (const T ux : {T(0.25), T(0.9)}) {
+            const auto s = model.sample(v, uc, shade::vec2<T>(ux, T(0.28515625)), at);
+            REQUIRE(s.has_value());
+            CHECK(std::abs(glm::length(s->l) - T(1)) <= T(1e-6));
+        }
+}

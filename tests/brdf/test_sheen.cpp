@@ -503,3 +503,21 @@ TEST_CASE_TEMPLATE("sheen reciprocal: degenerate pairs, validation", T, float, d
     check_throws_naming([] { (void)shade::zeltner_sheen_reciprocal<T>(rgb<T>(2), T(0.3)); }, "color");
     check_throws_naming([] { (void)shade::zeltner_sheen_reciprocal<T>(rgb<T>(1), T(-1)); }, "roughness");
 }
+
+TEST_CASE("zeltner_sheen: a view along the normal up to rounding, with a grazing l, gives a finite f") {
+    // v = n exactly, computed in a tilted frame: v - (n·v) n is rounding noise whose
+    // direction may lie along n, and an LTC frame built on it made f infinite for an l
+    // in the surface's plane (found by fuzz_bsdf_openpbr). The shading tangent is used.
+    using T = double;
+    shade::surface_point<T> at;
+    at.shading = shade::frame<T>::from_normal_tangent(shade::vec3<T>(0.70710678118654746, 0.70710678118654746, 0),
+                                                      shade::vec3<T>(0.70710678118654757, -0.70710678118654757, 0));
+    const shade::vec3<T> v = at.n();
+    const shade::vec3<T> l(2.7813423231340017e-309, 2.7813423231340017e-309, -1); // n·l ~ 4e-309
+    const shade::zeltner_sheen<T> sheen(shade::rgb<T>(1), T(0.5));
+    const auto f = sheen.f(l, v, at);
+    CHECK((std::isfinite(f.x) && f.x >= 0));
+    // At v = n the lobe is symmetric about n: the value at grazing l is that of any azimuth.
+    const auto g = sheen.f(at.shading.to_world(shade::vec3<T>(0, 1, 4e-309)), v, at);
+    CHECK(f.x == doctest::Approx(g.x).epsilon(1e-9));
+}

@@ -232,3 +232,27 @@ TEST_CASE_TEMPLATE("rough_dielectric: draw is sample's direction; f_and_pdf is f
     }
     CHECK(drawn > 3000);
 }
+
+TEST_CASE_TEMPLATE("rough_dielectric: f and pdf stay finite for grazing directions with subnormal cosines", T, float,
+                   double) {
+    // l and v in the surface's plane up to a subnormal cosine (n tilted by that amount off
+    // +z), on opposite sides (a transmission) and on the same side: the product of the two
+    // cosines underflows to 0, and without the floor at machine epsilon f was inf or NaN
+    // (0 / 0 once G underflows too). The value itself is tiny, the masking function ~0.
+    const T tiny = std::numeric_limits<T>::denorm_min() * T(1000);
+    shade::surface_point<T> at;
+    at.shading = shade::frame<T>::from_normal_tangent(shade::vec3<T>(tiny, tiny, 1), shade::vec3<T>(-1, 0, 0));
+    for (const T alpha : {T(0.01), T(0.3), T(1)})
+        for (const T eta : {T(1.5), T(0.7)}) {
+            const shade::rough_dielectric<shade::ggx<T>> glass(shade::ggx<T>(alpha), eta);
+            for (const shade::vec3<T>& l : {shade::vec3<T>(-1, 0, 0), shade::vec3<T>(0, 1, 0)}) {
+                const shade::vec3<T> v(1, 0, 0);
+                CAPTURE(alpha);
+                CAPTURE(eta);
+                const auto f = glass.f(l, v, at);
+                const T pdf = glass.pdf(l, v, at);
+                CHECK((std::isfinite(f.x) && f.x >= T(0)));
+                CHECK((std::isfinite(pdf) && pdf >= T(0)));
+            }
+        }
+}

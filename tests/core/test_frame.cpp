@@ -1,4 +1,5 @@
 #include <cmath>
+#include <limits>
 
 #include <doctest/doctest.h>
 #include <glm/geometric.hpp>
@@ -95,4 +96,22 @@ TEST_CASE_TEMPLATE("frame factories reject bad normals and tangents by name", T,
     CHECK(tiny.n == v(0, 0, 1));
     const auto huge = shade::frame<T>::from_normal_checked(v(0, T(1e30), 0));
     CHECK(huge.n == v(0, 1, 0));
+}
+
+TEST_CASE_TEMPLATE("frame::from_normal_tangent is orthonormal to rounding for a tangent near the normal", T, float,
+                   double) {
+    // A tangent 2e-3 rad from the normal (just above the 1e-3 rejection): one Gram-Schmidt
+    // projection leaves t·n off by about epsilon / 2e-3 (6e-5 in float); the second
+    // projection brings it to a few epsilon.
+    using v = shade::vec3<T>;
+    const T eps = std::numeric_limits<T>::epsilon();
+    for (const v& n : {v(0, 0, 1), glm::normalize(v(T(0.3), T(-0.5), T(0.8))), glm::normalize(v(1, 1, T(1e-3)))}) {
+        const v side = glm::normalize(glm::cross(n, v(T(0.6), T(0.7), T(0.2))));
+        const auto f = shade::frame<T>::from_normal_tangent(n, n + T(2e-3) * side);
+        CHECK(std::abs(glm::dot(f.t, f.n)) <= 8 * eps);
+        CHECK(std::abs(glm::dot(f.b, f.n)) <= 8 * eps);
+        CHECK(std::abs(glm::dot(f.t, f.b)) <= 8 * eps);
+        CHECK(std::abs(glm::length(f.t) - T(1)) <= 4 * eps);
+        CHECK(glm::dot(f.t, side) > T(0.999)); // still the tangent's direction
+    }
 }

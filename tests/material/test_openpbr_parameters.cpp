@@ -2,6 +2,7 @@
 // specification's closed-form pieces in shade::openpbr.
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <doctest/doctest.h>
@@ -279,4 +280,40 @@ TEST_CASE_TEMPLATE("openpbr::dispersed_ior follows Cauchy through n_d with the A
     CHECK(n_d == doctest::Approx(1.5).epsilon(1e-6));
     CHECK((n_d - 1) / (n_f - n_c) == doctest::Approx(40).epsilon(1e-3));
     CHECK(n_f > n_d); // normal dispersion: blue bends more
+}
+
+TEST_CASE_TEMPLATE("openpbr::transmission_medium at a subnormal depth: capped extinction, exact albedo, no NaN", T,
+                   float, double) {
+    // transmission_color 1, scatter 0.5, depth lambda subnormal: sigma_t lambda = -ln 1 = 0,
+    // sigma_s lambda = 0.5, sigma_a lambda = -0.5 shifted to 0, so sigma_t = 0.5 / lambda
+    // (beyond the largest T: capped there) and the albedo sigma_s / sigma_t = 1 exactly.
+    // Dividing by lambda first gave sigma_a = 0 - inf and a shift of inf - inf: NaN.
+    shade::openpbr_parameters<T> p;
+    p.transmission_weight = T(1);
+    p.transmission_color = rgb<T>(1);
+    p.transmission_scatter = rgb<T>(T(0.5));
+    p.transmission_depth = std::numeric_limits<T>::denorm_min() * T(64);
+    const auto m = shade::openpbr::transmission_medium(p);
+    CHECK(m.present);
+    for (int c = 0; c < 3; ++c) {
+        CHECK(m.sigma_t[c] == std::numeric_limits<T>::max());
+        CHECK(m.albedo[c] == T(1));
+    }
+    // Colour 0.5, scatter 0: sigma_t lambda = ln 2, albedo 0; at lambda 1e-3 sigma_t = 693.1.
+    p.transmission_color = rgb<T>(T(0.5));
+    p.transmission_scatter = rgb<T>(0);
+    p.transmission_depth = T(1e-3);
+    const auto n = shade::openpbr::transmission_medium(p);
+    CHECK(double(n.sigma_t.x) == doctest::Approx(std::log(2.0) / 1e-3).epsilon(1e-6));
+    CHECK(n.albedo.x == T(0));
+}
+
+TEST_CASE_TEMPLATE("openpbr::dispersed_ior stays in [1e-4, 1e4] for an extreme Abbe number", T, float, double) {
+    // V_d 1e-6: B = 0.5 / (1e-6 (486.1^-2 - 656.3^-2)) ~ 2.6e11 nm^2, so Cauchy's n(780 nm) =
+    // 1.5 - B (587.6^-2 - 780^-2) ~ -3e5: clamped to 1e-4; n(380 nm) ~ +1e6: clamped to 1e4.
+    CHECK(shade::openpbr::dispersed_ior(T(1.5), T(1e-6), T(780)) == T(1e-4));
+    CHECK(shade::openpbr::dispersed_ior(T(1.5), T(1e-6), T(380)) == T(1e4));
+    // n_d at the d line itself, in double (float's 587.6 is 2.4e-5 nm off it, where the
+    // slope -2 B / lambda^3 is -2.6e3 per nm).
+    CHECK(shade::openpbr::dispersed_ior(1.5, 1e-6, 587.6) == doctest::Approx(1.5).epsilon(1e-6));
 }

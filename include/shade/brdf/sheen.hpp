@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <concepts>
+#include <limits>
 #include <optional>
 
 #include <glm/common.hpp>
@@ -240,16 +241,19 @@ private:
 
     // The unit tangent part of v, the x axis of the LTC frame; the shading tangent when v
     // has none (v = n up to rounding), where the lobe is symmetric about n. The part is
-    // projected twice: for v within rounding of n, v - (n·v) n is mostly rounding error
-    // with a normal component as large as its tangent one, and a frame built on it would
-    // not be orthonormal; the second projection leaves a tangent vector (its direction
-    // does not matter there, since b_inv ~ sqrt(1 - mu) -> 0).
+    // projected twice: for v near n, v - (n·v) n carries rounding error along n as large
+    // as epsilon, and a frame built on it would not be orthonormal; the second projection
+    // removes it. When what is left is itself rounding (|x| below 64 epsilon, v within
+    // about 1e-5 rad of n in float), its direction is noise and may even lie along n, so
+    // the shading tangent is used (its direction does not matter there, since b_inv ~
+    // sqrt(1 - mu) -> 0).
     [[nodiscard]] static vec3<T> view_tangent(const vec3<T>& v, T n_dot_v, const surface_point<T>& at) noexcept {
         const vec3<T>& n = at.n();
         const vec3<T> v_t = v - n_dot_v * n;
         const vec3<T> x = v_t - glm::dot(n, v_t) * n;
         const T len2 = glm::dot(x, x);
-        return len2 > T(0) ? x / std::sqrt(len2) : at.shading.t;
+        constexpr T floor = T(64) * std::numeric_limits<T>::epsilon();
+        return len2 > floor * floor ? x / std::sqrt(len2) : at.shading.t;
     }
 
     [[nodiscard]] lobe_at lobe_for(const vec3<T>& l, const vec3<T>& v, const surface_point<T>& at) const noexcept {

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/brdf.hpp>
+#include <shade/brdf/detail/directions.hpp>
 #include <shade/brdf/detail/sampling.hpp>
 #include <shade/brdf/fresnel.hpp>
 #include <shade/brdf/microfacet/distribution.hpp>
@@ -227,14 +228,19 @@ private:
         // stay adjoint to rounding: from v's side (v·m > 0, index ratio side.eta) or from l's
         // (l·m < 0 for a refraction: the two-sided F_dielectric inverts side.eta).
         const T F = F_dielectric(reflected || side.eta >= T(1) ? v_dot_m : l_dot_m, side.eta);
-        const T D_visible = distribution_.G1(v) * v_dot_m * D / cos_v;
+        // |n·l| and n·v floored at machine epsilon in the denominators (detail::cos_floor), as
+        // in microfacet_reflection, so that f and pdf stay finite for grazing directions whose
+        // cosines are tiny or subnormal (their product would round to 0).
+        const T floored_cos_v = detail::floored_cos(cos_v);
+        const T floored_cos_l = detail::floored_cos(glm::abs(cos_l));
+        const T D_visible = distribution_.G1(v) * v_dot_m * D / floored_cos_v;
         if (reflected) {
-            return {F * G * D / (T(4) * cos_l * cos_v), F * D_visible / (T(4) * v_dot_m)};
+            return {F * G * D / (T(4) * floored_cos_l * floored_cos_v), F * D_visible / (T(4) * v_dot_m)};
         }
         const T transmittance = T(1) - F;
         const T denominator = sqr(eta_prime * l_dot_m + v_dot_m);
         const T abs_l_dot_m = -l_dot_m;
-        const T f = abs_l_dot_m * v_dot_m * transmittance * G * D / (-cos_l * cos_v * denominator);
+        const T f = abs_l_dot_m * v_dot_m * transmittance * G * D / (floored_cos_l * floored_cos_v * denominator);
         // dl/dm of the refraction, |l·m| / (l·m + v·m / eta')^2 = eta'^2 |l·m| / denominator.
         const T pdf = transmittance * D_visible * sqr(eta_prime) * abs_l_dot_m / denominator;
         return {f, pdf};

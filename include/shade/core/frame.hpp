@@ -70,9 +70,14 @@ struct frame {
         if (!(glm::length(ortho) > T(1e-3)))
             throw invalid_parameter("tangent", "must not be parallel to the normal",
                                     detail::to_text(tangent));
+        // Projected twice (classical Gram-Schmidt with reorthogonalisation; Giraud, Langou,
+        // Rozloznik 2005, "The loss of orthogonality in the Gram-Schmidt orthogonalization
+        // process"): one projection leaves t off orthogonal by about epsilon / |ortho|, 1e-4
+        // in float for a tangent near the normal; after the second t·n is a few epsilon.
+        const vec3<T> t1 = glm::normalize(ortho);
         frame f;
         f.n = nn;
-        f.t = glm::normalize(ortho);
+        f.t = glm::normalize(t1 - nn * glm::dot(nn, t1));
         f.b = glm::cross(f.n, f.t);
         return f;
     }

@@ -290,22 +290,28 @@ struct homogeneous_medium {
 /// sigma_a shifted up by the grey -min(sigma_a) when a channel is negative, then sigma_t =
 /// sigma_a + sigma_s. lambda = 0 means no medium (present = false; the specification then
 /// uses transmission_color as a tint of the refraction instead). A channel of T = 0 is read
-/// as the smallest normal float (a finite, very large extinction). The caller validates the
-/// parameters.
+/// as the smallest normal number of T (a finite, very large extinction); sigma_t is capped
+/// at the largest finite T (lambda near 0). The caller validates the parameters.
 template <std::floating_point T>
 [[nodiscard]] inline homogeneous_medium<T> transmission_medium(const openpbr_parameters<T>& p) noexcept {
     homogeneous_medium<T> m;
     m.g = p.transmission_scatter_anisotropy;
     if (!(p.transmission_depth > T(0))) return m;
     m.present = true;
+    // The coefficients times lambda first (bounded: -ln of the smallest normal number is
+    // below 745), so that the shift and the albedo do not meet inf - inf for a tiny lambda;
+    // the division by lambda last, the extinction capped at the largest finite T.
     const rgb<T> color = glm::max(p.transmission_color, rgb<T>(std::numeric_limits<T>::min()));
-    const rgb<T> sigma_t = -glm::log(color) / p.transmission_depth;
-    const rgb<T> sigma_s = p.transmission_scatter / p.transmission_depth;
-    rgb<T> sigma_a = sigma_t - sigma_s;
-    const T lowest = glm::min(sigma_a.x, glm::min(sigma_a.y, sigma_a.z));
-    if (lowest < T(0)) sigma_a -= rgb<T>(lowest);
-    m.sigma_t = sigma_a + sigma_s;
-    for (int c = 0; c < 3; ++c) m.albedo[c] = m.sigma_t[c] > T(0) ? glm::min(T(1), sigma_s[c] / m.sigma_t[c]) : T(0);
+    const rgb<T> t_lambda = -glm::log(color);
+    const rgb<T> s_lambda = p.transmission_scatter;
+    rgb<T> a_lambda = t_lambda - s_lambda;
+    const T lowest = glm::min(a_lambda.x, glm::min(a_lambda.y, a_lambda.z));
+    if (lowest < T(0)) a_lambda -= rgb<T>(lowest);
+    const rgb<T> extinction_lambda = a_lambda + s_lambda;
+    for (int c = 0; c < 3; ++c) {
+        m.sigma_t[c] = glm::min(extinction_lambda[c] / p.transmission_depth, std::numeric_limits<T>::max());
+        m.albedo[c] = extinction_lambda[c] > T(0) ? glm::min(T(1), s_lambda[c] / extinction_lambda[c]) : T(0);
+    }
     return m;
 }
 
@@ -352,7 +358,10 @@ template <std::floating_point T>
 ///
 ///     B = (n_d - 1) / (V_d (lambda_F^-2 - lambda_C^-2)),   A = n_d - B / lambda_d^2.
 ///
-/// An infinite V_d returns n_d at every wavelength. The caller guarantees n_d > 0, V_d > 0.
+/// An infinite V_d returns n_d at every wavelength. A very small V_d (strong dispersion)
+/// can take the formula below 0 far from lambda_d: the result is clamped to [1e-4, 1e4],
+/// the indices openpbr_surface works with. The caller guarantees n_d > 0, V_d > 0, and a
+/// wavelength > 0.
 template <std::floating_point T>
 [[nodiscard]] inline T dispersed_ior(T n_d, T abbe, T lambda_nm) noexcept {
     if (std::isinf(abbe)) return n_d;
@@ -360,7 +369,8 @@ template <std::floating_point T>
     const double b = (double(n_d) - 1) / (double(abbe) * (1 / (lambda_f * lambda_f) - 1 / (lambda_c * lambda_c)));
     const double a = double(n_d) - b / (lambda_d * lambda_d);
     const double l = double(lambda_nm);
-    return T(a + b / (l * l));
+    const double n = a + b / (l * l);
+    return T(std::isnan(n) ? double(n_d) : glm::clamp(n, 1e-4, 1e4));
 }
 
 } // namespace openpbr

@@ -302,13 +302,15 @@ public:
         if (p_.geometry_thin_walled) mu = std::abs(mu);
         if (!(mu > T(0))) return rgb<T>(0);
         mu = glm::min(mu, T(1));
-        rgb<T> e = p_.emission_luminance * p_.emission_color * p_.geometry_opacity;
+        // The layers' factor (each in [0, 1]) first and the luminance last, so that a
+        // luminance times colour beyond the largest T gives inf, never inf x 0 = NaN.
+        rgb<T> passed(p_.geometry_opacity);
         if (p_.coat_weight > T(0)) {
             const rgb<T> one_way = glm::sqrt(openpbr::coat_absorption(p_.coat_color, mu, mu, coat_eta_));
-            e *= glm::mix(rgb<T>(1), one_way * (T(1) - coat_albedo(mu)), p_.coat_weight);
+            passed *= glm::mix(rgb<T>(1), one_way * (T(1) - coat_albedo(mu)), p_.coat_weight);
         }
-        e *= T(1) - p_.fuzz_weight * fuzz_albedo(mu);
-        return e;
+        passed *= T(1) - p_.fuzz_weight * fuzz_albedo(mu);
+        return (passed * p_.emission_color) * p_.emission_luminance;
     }
 
     /// BSDF value in 1/sr without the cosine, radiance mode, for l and v on either side
@@ -717,10 +719,13 @@ private:
             density = w ? surface_eval<false, true>(l, v, o.at, *w).pdf : inside_pdf(l, v, o.at);
             value = mode == transport_mode::importance ? f(v, l, original) : p_.geometry_opacity * inside_f(l, v, o.at);
         }
-        if (!(density > T(0)) || !std::isfinite(density)) return std::nullopt;
         const T abs_n_dot_l = std::abs(glm::dot(original.n(), l));
+        // make_brdf_sample's weight stays exact when f and pdf are both subnormal (a subnormal
+        // geometry_opacity scales both); nullopt for a density that is not finite and > 0.
+        const std::optional<brdf_sample<T>> s = detail::make_brdf_sample(l, value, density, abs_n_dot_l);
+        if (!s) return std::nullopt;
         const bool same_side = (glm::dot(original.n(), l) > T(0)) == (glm::dot(original.n(), v) > T(0));
-        return bsdf_sample<T>{l, value, density, value * (abs_n_dot_l / density),
+        return bsdf_sample<T>{l, value, density, s->weight,
                               kind | (same_side ? bsdf_flags::reflection : bsdf_flags::transmission), eta};
     }
 

@@ -11,7 +11,9 @@
 
 #include <cmath>
 #include <concepts>
+#include <limits>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/core/math.hpp>
@@ -31,9 +33,18 @@ struct view_azimuth {
     /// From the view direction in the shading frame (n = +z).
     [[nodiscard]] static view_azimuth of(const vec3<T>& v_local) noexcept {
         const T len2 = v_local.x * v_local.x + v_local.y * v_local.y;
-        if (!(len2 > T(0))) return {};
-        const T inv = T(1) / std::sqrt(len2);
-        return {v_local.x * inv, v_local.y * inv};
+        if (len2 >= std::numeric_limits<T>::min()) {
+            const T inv = T(1) / std::sqrt(len2);
+            return {v_local.x * inv, v_local.y * inv};
+        }
+        // A tangent part so small that its square is subnormal (or 0) would come out of the
+        // division above off unit length: scale it to a largest component of 1 first.
+        const T largest = glm::max(std::abs(v_local.x), std::abs(v_local.y));
+        if (!(largest > T(0))) return {};
+        const T x = v_local.x / largest;
+        const T y = v_local.y / largest;
+        const T inv = T(1) / std::sqrt(x * x + y * y);
+        return {x * inv, y * inv};
     }
     /// w (shading frame) in the lobe frame.
     [[nodiscard]] vec3<T> to_lobe(const vec3<T>& w) const noexcept {
