@@ -21,7 +21,8 @@
 //     finite and >= 0, sample(v, uc, u, at) returns nothing for v not above the surface,
 //     and a sample that is returned has a finite unit l
 //     above the surface (n·l > 0), a finite pdf > 0, f and weight finite and >= 0, and
-//     weight = f |n·l| / pdf (relative 1e-4 per channel, brdf.hpp's contract; +inf allowed
+//     weight = f |n·l| / pdf (relative 1e-4 per channel, brdf.hpp's contract, plus f / pdf
+//     times 32 epsilon for the rounding of a grazing n·l taken in world space; +inf allowed
 //     where that exact value exceeds the largest T, from valid parameters near it);
 //   * situation 7: f (and pdf and sample) are evaluated (ASan/UBSan watch them); nothing is
 //     promised for them.
@@ -183,9 +184,14 @@ void check_sampling(const B& b, const brdf_situation<scalar_of<B>>& s) {
                 weight_overflows = true;
                 weight_ok = weight_ok && x->weight[i] >= T(0); // +inf or huge; not NaN
             } else {
+                // The model's n.l is taken in its local frame; the one here in world space
+                // differs by a few ulps of 1, which matters for a grazing l: 32 epsilon of it.
                 weight_ok = weight_ok && std::isfinite(x->weight[i]) &&
                             std::abs(static_cast<long double>(x->weight[i]) - exact) <=
-                                1e-4L * exact + static_cast<long double>(std::numeric_limits<T>::min());
+                                1e-4L * exact +
+                                    static_cast<long double>(x->f[i]) / x->pdf * 32 *
+                                        static_cast<long double>(std::numeric_limits<T>::epsilon()) +
+                                    static_cast<long double>(std::numeric_limits<T>::min());
             }
         }
     }

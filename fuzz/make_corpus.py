@@ -179,7 +179,8 @@ def bsdfs():
     """fuzz_bsdf_dielectric: head, model byte (0-6), alpha_x, alpha_y, eta, the conductor's
     eta and kappa, a situation. fuzz_bsdf_openpbr: head, thin-walled byte, a situation, then
     edits of the default parameters: parameter byte (index into kParameters), a channel byte
-    for a colour (3: all three), the value."""
+    for a colour (3: all three), the value. fuzz_brdf_lobes: head, model byte (0-4), a colour,
+    a roughness, alpha_x, alpha_y, a situation."""
     sits = {k: SITUATIONS[k] for k in ('generic', 'below_horizon', 'grazing', 'mirror_h_is_n', 'v_is_n',
                                       'sample_grazing_view', 'raw_unnormalised')}
     sits['inside_view'] = situation(0, a=(0.5, 0.25, -1), b=(-0.25, 0.5, -1))
@@ -191,6 +192,17 @@ def bsdfs():
                 write('bsdf_dielectric', f'model{model}_{sname}_{scalar}',
                       byte(head, model) + fx(0.25) + fx(0.125) + fx(1.5) + vec(0.25, 0.875, 1.125) +
                       vec(3.875, 2.375, 2.25) + st)
+    for model in range(5):
+        for roughness in (0, 0.5, 1):
+            for sname, st in sits.items():
+                if sname == 'inside_view':
+                    continue
+                for scalar, head in (('float', 0), ('double', 1)):
+                    if scalar == 'double' and sname != 'generic':
+                        continue
+                    write('brdf_lobes', f'model{model}_r{roughness}_{sname}_{scalar}',
+                          byte(head, model) + vec(0.75, 0.5, 0.25) + fx(roughness) + fx(0.25) + fx(0.125) + st)
+
     def edit(index, value, colour=False):
         return byte(index) + (byte(3) if colour else b'') + (value if isinstance(value, bytes) else fx(value))
     materials = {
