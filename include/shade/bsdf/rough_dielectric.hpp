@@ -4,12 +4,13 @@
 
 #include <cmath>
 #include <concepts>
+#include <limits>
 #include <optional>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/brdf.hpp>
-#include <shade/brdf/detail/directions.hpp>
 #include <shade/brdf/detail/sampling.hpp>
 #include <shade/brdf/fresnel.hpp>
 #include <shade/brdf/microfacet/distribution.hpp>
@@ -228,11 +229,12 @@ private:
         // stay adjoint to rounding: from v's side (v·m > 0, index ratio side.eta) or from l's
         // (l·m < 0 for a refraction: the two-sided F_dielectric inverts side.eta).
         const T F = F_dielectric(reflected || side.eta >= T(1) ? v_dot_m : l_dot_m, side.eta);
-        // |n·l| and n·v floored at machine epsilon in the denominators (detail::cos_floor), as
-        // in microfacet_reflection, so that f and pdf stay finite for grazing directions whose
+        // |n·l| and n·v floored at machine epsilon in the denominators (the cos_floor of
+        // microfacet_reflection), so that f and pdf stay finite for grazing directions whose
         // cosines are tiny or subnormal (their product would round to 0).
-        const T floored_cos_v = detail::floored_cos(cos_v);
-        const T floored_cos_l = detail::floored_cos(glm::abs(cos_l));
+        constexpr T cos_floor = std::numeric_limits<T>::epsilon();
+        const T floored_cos_v = glm::max(cos_v, cos_floor);
+        const T floored_cos_l = glm::max(glm::abs(cos_l), cos_floor);
         const T D_visible = distribution_.G1(v) * v_dot_m * D / floored_cos_v;
         if (reflected) {
             return {F * G * D / (T(4) * floored_cos_l * floored_cos_v), F * D_visible / (T(4) * v_dot_m)};
