@@ -9,12 +9,14 @@
 //     reflection (n.l n.v > 0) and on the other for a transmission (< 0), unless either
 //     cosine is within 8 epsilon of 0 (the model decides in its local frame); eta finite,
 //     > 0, and exactly 1 for a reflection; for a delta sample (flags specular) a pdf that
-//     is a probability in (0, 1] and a finite weight >= 0; for any other sample a finite
+//     is a probability in (0, 1], f finite and >= 0, and a finite weight >= 0 (+inf allowed
+//     where throughput / pdf exceeds the largest T); for any other sample a finite
 //     pdf > 0, f finite and >= 0, and weight = f |n.l| / pdf (relative 1e-4 per channel,
 //     plus f / pdf times 32 epsilon for the rounding of a grazing n.l; +inf allowed where
 //     that exact value exceeds the largest T).
 // In situation 7 everything is evaluated (ASan/UBSan watch it) and nothing is promised.
 
+#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <limits>
@@ -51,7 +53,19 @@ void check_bsdf_sample(const B& b, const brdf_situation<scalar_of<B>>& s, transp
     bool values_ok = false;
     if (is_specular(x->flags)) {
         pdf_ok = std::isfinite(x->pdf) && x->pdf > T(0) && x->pdf <= T(1);
-        values_ok = finite_non_negative(x->weight);
+        // The weight is throughput / pdf, and f = throughput / max(|n.l|, epsilon): +inf is
+        // allowed where that exact quotient exceeds the largest T (a lobe chosen with a
+        // subnormal probability whose throughput is not small).
+        values_ok = finite_non_negative(x->f) && pdf_ok;
+        for (int i = 0; i < 3 && values_ok; ++i) {
+            const long double throughput =
+                static_cast<long double>(x->f[i]) *
+                std::max(static_cast<long double>(std::abs(n_dot_l)),
+                         static_cast<long double>(std::numeric_limits<T>::epsilon()));
+            values_ok = throughput / x->pdf > static_cast<long double>(std::numeric_limits<T>::max())
+                            ? x->weight[i] >= T(0)
+                            : std::isfinite(x->weight[i]) && x->weight[i] >= T(0);
+        }
     } else {
         pdf_ok = std::isfinite(x->pdf) && x->pdf > T(0);
         values_ok = finite_non_negative(x->f) && pdf_ok;
