@@ -432,10 +432,18 @@ private:
     }
 
     /// R_ss for the local view v in medium s (shade::dielectric_reflection_albedo at
-    /// sqrt(alpha_x alpha_y)).
+    /// sqrt(alpha_x alpha_y)); GGX only, as its callers reflectance and transmittance (0 for
+    /// another distribution, whose reflection albedo is not tabulated: the branch keeps the
+    /// class explicitly instantiable for it).
     [[nodiscard]] T single_reflectance(std::size_t s, const vec3<T>& v) const noexcept {
-        const Distribution& d = single_.distribution();
-        return dielectric_reflection_albedo(unchecked, std::abs(v.z), d.alpha_x(), d.alpha_y(), side_[s].eta_s);
+        if constexpr (std::same_as<Distribution, ggx<T>>) {
+            const Distribution& d = single_.distribution();
+            return dielectric_reflection_albedo(unchecked, std::abs(v.z), d.alpha_x(), d.alpha_y(), side_[s].eta_s);
+        } else {
+            (void)s;
+            (void)v;
+            return T(0);
+        }
     }
 
     /// The density of the multiple-scattering lobe's sampler at local l for a view in
