@@ -153,6 +153,24 @@ void show(const brdf_situation<T>& s) {
     show("v", s.v);
 }
 
+/// True when a sample's weight (one channel) is f |n.l| / pdf, the sampling contract of
+/// brdf.hpp and bsdf.hpp: within 1e-4 relative, plus f / pdf times 32 epsilon (the model
+/// takes n.l in its local frame; the one here in world space differs by a few ulps of 1,
+/// which matters for a grazing l), or, where that exact value exceeds the largest T (valid
+/// parameters near it), any weight >= 0 (+inf; not NaN), setting overflows.
+template <std::floating_point T>
+[[nodiscard]] bool weight_agrees(T f, T pdf, T abs_n_dot_l, T weight, bool& overflows) noexcept {
+    const long double exact = static_cast<long double>(f) * abs_n_dot_l / pdf;
+    if (exact > static_cast<long double>(std::numeric_limits<T>::max())) {
+        overflows = true;
+        return weight >= T(0);
+    }
+    return std::isfinite(weight) &&
+           std::abs(static_cast<long double>(weight) - exact) <=
+               1e-4L * exact + static_cast<long double>(f) / pdf * 32 * static_cast<long double>(std::numeric_limits<T>::epsilon()) +
+                   static_cast<long double>(std::numeric_limits<T>::min());
+}
+
 /// Samples b in situation s and checks the sampling contract (see the top of this file).
 template <sampled_brdf B>
 void check_sampling(const B& b, const brdf_situation<scalar_of<B>>& s) {
@@ -178,22 +196,8 @@ void check_sampling(const B& b, const brdf_situation<scalar_of<B>>& s) {
     bool weight_ok = f_ok && pdf_ok;
     bool weight_overflows = false;
     if (weight_ok) {
-        for (int i = 0; i < 3; ++i) {
-            const long double exact = static_cast<long double>(x->f[i]) * std::abs(n_dot_l) / x->pdf;
-            if (exact > static_cast<long double>(std::numeric_limits<T>::max())) {
-                weight_overflows = true;
-                weight_ok = weight_ok && x->weight[i] >= T(0); // +inf or huge; not NaN
-            } else {
-                // The model's n.l is taken in its local frame; the one here in world space
-                // differs by a few ulps of 1, which matters for a grazing l: 32 epsilon of it.
-                weight_ok = weight_ok && std::isfinite(x->weight[i]) &&
-                            std::abs(static_cast<long double>(x->weight[i]) - exact) <=
-                                1e-4L * exact +
-                                    static_cast<long double>(x->f[i]) / x->pdf * 32 *
-                                        static_cast<long double>(std::numeric_limits<T>::epsilon()) +
-                                    static_cast<long double>(std::numeric_limits<T>::min());
-            }
-        }
+        for (int i = 0; i < 3; ++i)
+            weight_ok = weight_ok && weight_agrees(x->f[i], x->pdf, std::abs(n_dot_l), x->weight[i], weight_overflows);
     }
     const bool values_ok = f_ok && (weight_overflows || finite_non_negative(x->weight));
     if (!l_ok || !pdf_ok || !values_ok || !weight_ok) {

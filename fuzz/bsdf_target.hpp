@@ -69,20 +69,9 @@ void check_bsdf_sample(const B& b, const brdf_situation<scalar_of<B>>& s, transp
     } else {
         pdf_ok = std::isfinite(x->pdf) && x->pdf > T(0);
         values_ok = finite_non_negative(x->f) && pdf_ok;
-        for (int i = 0; i < 3 && values_ok; ++i) {
-            const long double exact = static_cast<long double>(x->f[i]) * std::abs(n_dot_l) / x->pdf;
-            if (exact > static_cast<long double>(std::numeric_limits<T>::max()))
-                values_ok = x->weight[i] >= T(0); // +inf or huge; not NaN
-            else
-                // The model's |n.l| is taken in its local frame; the one here in world space
-                // differs by a few ulps of 1, which matters for a grazing l: 32 epsilon of it.
-                values_ok = std::isfinite(x->weight[i]) &&
-                            std::abs(static_cast<long double>(x->weight[i]) - exact) <=
-                                1e-4L * exact +
-                                    static_cast<long double>(x->f[i]) / x->pdf * 32 *
-                                        static_cast<long double>(std::numeric_limits<T>::epsilon()) +
-                                    static_cast<long double>(std::numeric_limits<T>::min());
-        }
+        bool overflows = false;
+        for (int i = 0; i < 3 && values_ok; ++i)
+            values_ok = weight_agrees(x->f[i], x->pdf, std::abs(n_dot_l), x->weight[i], overflows);
     }
     if (!l_ok || !flags_ok || !side_ok || !eta_ok || !pdf_ok || !values_ok) {
         show(s);
