@@ -438,21 +438,22 @@ TEST_CASE("bvh collapse: a perfect binary tree fills its wide nodes from the lea
 }
 
 // memory_bytes counts the nodes and the leaf data as allocated. One triangle: one node
-// (128 bytes with four children, 256 with eight) and, batched, one leaf block of 640 bytes
-// (float: the batch's 12 arrays of 8 floats and its 8-byte count padded to 32 bytes, 416,
-// then 8 lanes of v1, v2 (24 bytes) and an index (4), 224); for watertight leaves, the
+// (128 bytes with four children, 256 with eight) and, batched, one leaf block of 320 bytes
+// (float: the vertices v0, v1, v2 as 9 arrays of 8 floats, 288, then 8 indices of 4 bytes,
+// 32: five cache lines; double: 9 arrays of 4 doubles, 288, 4 indices, 16, padded to a
+// multiple of 64); for watertight leaves, the
 // triangle (36 bytes in float) and its index (4). bvh: the node and one index.
 TEST_CASE("memory_bytes: nodes and leaf data, with no unused capacity") {
     const std::vector<shade::triangle<float>> one{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}};
-    CHECK(shade::triangle_bvh<float>::leaf_bytes == 640);
-    CHECK(shade::triangle_bvh<double>::leaf_bytes == 640); // 416 + 4 lanes x 56 bytes
-    CHECK(shade::triangle_bvh<float>(one, shade::bvh_width::four).memory_bytes() == 128 + 640);
+    CHECK(shade::triangle_bvh<float>::leaf_bytes == 320);
+    CHECK(shade::triangle_bvh<double>::leaf_bytes == 320);
+    CHECK(shade::triangle_bvh<float>(one, shade::bvh_width::four).memory_bytes() == 128 + 320);
     CHECK(shade::triangle_bvh<float, shade::watertight>(one, shade::bvh_width::four).memory_bytes() ==
           128 + 36 + 4);
     const std::vector<shade::aabb<float>> box{shade::bounds(one[0])};
     CHECK(shade::bvh<float>(box, shade::bvh_width::four).memory_bytes() == 128 + 4);
     if (shade::detail::bvh_node_width(8) == 8)
-        CHECK(shade::triangle_bvh<float>(one, shade::bvh_width::eight).memory_bytes() == 256 + 640);
+        CHECK(shade::triangle_bvh<float>(one, shade::bvh_width::eight).memory_bytes() == 256 + 320);
     // Many triangles: the nodes are allocated exactly (node_count of them), and the leaf
     // blocks number at least ceil(n / 8).
     shade::rng g(5);
@@ -461,8 +462,8 @@ TEST_CASE("memory_bytes: nodes and leaf data, with no unused capacity") {
         const shade::triangle_bvh<float> accel(tris, width);
         const std::size_t node_bytes = accel.node_count() * (accel.node_width() == 8 ? 256 : 128);
         const std::size_t leaf_bytes = accel.memory_bytes() - node_bytes;
-        CHECK(leaf_bytes % 640 == 0);
-        CHECK(leaf_bytes / 640 >= (tris.size() + 7) / 8);
+        CHECK(leaf_bytes % 320 == 0);
+        CHECK(leaf_bytes / 320 >= (tris.size() + 7) / 8);
         const shade::triangle_bvh<float, shade::watertight> tight(tris, width);
         CHECK(tight.memory_bytes() == tight.node_count() * (tight.node_width() == 8 ? 256 : 128) + tris.size() * 40);
     }

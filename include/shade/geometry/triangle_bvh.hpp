@@ -66,6 +66,7 @@ public:
 
 private:
     static constexpr std::size_t batch_width = 32 / sizeof(T);
+    using leaf_vertices = detail::vertex_batch<T, batch_width>;
 
 public:
 
@@ -96,10 +97,9 @@ public:
         const auto leaf = [&](std::uint32_t first, std::uint32_t count, auto avx) SHADE_DETAIL_LEAF_INLINE {
             if constexpr (batched) {
                 for (std::uint32_t b = first; b < first + count; ++b) {
-                    // The hit record's lines, fetched with the batch's (the lane is not
+                    // The line of the indices, fetched with the batch's (the lane is not
                     // known yet): one latency for both in a hierarchy beyond the caches.
-                    for (std::size_t q = 0; q < sizeof leaves_[b].lane; q += 64)
-                        detail::bvh_prefetch(reinterpret_cast<const char*>(leaves_[b].lane.data()) + q);
+                    detail::bvh_prefetch(leaves_[b].id.data());
                     const auto hits = test(r, leaves_[b].batch, cull, avx);
                     if (hits.hit_bits == 0) continue;
                     const std::size_t lane = *hits.closest(); // every hit has t <= r.t_max
@@ -125,9 +125,7 @@ public:
         if constexpr (batched) {
             const leaf_batch& b = leaves_[best / leaf_width];
             const std::size_t lane = best % leaf_width;
-            const auto& v0 = detail::batch_access<T, batch_width>::v0(b.batch);
-            const triangle<T> tri{vec3<T>(v0.x[lane], v0.y[lane], v0.z[lane]), b.lane[lane].v1, b.lane[lane].v2};
-            return primitive_hit<triangle_hit<T>>{b.lane[lane].id, make_hit(tri, x)};
+            return primitive_hit<triangle_hit<T>>{b.id[lane], make_hit(b.batch.get(lane), x)};
         } else {
             return primitive_hit<triangle_hit<T>>{ids_[best], make_hit(triangles_[best], x)};
         }
@@ -197,35 +195,38 @@ private:
         }
     }
 
-    /// shade::intersect(r, batch, cull), or, in the walk compiled for AVX (Avx; it runs
-    /// only where the CPU has AVX), the AVX kernel itself, inlined there like this
-    /// function and the leaf lambdas (SHADE_DETAIL_LEAF_INLINE): no test of the CPU and no
-    /// call per leaf. The same bits either way (the kernel's lanes agree bit for bit).
+    /// The batch kernel on a leaf's vertex batch (detail/triangle_batch_kernel.hpp), as
+    /// shade::intersect(r, triangle_batch) runs it (chosen at run time where the build
+    /// dispatches, see shade/geometry/triangle_batch.hpp), or, in the walk compiled for AVX
+    /// (Avx; it runs only where the CPU has AVX), the AVX kernel itself, inlined there like
+    /// this function and the leaf lambdas (SHADE_DETAIL_LEAF_INLINE): no test of the CPU
+    /// and no call per leaf. The same bits either way (the kernel's lanes agree bit for
+    /// bit), and triangle_batch's on the same triangles.
     template <bool Avx>
     [[nodiscard]] SHADE_DETAIL_LEAF_INLINE static triangle_batch_hits<T, batch_width>
-    test(const ray<T>& r, const triangle_batch<T, batch_width>& batch, culling cull, std::bool_constant<Avx>) noexcept {
+    test(const ray<T>& r, const leaf_vertices& batch, culling cull, std::bool_constant<Avx>) noexcept {
 #if defined(__GNUC__) && defined(__x86_64__)
         if constexpr (Avx) return detail::intersect_batch<detail::vector_lanes<T, 32>>(r, batch, cull);
+        if constexpr (detail::batch_dispatch_at_run_time) {
+            if (detail::cpu_has_avx()) return detail::intersect_batch_avx(r, batch, cull);
+            return detail::intersect_batch_baseline(r, batch, cull);
+        }
 #endif
-        return intersect(r, batch, cull);
+        return detail::intersect_batch<detail::default_lanes<T, batch_width>>(r, batch, cull);
     }
 
-    /// One batch test of a leaf and, next to it, what a hit on it needs besides the batch's
-    /// own v0: each lane's other two vertices and its triangle's index in the list given
-    /// (a partly filled batch repeats its last triangle). A closest hit then reads a line
-    /// of the block whose batch it has just tested, not a lookup in separate arrays.
-    struct lane_record {
-        vec3<T> v1, v2;   // v0 is in the batch, exactly as given
-        std::uint32_t id; // index in the list given
-    };
+    /// One batch test of a leaf (its triangles' vertices, which also make the hit record)
+    /// and, next to it, each lane's index in the list given (a partly filled batch repeats
+    /// its last index). A closest hit then reads the block whose batch it has just tested,
+    /// not a lookup in separate arrays.
     struct alignas(64) leaf_batch { // the batch's arrays start a cache line
-        triangle_batch<T, batch_width> batch;
-        std::array<lane_record, batch_width> lane;
+        leaf_vertices batch;
+        std::array<std::uint32_t, batch_width> id; // index in the list given
     };
 
 public:
-    /// Bytes of a leaf block (batched only, else 0): the batch (416) and the lanes' v1, v2
-    /// and index (8 x 28 in float, 4 x 56 in double), a multiple of 64: 640.
+    /// Bytes of a leaf block (batched only, else 0): the vertices (9 arrays of 32 bytes: 288)
+    /// and the lanes' indices (8 x 4 in float, 4 x 4 in double), a multiple of 64: 320.
     static constexpr std::size_t leaf_bytes = batched ? sizeof(leaf_batch) : 0;
 
 private:
@@ -264,9 +265,9 @@ private:
                         detail::bvh_prefetch(&triangles[ids_[ahead < ids_.size() ? ahead : ids_.size() - 1]]);
                         const std::uint32_t id = ids_[i + (j < n ? j : n - 1)];
                         tri[j] = triangles[id];
-                        b.lane[j] = {tri[j].v1, tri[j].v2, id};
+                        b.id[j] = id;
                     }
-                    b.batch = triangle_batch<T, batch_width>(std::span<const triangle<T>>(tri.data(), n));
+                    b.batch = leaf_vertices(tri.data(), n);
                 }
         });
         std::vector<std::uint32_t>().swap(ids_); // frees it (= {} would keep the capacity)

@@ -17,18 +17,18 @@ namespace shade::detail {
 /// flags of the including file: the x86-64 baseline (SSE2) holds only 4 floats per step.
 /// Called only where the CPU and the OS support AVX (cpu_has_avx). Without FMA (AVX does
 /// not imply it) every lane performs the same IEEE operations as the SSE2 and scalar
-/// forms, so the results are the same bits.
-template <std::floating_point T, std::size_t N>
+/// forms, so the results are the same bits. Batch: triangle_batch or vertex_batch.
+template <template <class, std::size_t> class Batch, std::floating_point T, std::size_t N>
 [[gnu::target("avx")]] [[nodiscard]] triangle_batch_hits<T, N>
-intersect_batch_avx(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull) noexcept {
+intersect_batch_avx(const ray<T>& r, const Batch<T, N>& batch, culling cull) noexcept {
     return intersect_batch<vector_lanes<T, step_bytes<T, N, 32>()>>(r, batch, cull);
 }
 
 /// The baseline kernel as a function of its own, so that shade::intersect stays a small
 /// dispatcher that jumps to one kernel or the other.
-template <std::floating_point T, std::size_t N>
+template <template <class, std::size_t> class Batch, std::floating_point T, std::size_t N>
 [[gnu::noinline]] [[nodiscard]] triangle_batch_hits<T, N>
-intersect_batch_baseline(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull) noexcept {
+intersect_batch_baseline(const ray<T>& r, const Batch<T, N>& batch, culling cull) noexcept {
     return intersect_batch<default_lanes<T, N>>(r, batch, cull);
 }
 

@@ -3,7 +3,9 @@
 // and the lane operations the kernel needs), and scalar_lanes, its portable one-lane-at-a-
 // time form. shade/geometry/triangle_batch.hpp holds the public types and picks the lanes
 // (the vector backends are triangle_batch_vector.hpp, triangle_batch_avx.hpp and
-// triangle_batch_avx512.hpp next to this file).
+// triangle_batch_avx512.hpp next to this file). The kernel also runs on vertex_batch, the
+// triangles as their vertices only (shade::triangle_bvh's leaves), forming the edges and
+// the normal that triangle_batch stores.
 //
 // The division is deferred: each lane first computes the numerators U, V, W of the
 // barycentrics and det, and decides hit or miss from their signs exactly as the scalar
@@ -11,7 +13,8 @@
 // divided out, all lanes of the step at once, so a ray that misses the whole batch (the
 // common case in a bounding-volume hierarchy) divides nothing. With the normal stored,
 // each lane does 18 multiplications and 14 additions before that decision, against 24
-// and 19 for the paper's P = d x e2, Q = s x e1 arrangement.
+// and 19 for the paper's P = d x e2, Q = s x e1 arrangement (a vertex_batch adds the 6
+// multiplications and 9 subtractions of the edges and the normal).
 
 #include <array>
 #include <cmath>
@@ -25,6 +28,7 @@
 #include <shade/core/math.hpp>
 #include <shade/geometry/hit.hpp>
 #include <shade/geometry/ray.hpp>
+#include <shade/geometry/triangle.hpp>
 
 namespace shade {
 
@@ -57,6 +61,44 @@ struct batch_access {
     static const auto& a(const batch& b) noexcept { return b.a_; }
     static const auto& e2(const batch& b) noexcept { return b.e2_; }
     static const auto& m(const batch& b) noexcept { return b.m_; }
+};
+
+/// Up to N triangles as their vertices only, structure-of-arrays (v0, v1, v2: 9 N
+/// scalars, 36 bytes a triangle in float), for shade::triangle_bvh's leaves: three
+/// quarters of a triangle_batch, which also stores the edges and the normal. The kernel
+/// forms those from the vertices at each test with the scalar code's operations (6
+/// multiplications and 9 subtractions a lane), so it gives triangle_batch's bits. Lanes
+/// past the count are zero: their edges and normal are zero, det = 0, never hit.
+template <std::floating_point T, std::size_t N>
+struct alignas(batch_array_alignment<T, N>()) vertex_batch {
+    using scalar_type = T;
+    static constexpr std::size_t width = N;
+    struct soa3 {
+        std::array<T, N> x{}, y{}, z{};
+    };
+    soa3 v0, v1, v2;
+
+    vertex_batch() noexcept = default;
+    /// Packs tris[i] into lane i, for i < count <= N (a precondition).
+    vertex_batch(const triangle<T>* tris, std::size_t count) noexcept {
+        for (std::size_t i = 0; i < count && i < N; ++i) {
+            set(v0, i, tris[i].v0);
+            set(v1, i, tris[i].v1);
+            set(v2, i, tris[i].v2);
+        }
+    }
+    /// The triangle of lane i, exactly as packed.
+    [[nodiscard]] triangle<T> get(std::size_t i) const noexcept {
+        return {vec3<T>(v0.x[i], v0.y[i], v0.z[i]), vec3<T>(v1.x[i], v1.y[i], v1.z[i]),
+                vec3<T>(v2.x[i], v2.y[i], v2.z[i])};
+    }
+
+private:
+    static void set(soa3& a, std::size_t i, const vec3<T>& v) noexcept {
+        a.x[i] = v.x;
+        a.y[i] = v.y;
+        a.z[i] = v.z;
+    }
 };
 
 /// One lane at a time: the portable form of the batch kernel (any compiler), and the
@@ -100,26 +142,55 @@ SHADE_DETAIL_BATCH_INLINE void load_xyz(typename L::vec& x, typename L::vec& y, 
     L::load(z, &a.z[i]);
 }
 
+/// Lanes i .. i + L::width - 1 of a triangle_batch: v0 (p), a = v0 - v1 (f), e2 = v2 - v0
+/// (g) and m = a x e2, as stored (x, y, z of each).
+template <class L, std::floating_point T, std::size_t N, class V = typename L::vec>
+SHADE_DETAIL_BATCH_INLINE void load_step(const triangle_batch<T, N>& batch, std::size_t i, V& p_x, V& p_y, V& p_z,
+                                         V& f_x, V& f_y, V& f_z, V& g_x, V& g_y, V& g_z, V& m_x, V& m_y,
+                                         V& m_z) noexcept {
+    using access = batch_access<T, N>;
+    load_xyz<L>(p_x, p_y, p_z, access::v0(batch), i);
+    load_xyz<L>(m_x, m_y, m_z, access::m(batch), i);
+    load_xyz<L>(f_x, f_y, f_z, access::a(batch), i);
+    load_xyz<L>(g_x, g_y, g_z, access::e2(batch), i);
+}
+
+/// The same lanes of a vertex_batch, the edges and the normal formed as the scalar code
+/// and triangle_batch's packing form them: a = v0 - v1, e2 = v2 - v0 and GLM's
+/// cross(a, e2) = (a.y e2.z - e2.y a.z, a.z e2.x - e2.z a.x, a.x e2.y - e2.x a.y).
+template <class L, std::floating_point T, std::size_t N, class V = typename L::vec>
+SHADE_DETAIL_BATCH_INLINE void load_step(const vertex_batch<T, N>& batch, std::size_t i, V& p_x, V& p_y, V& p_z,
+                                         V& f_x, V& f_y, V& f_z, V& g_x, V& g_y, V& g_z, V& m_x, V& m_y,
+                                         V& m_z) noexcept {
+    V s_x, s_y, s_z, w_x, w_y, w_z;
+    load_xyz<L>(p_x, p_y, p_z, batch.v0, i);
+    load_xyz<L>(s_x, s_y, s_z, batch.v1, i);
+    load_xyz<L>(w_x, w_y, w_z, batch.v2, i);
+    f_x = p_x - s_x;
+    f_y = p_y - s_y;
+    f_z = p_z - s_z;
+    g_x = w_x - p_x;
+    g_y = w_y - p_y;
+    g_z = w_z - p_z;
+    m_x = f_y * g_z - g_y * f_z;
+    m_y = f_z * g_x - g_z * f_x;
+    m_z = f_x * g_y - g_x * f_y;
+}
+
 /// The batch kernel behind shade::intersect(ray, triangle_batch) (see there), L::width
 /// lanes per step with the lane operations of L (scalar_lanes or vector_lanes). Each
 /// lane goes through the same IEEE operations whatever L is, so every L gives the same
-/// bits.
-template <class L, std::floating_point T, std::size_t N>
+/// bits. Batch is triangle_batch<T, N> or vertex_batch<T, N> (see load_step).
+template <class L, template <class, std::size_t> class Batch, std::floating_point T, std::size_t N>
 [[nodiscard]] SHADE_DETAIL_BATCH_INLINE triangle_batch_hits<T, N>
-intersect_batch(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull) noexcept {
+intersect_batch(const ray<T>& r, const Batch<T, N>& batch, culling cull) noexcept {
     static_assert(N % L::width == 0, "the lane step must divide the batch width");
     using vec = typename L::vec;
     using mask = typename L::mask;
-    using access = batch_access<T, N>;
     // The one test of the ray itself, which the scalar code makes per hit (t_accepted);
     // a non-finite or zero origin or direction needs none (see moller_trumbore).
     if (!(r.t_min >= T(0))) return {};
     triangle_batch_hits<T, N> out{every_lane_written{}}; // the loop below writes every lane
-
-    const auto& v0 = access::v0(batch);
-    const auto& av = access::a(batch);
-    const auto& e2 = access::e2(batch);
-    const auto& mv = access::m(batch);
 
     vec o_x, o_y, o_z, d_x, d_y, d_z, zero, largest, t_lo, t_hi, inf;
     L::splat(o_x, r.origin.x);
@@ -146,11 +217,8 @@ intersect_batch(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull
         // The scalar code's dot and cross products in GLM's order,
         // cross(a, b) = (a.y b.z - b.y a.z, a.z b.x - b.z a.x, a.x b.y - b.x a.y) and
         // dot(a, b) = (a.x b.x + a.y b.y) + a.z b.z; flip_sign(x, det) is x * sign(det).
-        vec p_x, p_y, p_z, m_x, m_y, m_z, f_x, f_y, f_z, g_x, g_y, g_z;
-        load_xyz<L>(p_x, p_y, p_z, v0, i);
-        load_xyz<L>(m_x, m_y, m_z, mv, i);
-        load_xyz<L>(f_x, f_y, f_z, av, i);
-        load_xyz<L>(g_x, g_y, g_z, e2, i);
+        vec p_x, p_y, p_z, f_x, f_y, f_z, g_x, g_y, g_z, m_x, m_y, m_z;
+        load_step<L>(batch, i, p_x, p_y, p_z, f_x, f_y, f_z, g_x, g_y, g_z, m_x, m_y, m_z);
         const vec q_x = p_x - o_x;
         const vec q_y = p_y - o_y;
         const vec q_z = p_z - o_z;
