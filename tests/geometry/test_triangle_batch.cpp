@@ -61,11 +61,21 @@ void check_against_scalar(const shade::ray<T>& r, const shade::triangle_batch<T,
     std::vector<shade::triangle_batch_hits<T, N>> forms{
         shade::detail::intersect_batch<shade::detail::scalar_lanes<T>>(r, batch, cull),
         shade::detail::intersect_batch<shade::detail::default_lanes<T, N>>(r, batch, cull)};
+    // The same triangles as vertices only (detail::vertex_batch, shade::triangle_bvh's
+    // leaves), whose edges and normal the kernel forms itself: the same bits in every form.
+    const shade::detail::vertex_batch<T, N> vertices(tris.data(), batch.size());
+    forms.push_back(shade::detail::intersect_batch<shade::detail::scalar_lanes<T>>(r, vertices, cull));
+    forms.push_back(shade::detail::intersect_batch<shade::detail::default_lanes<T, N>>(r, vertices, cull));
 #if defined(__GNUC__) && defined(__x86_64__)
-    if (shade::detail::cpu_has_avx()) forms.push_back(shade::detail::intersect_batch_avx(r, batch, cull));
+    if (shade::detail::cpu_has_avx()) {
+        forms.push_back(shade::detail::intersect_batch_avx(r, batch, cull));
+        forms.push_back(shade::detail::intersect_batch_avx(r, vertices, cull));
+    }
     if constexpr (shade::detail::whole_avx512_steps<T, N>) {
-        if (shade::detail::cpu_has_avx512f())
+        if (shade::detail::cpu_has_avx512f()) {
             forms.push_back(shade::detail::intersect_batch_avx512(r, batch, cull));
+            forms.push_back(shade::detail::intersect_batch_avx512(r, vertices, cull));
+        }
     }
 #endif
     for (const auto& form : forms) {

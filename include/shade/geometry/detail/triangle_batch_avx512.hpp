@@ -261,9 +261,10 @@ struct avx512_lanes {
 
 /// The kernel with 64-byte steps (avx512_lanes), compiled for AVX-512F. Called only where
 /// the CPU and the OS support AVX-512F (cpu_has_avx512f) and whole_avx512_steps<T, N>.
-template <std::floating_point T, std::size_t N>
+/// Batch: triangle_batch or vertex_batch.
+template <template <class, std::size_t> class Batch, std::floating_point T, std::size_t N>
 [[gnu::target("avx512f")]] [[nodiscard]] triangle_batch_hits<T, N>
-intersect_batch_avx512(const ray<T>& r, const triangle_batch<T, N>& batch, culling cull) noexcept {
+intersect_batch_avx512(const ray<T>& r, const Batch<T, N>& batch, culling cull) noexcept {
     return intersect_batch<avx512_lanes<T>>(r, batch, cull);
 }
 
