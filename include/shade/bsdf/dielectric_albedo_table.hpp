@@ -166,14 +166,17 @@ template <std::floating_point T>
 ///     entering:    (2 c + q(mu)) / 3
 ///     below mu_c:  (t_below(mu) + 1/2 - r(mu_c - mu) / (2 r(mu_c))) / 2
 ///     above mu_c:  1/2 + (sqrt(d / (1 - mu_c)) + r(d) / r(1 - mu_c) + q(mu)) / 6,   d = mu - mu_c
-template <std::floating_point T>
-[[nodiscard]] inline T dielectric_albedo_view(T mu, T alpha, T eta_hat, std::size_t side,
-                                              bool near_critical = false) noexcept {
-    const T eta_s = side == 0 ? eta_hat : T(1) / eta_hat;
+///
+/// F(mu, eta_s), eta_s = eta_hat on side 0 and 1 / eta_hat on side 1, comes from the
+/// callable fresnel_at(), called only where the coordinate reads it (for a caller that has
+/// F at mu already); dielectric_albedo_view computes it.
+template <std::floating_point T, class FresnelAt>
+[[nodiscard]] inline T dielectric_albedo_view_with(T mu, T alpha, T eta_hat, std::size_t side, bool near_critical,
+                                                   FresnelAt&& fresnel_at) noexcept {
     // q(mu): 1 - F normalised to [0, 1] (F(1) = f0 < 1 for the eta_hat of the grids).
-    const auto q = [eta_s, eta_hat](T m) {
+    const auto q = [eta_hat, &fresnel_at](T) {
         const T f0 = sqr((eta_hat - T(1)) / (eta_hat + T(1)));
-        return glm::clamp((T(1) - F_dielectric(m, eta_s)) / (T(1) - f0), T(0), T(1));
+        return glm::clamp((T(1) - T(fresnel_at())) / (T(1) - f0), T(0), T(1));
     };
     if (side == 0) return near_critical ? (T(2) * albedo_grid_c(mu, alpha) + q(mu)) / T(3) : albedo_grid_c(mu, alpha);
     const T mu_c = std::sqrt(glm::max(T(1) - T(1) / (eta_hat * eta_hat), T(0)));
@@ -188,6 +191,16 @@ template <std::floating_point T>
     const T below = (T(2) * s(mu) / s(mu_c) + std::sqrt(x) + x) / T(8);
     if (!near_critical) return below;
     return T(0.5) * (below + T(0.5) - T(0.5) * r(mu_c - mu) / r(mu_c));
+}
+
+/// The view coordinate of dielectric_albedo_view_with, F_dielectric(mu, eta_s) computed
+/// where it is read.
+template <std::floating_point T>
+[[nodiscard]] inline T dielectric_albedo_view(T mu, T alpha, T eta_hat, std::size_t side,
+                                              bool near_critical = false) noexcept {
+    const T eta_s = side == 0 ? eta_hat : T(1) / eta_hat;
+    return dielectric_albedo_view_with(mu, alpha, eta_hat, side, near_critical,
+                                       [mu, eta_s] { return F_dielectric(mu, eta_s); });
 }
 
 /// The view cosine at coordinate t in [0, 1] (the inverse of dielectric_albedo_view), by

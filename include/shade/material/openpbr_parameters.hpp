@@ -201,12 +201,11 @@ template <std::floating_point T>
     return T(1) - (T(1) - dielectric_fresnel_average(eta_c)) / (eta_c * eta_c);
 }
 
-/// coat_darkening_factor (below) with K_r = coat_rough_reflection(eta_c) given, for a caller
-/// that evaluates it at many views of one coat.
+/// coat_darkening_factor (below) with both of its reflectances given, K_s = F(mu_o, eta_c)
+/// and K_r = coat_rough_reflection(eta_c), for a caller that has F at the view already.
 template <std::floating_point T>
-[[nodiscard]] inline rgb<T> coat_darkening_factor(const rgb<T>& base_albedo, T eta_c, T k_r, T mu_o, T r_b,
-                                                  T coat_weight, T coat_darkening) noexcept {
-    const T k_s = F_dielectric(mu_o, eta_c);
+[[nodiscard]] inline rgb<T> coat_darkening_factor_of_reflectances(const rgb<T>& base_albedo, T k_s, T k_r, T r_b,
+                                                                  T coat_weight, T coat_darkening) noexcept {
     const T k = glm::mix(k_s, k_r, r_b);
     // A coat that reflects all diffuse light back (K = 1) over a white base (E_b = 1) is
     // 0 / 0: the limit of Delta as E_b -> 1 is 1 (a white base loses nothing), taken there.
@@ -216,6 +215,15 @@ template <std::floating_point T>
         if (denominator > T(0)) delta[c] = (T(1) - k) / denominator;
     }
     return glm::mix(rgb<T>(1), delta, coat_weight * coat_darkening);
+}
+
+/// coat_darkening_factor (below) with K_r = coat_rough_reflection(eta_c) given, for a caller
+/// that evaluates it at many views of one coat.
+template <std::floating_point T>
+[[nodiscard]] inline rgb<T> coat_darkening_factor(const rgb<T>& base_albedo, T eta_c, T k_r, T mu_o, T r_b,
+                                                  T coat_weight, T coat_darkening) noexcept {
+    return coat_darkening_factor_of_reflectances(base_albedo, F_dielectric(mu_o, eta_c), k_r, r_b, coat_weight,
+                                                 coat_darkening);
 }
 
 /// Section "Coat", "Darkening", equations general_darkening_formula,

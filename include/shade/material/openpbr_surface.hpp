@@ -387,6 +387,7 @@ private:
     // What the mixture's weights need at the view v (above the surface of `at`).
     struct view {
         T mu = 0;                          // n·v, in (0, 1]
+        vec3<T> v_local{0, 0, 1};          // v in the shading frame
         T fuzz_keep = 1;                   // 1 - F E_fuzz(mu)
         T coat_albedo = 0;                 // E_coat(mu)
         rgb<T> darkening{1};               // D, per channel
@@ -481,6 +482,7 @@ private:
     [[nodiscard]] view view_at(const vec3<T>& v, const surface_point<T>& at, bool probabilities = true) const noexcept {
         view w;
         w.mu = glm::min(glm::dot(at.n(), v), T(1));
+        w.v_local = at.shading.to_local(v);
         const T F = p_.fuzz_weight;
         const T C = p_.coat_weight;
         const T M = p_.base_metalness;
@@ -489,17 +491,22 @@ private:
         const T e_fuzz = fuzz_albedo(w.mu);
         w.fuzz_keep = T(1) - F * e_fuzz;
         if (C > T(0)) {
-            w.coat_albedo = coat_albedo(w.mu, at.shading.to_local(v));
-            w.darkening = openpbr::coat_darkening_factor(base_albedo_, coat_eta_, coat_rough_reflection_, w.mu,
-                                                         base_roughness_estimate_, C, p_.coat_darkening);
+            // F(mu, eta_c), computed once: the smooth coat's albedo, the rough coat's
+            // albedo table's own Fresnel term, and the darkening's K_s.
+            const T fresnel = F_dielectric(w.mu, coat_eta_);
+            w.coat_albedo = coat_ && coat_anisotropic_ ? coat_albedo_anisotropic_.at(w.v_local)
+                            : coat_                    ? coat_albedo_.at(w.mu, fresnel)
+                                                       : fresnel;
+            w.darkening = openpbr::coat_darkening_factor_of_reflectances(
+                base_albedo_, fresnel, coat_rough_reflection_, base_roughness_estimate_, C, p_.coat_darkening);
         }
         if (M < T(1)) {
-            w.specular_albedo = specular_albedo(w.mu, at.shading.to_local(v));
+            w.specular_albedo = specular_albedo(w.mu, w.v_local);
             if (transmission_ && Tw > T(0)) {
                 w.transmission_view = transmission_->prepare(v, at);
                 const T e_s = w.transmission_view.albedo;
                 const T r_ss = transmission_anisotropic_
-                                   ? transmission_reflection_anisotropic_.at(at.shading.to_local(v))
+                                   ? transmission_reflection_anisotropic_.at(w.v_local)
                                : transmission_reflection_is_specular_ ? w.specular_albedo.x
                                                                       : transmission_reflection_.at(w.mu);
                 w.transmittance = glm::max(e_s - r_ss + transmission_->transmitted_share(false) * (T(1) - e_s),
@@ -604,7 +611,7 @@ private:
         const T S = p_.subsurface_weight;
         const auto p = [&](lobe k) { return with_pdf ? w.p[std::size_t(k)] : T(0); };
         const vec3<T> l_local = at.shading.to_local(l);
-        const vec3<T> v_local = at.shading.to_local(v);
+        const vec3<T>& v_local = w.v_local;
         rgb<T> top(0), lobe_f(0);
         if (fuzz_) {
             if constexpr (with_f) top += p_.fuzz_weight * fuzz_->f(l, v, at);
@@ -751,7 +758,7 @@ private:
             using model_type = std::remove_cvref_t<decltype(model)>;
             vec3<T> l;
             if constexpr (requires { typename model_type::scattering_type; }) {
-                const vec3<T> v_local = at.shading.to_local(v);
+                const vec3<T>& v_local = w.v_local;
                 if (!(v_local.z > T(0))) return std::nullopt;
                 bool from_cosine = false;
                 if constexpr (std::derived_from<typename model_type::scattering_type, kulla_conty>)

@@ -82,8 +82,28 @@ public:
     /// The table at view cosine mu (clamped to [0, 1]), not clamped.
     [[nodiscard]] T at(T mu) const noexcept {
         const T m = glm::clamp(mu, T(0), T(1));
-        const auto c = albedo_grid_locate(
-            dielectric_albedo_view(m, cell_.alpha_clamped, cell_.eta_clamped, cell_.side, near_critical_), MuNodes);
+        return at_coordinate(
+            dielectric_albedo_view(m, cell_.alpha_clamped, cell_.eta_clamped, cell_.side, near_critical_));
+    }
+
+    /// at(mu) for a caller that has fresnel = F_dielectric(m, eta_s) already, m = mu clamped
+    /// to [0, 1] and eta_s the cell's clamped index (eta_clamped on side 0, 1 / eta_clamped
+    /// on side 1), which the view coordinate reads (dielectric_albedo_view_with).
+    [[nodiscard]] T at(T mu, T fresnel) const noexcept {
+        const T m = glm::clamp(mu, T(0), T(1));
+        return at_coordinate(dielectric_albedo_view_with(m, cell_.alpha_clamped, cell_.eta_clamped, cell_.side,
+                                                         near_critical_, [fresnel] { return fresnel; }));
+    }
+
+    /// The cell's clamped index ratio eta_s the view coordinate's Fresnel term is taken at.
+    [[nodiscard]] T view_eta() const noexcept {
+        return cell_.side == 0 ? cell_.eta_clamped : T(1) / cell_.eta_clamped;
+    }
+
+private:
+    // The spline along the row at the view coordinate t.
+    [[nodiscard]] T at_coordinate(T t) const noexcept {
+        const auto c = albedo_grid_locate(t, MuNodes);
         const std::size_t last = MuNodes - 1;
         const std::size_t middle = cell_.side == 1 && last % 2 == 0 ? last / 2 : last;
         const std::size_t lo = c.i < middle ? 0 : middle;
@@ -91,7 +111,6 @@ public:
         return catmull_rom_axis<T>([this](std::size_t i) { return row_[i]; }, c.i, lo, hi, c.t);
     }
 
-private:
     dielectric_albedo_cell<T> cell_{};
     T row_[MuNodes]{};
     bool near_critical_ = false;
@@ -115,18 +134,29 @@ public:
         row_ = dielectric_albedo_row<T, dielectric_reflection_albedo_grid.mu_nodes>(
             ggx_rough_dielectric_reflection_albedo, grid, cell);
         if (eta_hat < T(grid.eta_min)) scale_ = (eta_hat - T(1)) / T(grid.eta_min - 1);
+        view_reads_fresnel_ = row_.view_eta() == eta_s;
     }
 
     /// R_ss(mu), dimensionless, in [0, 1].
     [[nodiscard]] T at(T mu) const noexcept {
         const T m = glm::clamp(mu, T(0), T(1));
-        return glm::clamp(F_dielectric(m, eta_s_) + scale_ * row_.at(m), T(0), T(1));
+        return at(m, F_dielectric(m, eta_s_));
+    }
+
+    /// at(mu) for a caller that has fresnel = F_dielectric(m, eta_s) already, m = mu clamped
+    /// to [0, 1]: F is then computed once, for the value and for the table's view
+    /// coordinate (which reads F at the same index unless eta_s lies outside the grid).
+    [[nodiscard]] T at(T mu, T fresnel) const noexcept {
+        const T m = glm::clamp(mu, T(0), T(1));
+        const T e = view_reads_fresnel_ ? row_.at(m, fresnel) : row_.at(m);
+        return glm::clamp(fresnel + scale_ * e, T(0), T(1));
     }
 
 private:
     dielectric_albedo_row<T, dielectric_reflection_albedo_grid.mu_nodes> row_{};
     T eta_s_ = T(1);
     T scale_ = T(1);
+    bool view_reads_fresnel_ = false; // the view coordinate's F is F_dielectric(m, eta_s_)
 };
 
 } // namespace shade::detail
