@@ -42,13 +42,15 @@
 // of E_iso + Delta (the table) minus a fresh estimate at random points of the domain with
 // mu >= 0.1.
 //
-//   dielectric_albedo_tables --anisotropic --reflection --out include/shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp
+//   dielectric_albedo_tables --anisotropic --reflection --envelope 48 --out include/shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp
 //
-// writes instead, on the same grid, the correction of the anisotropic
-// shade::dielectric_reflection_albedo: at each node Delta_R = R_ss(w) - R_ss,iso(mu,
-// alpha_phi, eta_s), R_ss(w) the reflected part alone (estimated as for --reflection) and
-// R_ss,iso the committed reflection table at the roughness projected on the node's azimuth
-// (the smoother alpha at azimuth 0); no row averages; the stated accuracy per side.
+// writes instead the correction of the anisotropic shade::dielectric_reflection_albedo on its
+// own grid (shade/bsdf/dielectric_anisotropic_reflection_table.hpp: anisotropy
+// alpha_min / alpha_max down to 0, the exiting side's critical cosine and total-reflection
+// kink on nodes): at each node Delta_R = R_ss(w) - R_ss,iso(mu, alpha_b, eta_s), R_ss(w) the
+// reflected part alone (estimated as for --reflection) and R_ss,iso the committed reflection
+// table at detail::reflection_base_alpha for the node's azimuth; with --envelope, an upper
+// envelope of R_ss (compute_reflection); the stated accuracy per side.
 
 #include <algorithm>
 #include <atomic>
@@ -72,6 +74,7 @@
 #include <shade/bsdf/dielectric_albedo_table.hpp>
 #include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>
 #include <shade/bsdf/dielectric_anisotropic_reflection_albedo.hpp>
+#include <shade/bsdf/dielectric_anisotropic_reflection_table.hpp>
 #include <shade/bsdf/dielectric_reflection_albedo.hpp>
 #include <shade/bsdf/rough_dielectric.hpp>
 #include <shade/check/energy.hpp>
@@ -91,8 +94,8 @@ using T = double;
 constexpr std::string_view usage =
     R"(usage: dielectric_albedo_tables [--beckmann | --reflection] [--out FILE.hpp] [--mu-nodes N] [--alpha-nodes N]
                                 [--eta-nodes N] [--strata S] [--envelope S] [--threads K] [--quiet]
-       dielectric_albedo_tables --anisotropic [--reflection] [--out FILE.hpp] [--strata S] [--points N]
-                                [--verbose] [--threads K] [--quiet]
+       dielectric_albedo_tables --anisotropic [--reflection [--envelope S]] [--out FILE.hpp] [--strata S]
+                                [--points N] [--verbose] [--threads K] [--quiet]
 
 Computes E(mu, alpha, eta_s) = R + T (importance mode) of
 shade::rough_dielectric over GGX, for light entering (eta_s in
@@ -114,15 +117,18 @@ writes the header of constants.
                     alpha_y), eta_s) of anisotropic GGX interfaces on the fixed grid of
                     dielectric_anisotropic_albedo_table.hpp, and their row averages (default
                     output dielectric_anisotropic_albedo_data.hpp; the node options do not apply);
-                    with --reflection, the corrections Delta_R = R(w) - R_iso(mu, alpha_phi,
-                    eta_s) of the reflected part, alpha_phi the roughness projected on w's
-                    azimuth (default output dielectric_anisotropic_reflection_albedo_data.hpp)
+                    with --reflection, the corrections Delta_R = R(w) - R_iso(mu, alpha_b,
+                    eta_s) of the reflected part on the grid of
+                    dielectric_anisotropic_reflection_table.hpp, alpha_b the projected (entering)
+                    or root-mean-square (exiting) roughness (default output
+                    dielectric_anisotropic_reflection_albedo_data.hpp)
   --points N        with --anisotropic: random points the table is checked at (default 4000)
   --verbose         with --anisotropic: print each check point
   --envelope S      store an upper envelope of E instead of point values: after the nodes,
                     E is estimated (S^2 samples) at the middle of every cell edge, face and
                     interior with mu >= 0.05, and the nodes of each cell whose interpolated
-                    value falls below an estimate are raised by the shortfall, until none does
+                    value falls below an estimate are raised by the shortfall, until none does;
+                    with --anisotropic --reflection, of R at cell centres and edge middles
   --threads K       worker threads, 1 to 64 (default 2)
   --quiet           no progress bar
 )";
@@ -646,6 +652,294 @@ void write_anisotropic(std::FILE* f, const anisotropic_table& t, const settings&
     std::fprintf(f, "} // namespace shade::detail\n");
 }
 
+// ---- The anisotropic reflection correction (--anisotropic --reflection), on its own grid
+// (shade/bsdf/dielectric_anisotropic_reflection_table.hpp).
+
+namespace rg {
+constexpr std::size_t nx = d::reflection_anisotropic_mu_nodes, nu = d::reflection_anisotropic_azimuth_nodes;
+constexpr std::size_t ny = d::reflection_anisotropic_roughness_nodes, ns = d::reflection_anisotropic_ratio_nodes;
+constexpr std::size_t ne = d::reflection_anisotropic_eta_nodes;
+} // namespace rg
+
+// The interface of a (z, y, e, side) point of the grid: the smoother alpha along t, at
+// least openpbr's smallest alpha 1e-4 (z = 0: OpenPBR's anisotropy 1); eta_s of the side.
+struct reflection_interface {
+    double alpha_x, alpha_y, eta_s;
+};
+reflection_interface reflection_interface_at(double z_coord, double y_coord, double e_coord, std::size_t side) {
+    const double alpha_max = d::reflection_anisotropic_alpha_top * y_coord * y_coord;
+    const double alpha_min = std::max(z_coord * z_coord * alpha_max, 1e-4);
+    const double eta_hat = 1 + std::exp(d::dielectric_albedo_x_min + e_coord * (d::dielectric_albedo_x_max - d::dielectric_albedo_x_min));
+    return {alpha_min, alpha_max, eta_of_side(side, eta_hat)};
+}
+
+// The unit local view (v.z > 0) at the grid coordinates x = sqrt(mu) and u of the interface
+// `at` (the smoother axis t) on side `side`, and its azimuth phi (also at the pole, where v
+// has none).
+struct reflection_view {
+    shade::vec3<T> v;
+    double phi;
+};
+reflection_view reflection_view_at(double x_coord, double u_coord, const reflection_interface& at, std::size_t side) {
+    const double inv_eta_hat = at.eta_s > 1 ? 1 / at.eta_s : at.eta_s;
+    const double mu_c = std::sqrt((1 - inv_eta_hat) * (1 + inv_eta_hat));
+    const double mu = std::min(std::max(d::reflection_anisotropic_mu(side, x_coord, mu_c), d::albedo_grid_mu_min), 1.0);
+    const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
+    const double phi_k = side == 1 ? d::reflection_anisotropic_kink(sin_theta, inv_eta_hat) : 0.0;
+    const double phi = d::reflection_anisotropic_phi(side, u_coord, phi_k);
+    return {{sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu}, phi};
+}
+
+// R_ss,iso at the roughness projected on the azimuth phi (from t): what Delta_R is measured
+// from. At the pole too the node's own azimuth: a view near the pole reads its own.
+double reflection_base(const reflection_interface& at, double mu, double phi) {
+    const double c = std::cos(phi), sn = std::sin(phi);
+    const double projected = std::sqrt(at.alpha_x * at.alpha_x * c * c + at.alpha_y * at.alpha_y * sn * sn);
+    const double alpha = at.eta_s > 1 ? projected : d::reflection_base_alpha(at.alpha_x, at.alpha_y, at.eta_s, shade::vec3<T>(0, 0, 1));
+    return shade::dielectric_reflection_albedo(shade::unchecked, std::min(mu, 1.0), alpha, at.eta_s);
+}
+double reflection_base(const reflection_interface& at, const shade::vec3<T>& v) {
+    return shade::dielectric_reflection_albedo(shade::unchecked, std::min(v.z, 1.0),
+                                               d::reflection_base_alpha(at.alpha_x, at.alpha_y, at.eta_s, v), at.eta_s);
+}
+
+// One tap of the reader: a stored value's index and its weight.
+struct tap {
+    std::size_t index;
+    double weight;
+};
+
+// The taps with which reflection_anisotropic_delta reads the interface `at` at view v.
+std::vector<tap> reflection_taps(const reflection_interface& at, const shade::vec3<T>& v) {
+    const auto cell = d::reflection_anisotropic_locate(at.alpha_x, at.alpha_y, at.eta_s);
+    const double phi = std::atan2(std::abs(v.y), std::abs(v.x));
+    const double sin_theta = std::min(std::sqrt(v.x * v.x + v.y * v.y), 1.0);
+    const double phi_k = cell.side == 1 ? d::reflection_anisotropic_kink(sin_theta, cell.inv_eta_hat) : 0.0;
+    const auto u = d::albedo_grid_locate(d::reflection_anisotropic_u(cell.side, phi, phi_k), rg::nu);
+    const d::spline_taps<double> wx =
+        d::reflection_anisotropic_x_taps(cell.side, d::reflection_anisotropic_x(cell.side, std::min(v.z, 1.0), cell.mu_c));
+    std::vector<tap> out;
+    for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b)
+            for (int c = 0; c < 4; ++c) {
+                const double w = cell.e.weight[a] * cell.s.weight[b] * cell.y.weight[c];
+                if (w == 0 || cell.s.node[b] == rg::ns - 1 || cell.y.node[c] == 0) continue;
+                for (std::size_t du = 0; du < 2; ++du) {
+                    const double wu = du == 0 ? 1 - u.t : u.t;
+                    if (wu == 0) continue;
+                    const std::size_t row =
+                        d::reflection_anisotropic_row_index(cell.side, cell.e.node[a], cell.s.node[b], cell.y.node[c], u.i + du);
+                    for (int k = 0; k < 4; ++k)
+                        if (wx.weight[k] != 0) out.push_back({row * rg::nx + wx.node[k], w * wu * wx.weight[k]});
+                }
+            }
+    return out;
+}
+
+struct reflection_table {
+    std::vector<float> delta;        // reflection_anisotropic_size values
+    double max_error = 0;            // largest standard error of a node
+    double max_delta = 0;            // largest |Delta_R|
+    std::size_t checks = 0;          // envelope check points (0: point values)
+    std::size_t raised = 0;          // nodes raised by the envelope
+    double max_raise = 0;            // the largest raise
+    int passes = 0;                  // raising passes
+    double envelope_left = 0;        // the largest check estimate - table left after the passes and rounding
+    double side_lowest[2] = {0, 0};  // table - fresh estimate at the random points, per side
+    double side_highest[2] = {0, 0};
+    std::size_t points = 0;
+};
+
+// The envelope's check points with mu >= 0.05: on every stored (side, e, z, y) slice, the
+// middle of every (x, u) cell, of every x edge at the u nodes and of every u edge at the x
+// nodes; the middle of every y, z and e edge at the other axes' nodes; and the centre of
+// every cell of the whole grid. As grid coordinates (x, u, y, z, e, side).
+struct reflection_check {
+    double x, u, y, s, e;
+    std::size_t side;
+};
+std::vector<reflection_check> reflection_checks() {
+    std::vector<reflection_check> out;
+    const auto at = [](std::size_t i, std::size_t n) { return double(i) / double(n - 1); };
+    const auto mid = [](std::size_t i, std::size_t n) { return (double(i) + 0.5) / double(n - 1); };
+    for (std::size_t side = 0; side < 2; ++side)
+        for (std::size_t m = 0; m < rg::ne; ++m)
+            for (std::size_t k = 0; k + 1 < rg::ns; ++k)
+                for (std::size_t j = 1; j < rg::ny; ++j)
+                    for (std::size_t i_u = 0; i_u < rg::nu; ++i_u)
+                        for (std::size_t i_x = 0; i_x < rg::nx; ++i_x) {
+                            const double y = at(j, rg::ny), s = at(k, rg::ns), e = at(m, rg::ne);
+                            if (i_x + 1 < rg::nx && i_u + 1 < rg::nu) out.push_back({mid(i_x, rg::nx), mid(i_u, rg::nu), y, s, e, side});
+                            if (i_x + 1 < rg::nx) out.push_back({mid(i_x, rg::nx), at(i_u, rg::nu), y, s, e, side});
+                            if (i_u + 1 < rg::nu) out.push_back({at(i_x, rg::nx), mid(i_u, rg::nu), y, s, e, side});
+                            const double x = at(i_x, rg::nx), u = at(i_u, rg::nu);
+                            if (j + 1 < rg::ny) out.push_back({x, u, mid(j, rg::ny), s, e, side});
+                            if (k + 1 < rg::ns - 1) out.push_back({x, u, y, mid(k, rg::ns), e, side});
+                            if (k + 2 == rg::ns) out.push_back({x, u, y, mid(k, rg::ns), e, side}); // toward z = 1
+                            if (m + 1 < rg::ne) out.push_back({x, u, y, s, mid(m, rg::ne), side});
+                        }
+    for (std::size_t side = 0; side < 2; ++side)
+        for (std::size_t m = 0; m + 1 < rg::ne; ++m)
+            for (std::size_t k = 0; k + 1 < rg::ns; ++k)
+                for (std::size_t j = 0; j + 1 < rg::ny; ++j)
+                    for (std::size_t i_u = 0; i_u + 1 < rg::nu; ++i_u)
+                        for (std::size_t i_x = 0; i_x + 1 < rg::nx; ++i_x)
+                            out.push_back({mid(i_x, rg::nx), mid(i_u, rg::nu), mid(j, rg::ny), mid(k, rg::ns), mid(m, rg::ne), side});
+    // Only views with mu >= 0.05: raising nodes for the grazing views would lower the
+    // interpolation above them through Catmull-Rom's negative weights.
+    std::erase_if(out, [](const reflection_check& c) { return c.x * c.x < 0.05; });
+    return out;
+}
+
+// R_ss(v) of the interface as the table reads it (unclamped, the correction unscaled).
+double reflection_read(const std::vector<float>& delta, const reflection_interface& at, const shade::vec3<T>& v) {
+    const auto cell = d::reflection_anisotropic_locate(at.alpha_x, at.alpha_y, at.eta_s);
+    return reflection_base(at, v) + d::reflection_anisotropic_delta(delta.data(), cell, v.x, v.y, v.z);
+}
+
+reflection_table compute_reflection(const settings& s, ex::progress& bar, const std::vector<reflection_check>& checks) {
+    reflection_table out;
+    out.delta.assign(d::reflection_anisotropic_size, 0.0f);
+    std::vector<double> errors(d::reflection_anisotropic_size, 0.0), node(d::reflection_anisotropic_size, 0.0);
+    parallel_for(d::reflection_anisotropic_size, s.threads, [&](std::size_t index) {
+        const std::size_t i_x = index % rg::nx, i_u = index / rg::nx % rg::nu, j = 1 + index / (rg::nx * rg::nu) % (rg::ny - 1),
+                          k = index / (rg::nx * rg::nu * (rg::ny - 1)) % (rg::ns - 1),
+                          m = index / (rg::nx * rg::nu * (rg::ny - 1) * (rg::ns - 1)) % rg::ne,
+                          side = index / (rg::nx * rg::nu * (rg::ny - 1) * (rg::ns - 1) * rg::ne);
+        const auto at = reflection_interface_at(double(k) / double(rg::ns - 1), double(j) / double(rg::ny - 1),
+                                                double(m) / double(rg::ne - 1), side);
+        const auto view = reflection_view_at(double(i_x) / double(rg::nx - 1), double(i_u) / double(rg::nu - 1), at, side);
+        const auto a = estimate_view_reflection(at.alpha_x, at.alpha_y, at.eta_s, view.v, s.strata, 1 + index);
+        node[index] = std::min(a.albedo.x, 1.0) - reflection_base(at, view.v.z, view.phi);
+        errors[index] = a.standard_error.x;
+        bar.advance();
+    });
+    for (std::size_t n = 0; n < node.size(); ++n) out.delta[n] = float(node[n]);
+    out.max_error = *std::max_element(errors.begin(), errors.end());
+    // The upper envelope: fresh estimates at the check points, then passes that raise the
+    // stored nodes a check point reads with positive weight by its shortfall (the smallest
+    // raise in the least-squares sense: each by shortfall x weight / sum of squared weights)
+    // until no check point is above the table.
+    if (!checks.empty()) {
+        out.checks = checks.size();
+        std::vector<double> fresh(checks.size());
+        std::vector<reflection_interface> where(checks.size());
+        std::vector<shade::vec3<T>> view(checks.size());
+        parallel_for(checks.size(), s.threads, [&](std::size_t p) {
+            const auto& c = checks[p];
+            where[p] = reflection_interface_at(c.s, c.y, c.e, c.side);
+            view[p] = reflection_view_at(c.x, c.u, where[p], c.side).v;
+            fresh[p] = std::min(estimate_view_reflection(where[p].alpha_x, where[p].alpha_y, where[p].eta_s, view[p],
+                                                         s.envelope, 3000017 + p)
+                                    .albedo.x,
+                                1.0);
+            bar.advance();
+        });
+        std::vector<double> raise(node.size(), 0.0);
+        for (out.passes = 1; out.passes <= 40; ++out.passes) {
+            std::size_t below = 0;
+            for (std::size_t p = 0; p < checks.size(); ++p) {
+                const std::vector<tap> taps = reflection_taps(where[p], view[p]);
+                double read = reflection_base(where[p], view[p]);
+                for (const tap& t : taps) read += t.weight * node[t.index];
+                // 2e-5 above the estimate: room for writing the nodes with 4 digits.
+                const double shortfall = fresh[p] + 2e-5 - read;
+                if (!(shortfall > 0)) continue;
+                if (s.verbose && out.passes == 1 && shortfall > 0.01)
+                    std::fprintf(stderr, "check side %zu x %.4f u %.4f y %.4f s %.4f e %.4f: fresh %.5f table %.5f\n",
+                                 checks[p].side, checks[p].x, checks[p].u, checks[p].y, checks[p].s, checks[p].e, fresh[p], read);
+                ++below;
+                double norm = 0;
+                for (const tap& t : taps)
+                    if (t.weight > 0) norm += t.weight * t.weight;
+                if (!(norm > 0)) continue;
+                for (const tap& t : taps)
+                    if (t.weight > 0) {
+                        node[t.index] += shortfall * t.weight / norm;
+                        raise[t.index] += shortfall * t.weight / norm;
+                    }
+            }
+            if (below == 0) break;
+        }
+        for (std::size_t n = 0; n < node.size(); ++n) {
+            out.delta[n] = as_written(node[n], 4);
+            if (raise[n] > 0) ++out.raised;
+            out.max_raise = std::max(out.max_raise, raise[n]);
+        }
+        for (std::size_t p = 0; p < checks.size(); ++p)
+            out.envelope_left = std::max(out.envelope_left, fresh[p] - reflection_read(out.delta, where[p], view[p]));
+    } else {
+        for (std::size_t n = 0; n < node.size(); ++n) out.delta[n] = as_written(node[n], 4);
+    }
+    for (const float x : out.delta) out.max_delta = std::max(out.max_delta, double(std::abs(x)));
+    // Random points: eta_hat - 1 log-uniform over [0.05, 2], either side, alpha_min /
+    // alpha_max uniform in [0, 1] (every fifth point 0: the smaller alpha 1e-4), either axis
+    // the smoother, y uniform in [0.1, 1], mu >= 0.1 uniform in sqrt(mu), azimuth uniform.
+    out.points = s.points;
+    std::vector<double> difference(s.points);
+    parallel_for(s.points, s.threads, [&](std::size_t p) {
+        shade::rng random(0x5eed0000 + p);
+        const std::size_t side = p % 2;
+        const double e = random.uniform<double>();
+        const double z_coord = p % 10 == 4 || p % 10 == 5 ? 0.0 : std::sqrt(random.uniform<double>());
+        const double y = 0.1 + 0.9 * random.uniform<double>();
+        const auto at0 = reflection_interface_at(z_coord, y, e, side);
+        const bool swap = p % 4 >= 2;
+        const reflection_interface at{swap ? at0.alpha_y : at0.alpha_x, swap ? at0.alpha_x : at0.alpha_y, at0.eta_s};
+        const double x = std::sqrt(0.1) + (1 - std::sqrt(0.1)) * random.uniform<double>(), mu = x * x;
+        const double phi = random.uniform<double>() * 2 * shade::pi<double>;
+        const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
+        const shade::vec3<T> v(sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu);
+        const auto fresh = estimate_view_reflection(at.alpha_x, at.alpha_y, at.eta_s, v, s.strata, 0x0f00000 + p);
+        const double table = d::anisotropic_reflection_albedo<double>(at.alpha_x, at.alpha_y, at.eta_s).at(v, out.delta.data());
+        difference[p] = table - fresh.albedo.x;
+        if (s.verbose)
+            std::fprintf(stderr, "point side %zu eta_s %.4f alpha_x %.5f alpha_y %.5f mu %.4f phi %.4f: table %.5f fresh %.5f +- %.1e\n",
+                         side, at.eta_s, at.alpha_x, at.alpha_y, mu, phi, table, fresh.albedo.x, fresh.standard_error.x);
+        bar.advance();
+    });
+    for (std::size_t p = 0; p < s.points; ++p) {
+        out.side_lowest[p % 2] = std::min(out.side_lowest[p % 2], difference[p]);
+        out.side_highest[p % 2] = std::max(out.side_highest[p % 2], difference[p]);
+    }
+    return out;
+}
+
+void write_reflection(std::FILE* f, const reflection_table& t, const settings& s) {
+    std::fprintf(f, "#pragma once\n");
+    std::fprintf(f, "// Generated by examples/dielectric_albedo_tables.cpp (--anisotropic --reflection --strata %zu%s); do not edit by hand.\n",
+                 s.strata, s.envelope > 0 ? (" --envelope " + std::to_string(s.envelope)).c_str() : "");
+    std::fprintf(f, "// The anisotropic correction of shade/bsdf/dielectric_anisotropic_reflection_albedo.hpp (meaning)\n");
+    std::fprintf(f, "// on the grid of shade/bsdf/dielectric_anisotropic_reflection_table.hpp (grid, interpolation):\n");
+    std::fprintf(f, "// 2 sides x %zu (e) x %zu (z < 1) x %zu (y > 0) x %zu (u) rows of %zu (x) nodes, the %zu azimuth rows of\n",
+                 rg::ne, rg::ns - 1, rg::ny - 1, rg::nu, rg::nx, rg::nu);
+    std::fprintf(f, "// one node per line; each node R_ss(w), the mean importance-mode weight of %zu jittered samples of\n",
+                 s.strata * s.strata);
+    std::fprintf(f, "// the interface's own sampler (reflections only), minus the isotropic table\n");
+    std::fprintf(f, "// (dielectric_reflection_albedo_data.hpp) at detail::reflection_base_alpha (entering: the roughness\n");
+    std::fprintf(f, "// projected on the node's azimuth; exiting: the root mean square), written with 4 significant digits.\n\n");
+    std::fprintf(f, "#include <shade/bsdf/dielectric_anisotropic_reflection_table.hpp>\n\n");
+    std::fprintf(f, "namespace shade::detail {\n\n");
+    std::fprintf(f, "/// Delta_R,s(w), the reflected part's, of shade::rough_dielectric<ggx> with alpha_x != alpha_y.\n");
+    std::fprintf(f, "/// Node standard error <= %.1e; |Delta_R| <= %.3f.", t.max_error, t.max_delta);
+    if (t.checks > 0)
+        std::fprintf(f,
+                     "\n/// An upper envelope, not point values: %zu nodes raised (by at most %.1e) so that no fresh\n"
+                     "/// %zu-sample estimate at %zu check points with mu >= 0.05 (cell centres and edge middles) is\n"
+                     "/// above the table by more than %.1e.",
+                     t.raised, t.max_raise, s.envelope * s.envelope, t.checks, std::max(t.envelope_left, 0.0));
+    std::fprintf(f, "\n/// The table read minus a fresh estimate at %zu random points with mu >= 0.1 (interpolation\n"
+                    "/// and both estimates' noise): entering side %.1e to %.1e, exiting side %.1e to %.1e.\n",
+                 t.points, t.side_lowest[0], t.side_highest[0], t.side_lowest[1], t.side_highest[1]);
+    std::fprintf(f, "inline constexpr float ggx_dielectric_anisotropic_reflection_delta[reflection_anisotropic_size] = {\n");
+    for (std::size_t row = 0; row < d::reflection_anisotropic_rows; row += rg::nu) {
+        ex::write_float_literals(f, t.delta.data() + row * rg::nx, rg::nx * rg::nu, 4);
+        std::fprintf(f, ",\n");
+    }
+    std::fprintf(f, "};\n\n");
+    std::fprintf(f, "} // namespace shade::detail\n");
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -690,8 +984,8 @@ int main(int argc, char** argv) {
         if (s.beckmann && s.out == "dielectric_albedo_data.hpp") s.out = "beckmann_dielectric_albedo_data.hpp";
         if (s.reflection && s.beckmann)
             throw ex::usage_error("--reflection does not apply to --beckmann (it is tabulated for GGX)");
-        if (s.envelope > 0 && (s.reflection || s.anisotropic))
-            throw ex::usage_error("--envelope applies to the total-albedo tables only (not --reflection or --anisotropic)");
+        if (s.envelope > 0 && (s.reflection != s.anisotropic))
+            throw ex::usage_error("--envelope applies to the total-albedo tables and to --anisotropic --reflection only");
         if (s.reflection && !s.anisotropic) {
             if (s.out == "dielectric_albedo_data.hpp") s.out = "dielectric_reflection_albedo_data.hpp";
             s.grid = d::dielectric_reflection_albedo_grid;
@@ -701,6 +995,29 @@ int main(int argc, char** argv) {
         if (eta_nodes != 0) s.grid.eta_nodes = eta_nodes;
         if (s.anisotropic && nodes_given)
             throw ex::usage_error("--mu-nodes, --alpha-nodes and --eta-nodes do not apply to --anisotropic (its grid is fixed)");
+        if (s.anisotropic && s.reflection) {
+            if (s.out == "dielectric_albedo_data.hpp") s.out = "dielectric_anisotropic_reflection_albedo_data.hpp";
+            if (!strata_given) s.strata = 128;
+            ex::output_file header(s.out);
+            const std::vector<reflection_check> checks = s.envelope > 0 ? reflection_checks() : std::vector<reflection_check>{};
+            std::optional<ex::progress> bar(std::in_place, "dielectric_albedo_tables",
+                                            d::reflection_anisotropic_size + checks.size() + s.points, !s.quiet);
+            const reflection_table t = compute_reflection(s, *bar, checks);
+            bar.reset();
+            std::fprintf(stderr,
+                         "dielectric_albedo_tables: anisotropic reflection: largest node standard error %.2e, |Delta_R| <= %.3f; "
+                         "envelope: %zu check points, %zu nodes raised by at most %.2e in %d passes, %.2e left; table - fresh "
+                         "estimate at %zu points with mu >= 0.1: entering %.2e to %.2e, exiting %.2e to %.2e\n",
+                         t.max_error, t.max_delta, t.checks, t.raised, t.max_raise, t.passes, t.envelope_left, t.points,
+                         t.side_lowest[0], t.side_highest[0], t.side_lowest[1], t.side_highest[1]);
+            std::FILE* f = std::fopen(header.temporary().c_str(), "w");
+            if (!f) throw std::runtime_error("cannot write " + header.temporary().string());
+            write_reflection(f, t, s);
+            if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + header.temporary().string());
+            header.commit();
+            std::fprintf(stderr, "dielectric_albedo_tables: wrote %s\n", s.out.string().c_str());
+            return 0;
+        }
         if (s.anisotropic) {
             if (s.out == "dielectric_albedo_data.hpp")
                 s.out = s.reflection ? "dielectric_anisotropic_reflection_albedo_data.hpp"

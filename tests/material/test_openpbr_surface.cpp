@@ -711,16 +711,16 @@ TEST_CASE_TEMPLATE("openpbr_surface: random parameters at the ends of their rang
 
 TEST_CASE_TEMPLATE("openpbr_surface: white furnace with anisotropic specular, coat and glass", T, float, double) {
     // E of an anisotropic GGX reflection lobe depends on the view's azimuth; the material
-    // reads shade::dielectric_reflection_albedo's anisotropic form (the isotropic table at
-    // sqrt(alpha_x alpha_y) plus the tabulated correction at the view's azimuth). In a white
+    // reads shade::dielectric_reflection_albedo's anisotropic form (the isotropic table plus
+    // a tabulated correction at the view's azimuth, an upper envelope). In a white
     // furnace its error is the furnace's: albedo(v) = 1 + E_true(v) - E_read(v). The issue's
-    // band [0.99, 1.001] (each reading widened by 4 standard errors) over anisotropy 0.5 and
-    // 0.9, roughness 0.1 to 1, mu 1 to 0.1 and four azimuths, for an anisotropic specular over
-    // white diffuse, an anisotropic coat over white diffuse and over white metal, and
-    // anisotropic glass.
+    // band [0.99, 1.001] (each reading widened by 4 standard errors) over anisotropy 0.5, 0.9
+    // and 1, roughness 0.1 to 1, mu 1 to 0.1 and four azimuths, for an anisotropic specular
+    // over white diffuse, alone and under a smooth coat of higher index, an anisotropic coat
+    // over white diffuse and over white metal, and anisotropic glass.
     const auto at = check_test::model_point<T>();
     double low = 2, high = 0;
-    for (const T aniso : {T(0.5), T(0.9)}) {
+    for (const T aniso : {T(0.5), T(0.9), T(1)}) {
         for (const T r : {T(0.1), T(0.2), T(0.3), T(0.5), T(0.7), T(1)}) {
             params<T> p = white<T>();
             p.specular_roughness = r;
@@ -734,7 +734,14 @@ TEST_CASE_TEMPLATE("openpbr_surface: white furnace with anisotropic specular, co
             coat_metal.base_metalness = T(1);
             params<T> glass = p;
             glass.transmission_weight = T(1);
-            for (const auto& q : {p, coat, coat_metal, glass}) {
+            params<T> under = p; // the specular under a smooth coat of higher index (1.6 over 1.5)
+            under.coat_weight = T(1);
+            under.coat_roughness = T(0);
+            for (const auto& q : {p, coat, coat_metal, glass, under}) {
+                // Glass at anisotropy 1 transmits through compensated_rough_dielectric, whose
+                // energy compensation tabulates anisotropy up to 20:1 only (issue 31): its
+                // furnace is not this table's (docs/properties.md).
+                if (q.transmission_weight > T(0) && aniso == T(1)) continue;
                 const surface<T> m(q);
                 for (const double mu : {1.0, 0.5, 0.2, 0.1}) {
                     for (const double phi : {0.0, 0.8, 1.5708, 2.4}) {
@@ -759,23 +766,28 @@ TEST_CASE("openpbr_surface: the anisotropic reflection albedo's furnace error, w
     // the coat and the dielectric specular, E_read the anisotropic
     // shade::dielectric_reflection_albedo at the lobe's alphas (openpbr::roughness_to_alpha,
     // alpha_b at least openpbr::smallest_alpha) and E_true a fresh 64^2 estimate by
-    // rough_dielectric's own sampler (standard error below 2e-4 here). Views mu 1 to 0.1 at
-    // eight azimuths. Seen from outside at the default indices (specular 1.5, coat 1.6):
-    // the issue's band [0.99, 1.001] for anisotropy 0.5 and 0.9 at every roughness
-    // 0.1 to 1 but for the largest readings (measured 0.9990 to 1.0024, the top at roughness
-    // 1 and anisotropy 0.5); anisotropy 1 (a 1-D rough surface, read as 20:1) measured 0.8397
-    // to 1.0033, the low end at roughness 1. The specular under a coat of higher index
-    // (specular_ior / coat_ior = 1.5 / 1.6, total internal reflection; anisotropy 0.5, 0.9)
-    // measured 0.9724 to 1.0194. Each reading is held to its measured range widened by
-    // 4 standard errors of E_true.
+    // rough_dielectric's own sampler. Views mu 1 to 0.1 at eight azimuths, roughness 0.1 to
+    // 1, anisotropy 0.5, 0.9 and 1 (a 1-D rough surface). Seen from outside at the default
+    // indices (specular 1.5, coat 1.6), and the specular under a coat of higher index
+    // (eta_s = specular_ior / coat_ior: 1.5 / 1.6 and the specification's ends 1 / 1.5
+    // and 1 / 3; total internal reflection). The issue's band is [0.99, 1.001]; each reading
+    // is held to its band's bounds widened by 4 standard errors of E_true: the issue's where
+    // met (from outside at anisotropy 0.5 and 0.9: measured 0.9975 to 1.0007), else the
+    // measured range (docs/properties.md): from outside at anisotropy 1 the upper bound holds
+    // (1.0004) and the lowest reading is 0.962 (roughness 1, mu 0.1, the view along the
+    // smoother axis); from inside the table has no envelope guarantee between its check
+    // points, and the readings reach 1.0357 (eta_s 1 / 1.5, roughness 1, mu 0.1).
     struct band {
         double eta_s;
         double anisotropy;
         double low, high;
     };
-    const band bands[] = {{1.5, 0.5, 0.999, 1.0025},   {1.6, 0.5, 0.999, 1.0025},   {1.5, 0.9, 0.999, 1.0019},
-                          {1.6, 0.9, 0.999, 1.0019},   {1.5, 1.0, 0.839, 1.0034},   {1 / 1.0666666666666667, 0.5, 0.996, 1.0049},
-                          {1 / 1.0666666666666667, 0.9, 0.972, 1.0195}};
+    const band bands[] = {{1.5, 0.5, 0.99, 1.001},           {1.5, 0.9, 0.99, 1.001},           {1.5, 1.0, 0.9620, 1.001},
+                          {1.6, 0.5, 0.99, 1.001},           {1.6, 0.9, 0.99, 1.001},           {1.6, 1.0, 0.9621, 1.001},
+                          {1 / 1.0666666666666667, 0.5, 0.9824, 1.0018}, {1 / 1.0666666666666667, 0.9, 0.9588, 1.0026},
+                          {1 / 1.0666666666666667, 1.0, 0.8684, 1.001},  {1 / 1.5, 0.5, 0.9745, 1.0225},
+                          {1 / 1.5, 0.9, 0.9671, 1.0357},    {1 / 1.5, 1.0, 0.9878, 1.0055},    {1 / 3.0, 0.5, 0.9752, 1.0186},
+                          {1 / 3.0, 0.9, 0.9623, 1.0263},    {1 / 3.0, 1.0, 0.9398, 1.0113}};
     for (const band& b : bands) {
         double low = 2, high = 0;
         for (const double r : {0.1, 0.2, 0.3, 0.5, 0.7, 1.0}) {

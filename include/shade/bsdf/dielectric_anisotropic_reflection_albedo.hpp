@@ -13,7 +13,7 @@
 
 #include <shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp>
 #include <shade/bsdf/dielectric_albedo_table.hpp>
-#include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>
+#include <shade/bsdf/dielectric_anisotropic_reflection_table.hpp>
 #include <shade/bsdf/dielectric_reflection_albedo.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/types.hpp>
@@ -36,18 +36,26 @@ template <std::floating_point T>
     return std::sqrt((alpha_x * alpha_x * w.x * w.x + alpha_y * alpha_y * w.y * w.y) / s2);
 }
 
+/// The roughness at which the anisotropic reflection albedo reads the isotropic table for the
+/// local direction w: seen from the rarer side (eta_s > 1) the projected roughness
+/// (reflection_projected_alpha); from the denser side the root mean square
+/// sqrt((alpha_x^2 + alpha_y^2) / 2), the projected roughness averaged over the azimuth. From
+/// the denser side the isotropic table steps from 1 to F across the critical angle within
+/// about alpha of it, and a view along the smoother axis of a 1-D rough surface would read
+/// that step where the surface itself, rough across, has none.
+template <std::floating_point T>
+[[nodiscard]] inline T reflection_base_alpha(T alpha_x, T alpha_y, T eta_s, const vec3<T>& w) noexcept {
+    if (eta_s > T(1)) return reflection_projected_alpha(alpha_x, alpha_y, w);
+    return std::sqrt(T(0.5) * (alpha_x * alpha_x + alpha_y * alpha_y));
+}
+
 /// The anisotropic reflection albedo of one interface (roughnesses alpha_x, alpha_y >= 0,
 /// index ratio eta_s > 0; unchecked) for many directions: what
 /// shade::dielectric_reflection_albedo(unchecked, w, alpha_x, alpha_y, eta_s) returns, with
-/// the correction table's cell located once. Where the correction's grid ends:
-///   * an anisotropy max / min beyond dielectric_anisotropic_ratio_max (20; OpenPBR's
-///     anisotropy 1 puts alpha_b at its smallest alpha) reads the correction of the 20:1
-///     interface with the rougher alpha kept, the projected roughness of the true alphas
-///     (of the two readings measured, the one that errs toward reflecting more: see
-///     docs/properties.md);
-///   * below eta_hat = 1.05 the correction is scaled by (eta_hat - 1) / 0.05, so that an
-///     index-matched interface reflects nothing; above 3 it is read at 3;
-///   * a mean roughness sqrt(alpha_x alpha_y) above 1 reads 1.
+/// the correction's cell located once. Where the correction's grid ends: below eta_hat =
+/// 1.05 the correction is scaled by (eta_hat - 1) / 0.05, so that an index-matched
+/// interface reflects nothing; above 3 it is read at 3; alpha_max above sqrt 2 reads sqrt 2.
+/// Any anisotropy is on the grid (s = alpha_min / alpha_max in [0, 1]).
 template <std::floating_point T>
 class anisotropic_reflection_albedo {
 public:
@@ -55,33 +63,29 @@ public:
 
     anisotropic_reflection_albedo(T alpha_x, T alpha_y, T eta_s) noexcept
         : alpha_x_(alpha_x), alpha_y_(alpha_y), eta_s_(eta_s) {
-        const T hi = glm::max(alpha_x, alpha_y);
-        const T lo = glm::max(glm::min(alpha_x, alpha_y), hi / T(dielectric_anisotropic_ratio_max));
-        side_ = eta_s > T(1) ? 0 : 1;
         const T eta_hat = eta_s > T(1) ? eta_s : T(1) / eta_s;
         // Equal alphas (or both 0: a smooth interface) need no correction.
-        if (!(lo < hi) || eta_hat == T(1)) return;
-        cell_ = dielectric_anisotropic_locate(alpha_x > alpha_y ? hi : lo, alpha_x > alpha_y ? lo : hi, eta_s);
+        if (alpha_x == alpha_y || eta_hat == T(1)) return;
+        cell_ = reflection_anisotropic_locate(alpha_x, alpha_y, eta_s);
         scale_ = glm::min((eta_hat - T(1)) / T(dielectric_albedo_eta_min - 1), T(1));
     }
 
     /// R_ss(w) for the unit local direction w on the view's side (only its azimuth and |w.z|
-    /// are used), read with the correction `delta` (a table of dielectric_anisotropic_size
-    /// values on the grid of shade/bsdf/dielectric_anisotropic_albedo_table.hpp; the committed
-    /// one by default). Dimensionless, in [0, 1].
+    /// are used), read with the correction `delta` (a table of reflection_anisotropic_size
+    /// values on the grid of shade/bsdf/dielectric_anisotropic_reflection_table.hpp; the
+    /// committed one by default). Dimensionless, in [0, 1].
     [[nodiscard]] T at(const vec3<T>& w, const float* delta = ggx_dielectric_anisotropic_reflection_delta) const noexcept {
         const T mu = glm::min(std::abs(w.z), T(1));
-        const T alpha = alpha_x_ == alpha_y_ ? alpha_x_ : reflection_projected_alpha(alpha_x_, alpha_y_, w);
+        const T alpha = alpha_x_ == alpha_y_ ? alpha_x_ : reflection_base_alpha(alpha_x_, alpha_y_, eta_s_, w);
         T r = dielectric_reflection_albedo(unchecked, mu, alpha, eta_s_);
-        if (scale_ > T(0)) r += scale_ * dielectric_anisotropic_delta(delta, cell_, side_, w.x, w.y, mu);
+        if (scale_ > T(0)) r += scale_ * reflection_anisotropic_delta(delta, cell_, w.x, w.y, mu);
         return glm::clamp(r, T(0), T(1));
     }
 
 private:
     T alpha_x_ = 0, alpha_y_ = 0, eta_s_ = 1;
     T scale_ = 0; // the correction's factor: 0 when isotropic or index-matched
-    std::size_t side_ = 0;
-    dielectric_anisotropic_cell<T> cell_{};
+    reflection_anisotropic_cell<T> cell_{};
 };
 
 } // namespace detail
@@ -97,12 +101,14 @@ private:
 /// with R_ss,iso the isotropic table above at the roughness projected on w's azimuth,
 /// alpha_phi = sqrt(alpha_x^2 cos^2 phi + alpha_y^2 sin^2 phi) (Heitz 2014, "Understanding
 /// the Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT 3(2), eq. 80: the view's
-/// masking is exact there, so the reading is close for nearly smooth interfaces, and clamped
-/// to the table's alpha = 1), and Delta_R a tabulated correction
+/// masking is exact there, so the reading is close for nearly smooth interfaces), and
+/// Delta_R a tabulated correction
 /// (shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp, written by
 /// examples/dielectric_albedo_tables --anisotropic --reflection on the grid and with the
-/// interpolation of shade/bsdf/dielectric_anisotropic_albedo_table.hpp: sqrt(mu), the view's
-/// azimuth, the mean roughness sqrt(alpha_x alpha_y) up to 1, the anisotropy up to 20:1 and
+/// interpolation of shade/bsdf/dielectric_anisotropic_reflection_table.hpp: sqrt(mu), the
+/// view's azimuth (on the exiting side with the onset of total internal reflection on a
+/// node), the rougher alpha up to sqrt 2, the anisotropy alpha_min / alpha_max from 0 (one
+/// alpha 0: OpenPBR's anisotropy 1) to 1 and
 /// eta_hat in [1.05, 3], both sides). Where the grid ends: detail::anisotropic_reflection_albedo.
 /// Its accuracy against fresh estimates is stated in the data header and in
 /// docs/properties.md ("Reflection albedo of the rough dielectric"). Equal alphas return the
