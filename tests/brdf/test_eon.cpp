@@ -467,6 +467,10 @@ TEST_CASE_TEMPLATE("eon: draw and the prepared view give sample's direction and 
                 const auto view = model.prepare(p.v, at);
                 REQUIRE(view.valid == (glm::dot(at.n(), p.v) > T(0)));
                 CHECK(close(model.pdf(p.l, view, at), model.pdf(p.l, p.v, at), rel));
+                // The shading-frame forms: the same view and density.
+                const auto view_local = model.prepare_local(at.shading.to_local(p.v));
+                REQUIRE(view_local.valid == view.valid);
+                CHECK(close(model.pdf_local(at.shading.to_local(p.l), view_local), model.pdf(p.l, view, at), rel));
                 const T uc = random.uniform<T>();
                 const shade::vec2<T> u(random.uniform<T>(), random.uniform<T>());
                 const auto s = model.sample(p.v, uc, u, at);
@@ -487,6 +491,8 @@ TEST_CASE_TEMPLATE("eon: draw and the prepared view give sample's direction and 
     const shade::eon<T> model(rgb<T>(T(0.8)), T(0.5));
     const auto at = flat<T>();
     CHECK(!model.prepare(vec3<T>(0, 0, -1), at).valid);
+    CHECK(!model.prepare_local(vec3<T>(0, 0, -1)).valid);
+    CHECK(model.pdf_local(vec3<T>(0, 0, -1), model.prepare_local(vec3<T>(0, 0, 1))) == T(0));
     CHECK(!model.draw(vec3<T>(0, 0, -1), T(0.5), shade::vec2<T>(T(0.5)), at));
 }
 

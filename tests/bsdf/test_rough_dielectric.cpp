@@ -227,6 +227,13 @@ TEST_CASE_TEMPLATE("rough_dielectric: draw is sample's direction; f_and_pdf is f
                 const auto both = model.f_and_pdf(s->l, v, at);
                 CHECK(close(both.f.x, model.f(s->l, v, at).x, rel));
                 CHECK(close(both.pdf, model.pdf(s->l, v, at), rel));
+                // The shading-frame forms: the same direction and values.
+                const auto l_local = model.draw_local(at.shading.to_local(v), uc, u);
+                REQUIRE(l_local);
+                CHECK(glm::length(at.shading.to_world(*l_local) - *l) <= rel);
+                const auto local_both = model.f_and_pdf_local(at.shading.to_local(s->l), at.shading.to_local(v));
+                CHECK(close(local_both.f.x, both.f.x, rel));
+                CHECK(close(local_both.pdf, both.pdf, rel));
             }
         }
     }

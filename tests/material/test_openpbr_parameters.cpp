@@ -188,6 +188,14 @@ TEST_CASE_TEMPLATE("openpbr::coat_darkening_factor", T, float, double) {
     CHECK(graded.x > graded.y);
     CHECK(graded.y > graded.z);
     CHECK(graded.z > T(0));
+    // With K_s = F(mu_o, eta_c) and K_r given: the same numbers.
+    const T k_r_t = shade::openpbr::coat_rough_reflection(eta_c);
+    for (const T r_b : {T(0), T(0.4), T(1)})
+        CHECK(shade::openpbr::coat_darkening_factor_of_reflectances(rgb<T>(T(0.9), T(0.5), T(0.1)),
+                                                                    shade::F_dielectric(T(0.7), eta_c), k_r_t, r_b,
+                                                                    T(1), T(0.8)) ==
+              shade::openpbr::coat_darkening_factor(rgb<T>(T(0.9), T(0.5), T(0.1)), eta_c, T(0.7), r_b, T(1),
+                                                    T(0.8)));
 }
 
 TEST_CASE_TEMPLATE("openpbr::base_roughness_estimate and coat_absorption", T, float, double) {

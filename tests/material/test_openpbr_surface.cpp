@@ -600,6 +600,10 @@ TEST_CASE_TEMPLATE("openpbr_surface's albedo rows read what the tables read", T,
         CAPTURE(mu);
         const shade::detail::reflection_albedo_row<T> r(alpha, eta);
         CHECK(std::abs(r.at(mu) - shade::dielectric_reflection_albedo(mu, alpha, eta)) <= tol);
+        // With F(mu, eta) passed in, the same number (F is then computed once for the value
+        // and the table's view coordinate); a wrong F moves it.
+        const T fresnel = shade::F_dielectric(mu, eta);
+        CHECK(r.at(mu, fresnel) == r.at(mu));
         const shade::detail::dielectric_albedo_grid grid{};
         const auto cell = shade::detail::dielectric_albedo_locate(grid, alpha, eta);
         const shade::detail::dielectric_albedo_row<T, shade::detail::dielectric_albedo_mu_nodes> e(

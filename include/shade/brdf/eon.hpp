@@ -163,9 +163,14 @@ public:
 
     /// The prepared_view of v at `at` (the same `at` must be passed with it below).
     [[nodiscard]] prepared_view prepare(const vec3<T>& v, const surface_point<T>& at) const noexcept {
+        if (!(glm::dot(at.n(), v) > T(0))) return {};
+        return prepare_local(at.shading.to_local(v));
+    }
+
+    /// prepare(v, at) for v given in the shading frame (v_local = at.shading.to_local(v)).
+    [[nodiscard]] prepared_view prepare_local(const vec3<T>& v_local) const noexcept {
         prepared_view p;
-        if (!(glm::dot(at.n(), v) > T(0))) return p;
-        const vec3<T> v_local = at.shading.to_local(v);
+        if (!(v_local.z > T(0))) return p;
         p.turn = view_azimuth<T>::of(v_local);
         p.m = eon_ltc<T>::fit(v_local.z, roughness_);
         p.p_uniform = eon_uniform_probability(v_local.z, r_pow_);
@@ -184,7 +189,13 @@ public:
     /// pdf(l, v, at) for the prepared view of v.
     [[nodiscard]] T pdf(const vec3<T>& l, const prepared_view& view, const surface_point<T>& at) const noexcept {
         if (!view.valid || !(glm::dot(at.n(), l) > T(0))) return T(0);
-        const vec3<T> w = view.turn.to_lobe(at.shading.to_local(l));
+        return pdf_local(at.shading.to_local(l), view);
+    }
+
+    /// pdf(l, view, at) for l given in the shading frame (l_local = at.shading.to_local(l)).
+    [[nodiscard]] T pdf_local(const vec3<T>& l_local, const prepared_view& view) const noexcept {
+        if (!view.valid || !(l_local.z > T(0))) return T(0);
+        const vec3<T> w = view.turn.to_lobe(l_local);
         return mixture_pdf(view.p_uniform, cltc_pdf(view.m, w), inv_pi<T> * T(0.5));
     }
 

@@ -397,6 +397,21 @@ public:
         if (!(l.z > T(0)) || !(v.z > T(0))) return out;
         const auto [h, v_dot_h] = detail::half_vector_and_cos(l, v);
         const T d = D_of(h);
+        // Height-correlated Smith masking over a distribution that gives Lambda(v) and
+        // G1(v) together (shade::ggx): f's G2 and the density's G1(v) share a square root.
+        constexpr bool shared_view_masking =
+            with_f && with_pdf && std::same_as<Masking, smith_height_correlated<T>> &&
+            requires(const Distribution& distribution, const vec3<T>& w) { distribution.Lambda_and_G1(w); };
+        if constexpr (shared_view_masking) {
+            const auto masking_v = distribution_.Lambda_and_G1(v);
+            // smith_height_correlated::G, the same sum.
+            const T g = T(1) / (T(1) + (distribution_.Lambda(l) + masking_v.lambda));
+            out.single = specular_of_masking(l, v, g, d, k, v_dot_h);
+            if constexpr (compensated) out.multiple = multiple_scattering(l, v, k);
+            out.pdf = masking_v.g1 * d / (T(4) * v.z);
+            if constexpr (compensated) out.pdf = (T(1) - q) * out.pdf + q * l.z * inv_pi<T>;
+            return out;
+        }
         if constexpr (with_f) {
             out.single = specular(l, v, h, v_dot_h, d, k, v_dot_h);
             if constexpr (compensated) out.multiple = multiple_scattering(l, v, k);
@@ -466,6 +481,12 @@ private:
             g = masking_.G(distribution_, l, v, h, v_dot_h);
         else
             g = masking_.G(distribution_, l.z, v.z, h.z, v_dot_h);
+        return specular_of_masking(l, v, g, d, k, cos_fresnel);
+    }
+
+    // specular() with its masking term g = G(l, v) given.
+    [[nodiscard]] rgb<T> specular_of_masking(const vec3<T>& l, const vec3<T>& v, T g, T d, const rgb<T>& k,
+                                             T cos_fresnel) const noexcept {
         const T lobe = Form::template scale<T>() * d * g /
                        (detail::floored_cos(l.z) * detail::floored_cos(v.z));
         return k * fresnel_.F(cos_fresnel) * lobe;

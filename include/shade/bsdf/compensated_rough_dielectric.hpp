@@ -284,7 +284,8 @@ public:
     [[nodiscard]] value_and_density f_and_pdf(const vec3<T>& l, const prepared_view& view,
                                               const surface_point<T>& at) const noexcept {
         if (!view.valid) return {};
-        return evaluate(at.shading.to_local(l), l, view, at, transport_mode::radiance);
+        detail::assert_unit_directions(l, view.v, at);
+        return evaluate(at.shading.to_local(l), view, transport_mode::radiance);
     }
 
     /// The direction l that sample(v, uc, u, at) draws, without f and pdf (for a mixture
@@ -301,7 +302,9 @@ public:
         const T p_ss = enabled_ ? view.albedo : T(1);
         if (uc < p_ss) {
             const T uc_ss = glm::min(uc / p_ss, T(1) - std::numeric_limits<T>::epsilon() / 2);
-            return single_.draw(view.v, uc_ss, u, at);
+            const std::optional<vec3<T>> l_local = single_.draw_local(view.v_local, uc_ss, u);
+            if (!l_local) return std::nullopt;
+            return at.shading.to_world(*l_local);
         }
         const T uc_ms = (uc - p_ss) / (T(1) - p_ss);
         const bool transmit = uc_ms < side_[view.side].tau;
@@ -324,7 +327,8 @@ public:
         const vec3<T> l_local = at.shading.to_local(l);
         if (!(l_local.z != T(0)) || !std::isfinite(l_local.z)) return std::nullopt;
         const bool transmitted = (l_local.z < T(0)) != (view.v_local.z < T(0));
-        const value_and_density value = evaluate(l_local, l, view, at, mode);
+        detail::assert_unit_directions(l, v, at);
+        const value_and_density value = evaluate(l_local, view, mode);
         const std::optional<brdf_sample<T>> r =
             detail::make_brdf_sample(l, value.f, value.pdf, std::abs(l_local.z));
         if (!r) return std::nullopt;
@@ -398,12 +402,12 @@ private:
         }
     }
 
-    /// f_ss + f_ms (in the given mode) and the mixture density at l (l_local its local
-    /// form) for a valid view.
-    [[nodiscard]] value_and_density evaluate(const vec3<T>& l_local, const vec3<T>& l, const prepared_view& view,
-                                             const surface_point<T>& at, transport_mode mode) const noexcept {
+    /// f_ss + f_ms (in the given mode) and the mixture density at l, given in the shading
+    /// frame as l_local, for a valid view.
+    [[nodiscard]] value_and_density evaluate(const vec3<T>& l_local, const prepared_view& view,
+                                             transport_mode mode) const noexcept {
         const std::size_t s = view.side;
-        const auto single = single_.f_and_pdf(l, view.v, at);
+        const auto single = single_.f_and_pdf_local(l_local, view.v_local);
         value_and_density out{single.f, single.pdf};
         if (!enabled_) return out;
         if (!(l_local.z != T(0)) || !std::isfinite(l_local.z)) return out;

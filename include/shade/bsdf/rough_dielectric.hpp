@@ -111,9 +111,15 @@ public:
     [[nodiscard]] value_and_density f_and_pdf(const vec3<T>& l, const vec3<T>& v,
                                               const surface_point<T>& at) const noexcept {
         detail::assert_unit_directions(l, v, at);
-        const view_side side = side_of(at.shading.to_local(v));
+        return f_and_pdf_local(at.shading.to_local(l), at.shading.to_local(v));
+    }
+
+    /// f_and_pdf(l, v, at) for l and v given in the shading frame of `at` (l_local =
+    /// at.shading.to_local(l), likewise v), for a caller that has them already.
+    [[nodiscard]] value_and_density f_and_pdf_local(const vec3<T>& l_local, const vec3<T>& v_local) const noexcept {
+        const view_side side = side_of(v_local);
         if (!side.valid) return {};
-        const lobe value = evaluate(side.mirrored(at.shading.to_local(l)), side);
+        const lobe value = evaluate(side.mirrored(l_local), side);
         return {rgb<T>(value.f), value.pdf};
     }
 
@@ -121,7 +127,14 @@ public:
     /// that evaluates itself at l); nullopt where sample()'s direction is.
     [[nodiscard]] std::optional<vec3<T>> draw(const vec3<T>& v, T uc, const vec2<T>& u,
                                               const surface_point<T>& at) const noexcept {
-        const view_side side = side_of(at.shading.to_local(v));
+        const std::optional<vec3<T>> l_local = draw_local(at.shading.to_local(v), uc, u);
+        if (!l_local) return std::nullopt;
+        return at.shading.to_world(*l_local);
+    }
+
+    /// draw() in the shading frame: l_local for v_local (both local, n = +z).
+    [[nodiscard]] std::optional<vec3<T>> draw_local(const vec3<T>& v_local, T uc, const vec2<T>& u) const noexcept {
+        const view_side side = side_of(v_local);
         if (!side.valid) return std::nullopt;
         const vec3<T>& v_up = side.v;
         const vec3<T> m = distribution_.sample_visible_normal(v_up, u);
@@ -130,11 +143,11 @@ public:
         if (uc < F_dielectric(v_dot_m, side.eta)) {
             const vec3<T> l_up = detail::reflect_about(v_up, m);
             if (!(l_up.z > T(0))) return std::nullopt;
-            return at.shading.to_world(side.mirrored(l_up));
+            return side.mirrored(l_up);
         }
         const std::optional<vec3<T>> t = refract(v_up, m, side.eta);
         if (!t || !(t->z < T(0))) return std::nullopt;
-        return at.shading.to_world(side.mirrored(*t));
+        return side.mirrored(*t);
     }
 
     /// Draws l for v (either side): a visible normal m from u, then the reflection about m
@@ -221,8 +234,18 @@ private:
         // tests chi+((w·m)/(w·n)) of Walter et al. eq. 7, as in G1(w, m)).
         if (!detail::same_side(v_dot_m, v.z) || !detail::same_side(l_dot_m, cos_l)) return {};
         const T D = distribution_.D(m);
+        // Lambda(v) and G1(v) (below), from one square root where the distribution has both.
+        T lambda_v, g1_v;
+        if constexpr (requires { distribution_.Lambda_and_G1(v); }) {
+            const auto masking_v = distribution_.Lambda_and_G1(v);
+            lambda_v = masking_v.lambda;
+            g1_v = masking_v.g1;
+        } else {
+            lambda_v = distribution_.Lambda(v);
+            g1_v = distribution_.G1(v);
+        }
         // Lambda is two-sided: l below the surface has the Lambda of its mirror image.
-        const T G = T(1) / (T(1) + (distribution_.Lambda(l) + distribution_.Lambda(v)));
+        const T G = T(1) / (T(1) + (distribution_.Lambda(l) + lambda_v));
         // F of a refraction is the same seen from either side; it is taken from the rarer
         // side (eta > 1 across the interface), where F_dielectric has no total internal
         // reflection to come near, so that f(l, v) and f(v, l) use the same cosine and
@@ -235,7 +258,7 @@ private:
         constexpr T cos_floor = std::numeric_limits<T>::epsilon();
         const T floored_cos_v = glm::max(cos_v, cos_floor);
         const T floored_cos_l = glm::max(glm::abs(cos_l), cos_floor);
-        const T D_visible = distribution_.G1(v) * v_dot_m * D / floored_cos_v;
+        const T D_visible = g1_v * v_dot_m * D / floored_cos_v;
         if (reflected) {
             return {F * G * D / (T(4) * floored_cos_l * floored_cos_v), F * D_visible / (T(4) * v_dot_m)};
         }

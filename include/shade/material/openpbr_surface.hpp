@@ -544,7 +544,7 @@ private:
         } else {
             w.p[std::size_t(lobe::transparent)] = alpha < T(1) ? T(1) : T(0);
         }
-        if (w.p[std::size_t(lobe::diffuse)] > T(0)) w.diffuse_view = diffuse_->prepare(v, at);
+        if (w.p[std::size_t(lobe::diffuse)] > T(0)) w.diffuse_view = diffuse_->prepare_local(w.v_local);
         return w;
     }
 
@@ -656,7 +656,7 @@ private:
                 rgb<T> opaque(0);
                 if (diffuse_) {
                     if constexpr (with_f) opaque += (T(1) - S) * diffuse_->f(l, v, at);
-                    if (p(lobe::diffuse) > T(0)) out.pdf += p(lobe::diffuse) * diffuse_->pdf(l, w.diffuse_view, at);
+                    if (p(lobe::diffuse) > T(0)) out.pdf += p(lobe::diffuse) * diffuse_->pdf_local(l_local, w.diffuse_view);
                 }
                 if (subsurface_) {
                     if constexpr (with_f)

@@ -124,6 +124,18 @@ TEST_CASE_TEMPLATE("ggx: Lambda and G1 hand values", T, float, double) {
     CHECK(aniso.Lambda(vec3<T>(1, 0, 0)) == shade::infinity<T>);
     CHECK(aniso.G1(vec3<T>(1, 0, 0)) == T(0));
     CHECK(aniso.G1(vec3<T>(0, T(-0.6), T(-0.8))) == aniso.G1(vec3<T>(0, T(-0.6), T(0.8))));
+    // Lambda_and_G1: the two numbers of Lambda and G1 (the same arithmetic; to rounding, for
+    // a compiler that fuses a multiply-add in one inlined copy only), the horizon included.
+    const T rel = sizeof(T) <= 4 ? T(1e-6) : T(1e-13);
+    for (const T theta : {T(0), T(0.1), T(0.8), T(1.4), T(1.57), T(2.0), T(3.0)})
+        for (const T phi : {T(0), T(1), T(2.5)}) {
+            const vec3<T> dir = local(theta, phi);
+            const shade::smith_lambda_g1<T> both = aniso.Lambda_and_G1(dir);
+            CHECK(close(both.lambda, aniso.Lambda(dir), rel));
+            CHECK(close(both.g1, aniso.G1(dir), rel));
+        }
+    CHECK(aniso.Lambda_and_G1(vec3<T>(1, 0, 0)).lambda == shade::infinity<T>);
+    CHECK(aniso.Lambda_and_G1(vec3<T>(1, 0, 0)).g1 == T(0));
 }
 
 TEST_CASE_TEMPLATE("ggx: peak bounds D, anisotropic included", T, float, double) {

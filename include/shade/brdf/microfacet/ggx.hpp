@@ -131,6 +131,24 @@ template <std::floating_point T>
     return T(2) * c / (c + std::sqrt(c * c + q));
 }
 
+/// Smith's Lambda and G1 of one direction.
+template <std::floating_point T>
+struct smith_lambda_g1 {
+    T lambda; ///< Lambda(w) >= 0
+    T g1;     ///< G1(w) = 1 / (1 + Lambda(w)), in [0, 1]
+};
+
+/// Lambda_ggx(w, alpha_x, alpha_y) and G1_smith_ggx(w, alpha_x, alpha_y), the same two
+/// numbers, from one square root sqrt(c^2 + q) (for a caller that needs both of the view).
+template <std::floating_point T>
+[[nodiscard]] inline smith_lambda_g1<T> Lambda_and_G1_ggx(const vec3<T>& w, T alpha_x, T alpha_y) noexcept {
+    const T c = std::abs(w.z);
+    if (!(c > T(0))) return {infinity<T>, T(0)};
+    const T q = sqr(alpha_x * w.x) + sqr(alpha_y * w.y);
+    const T c_plus_root = c + std::sqrt(c * c + q);
+    return {q / (T(2) * c * c_plus_root), T(2) * c / c_plus_root};
+}
+
 /// Distribution term type: GGX / Trowbridge-Reitz, isotropic (one alpha) or anisotropic
 /// (alpha_x along the tangent t, alpha_y along the bitangent b). Satisfies
 /// shade::sampled_microfacet_distribution.
@@ -180,6 +198,11 @@ public:
     /// Smith masking G1(w) = 1/(1 + Lambda(w)) of the local direction w, in [0, 1] (either
     /// side: the value of |w_z|).
     [[nodiscard]] T G1(const vec3<T>& w) const noexcept { return G1_smith_ggx(w, alpha_x_, alpha_y_); }
+
+    /// Lambda(w) and G1(w) together (see Lambda_and_G1_ggx): the same numbers.
+    [[nodiscard]] smith_lambda_g1<T> Lambda_and_G1(const vec3<T>& w) const noexcept {
+        return Lambda_and_G1_ggx(w, alpha_x_, alpha_y_);
+    }
 
     /// Smith masking of the microfacet normal m seen from w, either side (see
     /// shade::detail::G1_of_normal): G1(w) when w·m has the sign of w_z, else 0. In [0, 1].
