@@ -156,6 +156,42 @@ void expect_same_as_lobe(const CT& model, const std::string& name) {
 
 } // namespace
 
+TEST_CASE_TEMPLATE("microfacet_reflection: evaluate_local's forms agree (half vector given; f and pdf together)", T,
+                   float, double) {
+    // The half vector passed in (a mixture evaluating several lobes at one pair) and f and
+    // pdf evaluated together (Lambda(v) and G1(v) from one square root) give the numbers of
+    // the separate evaluations: the same arithmetic, equal to rounding (a compiler may fuse
+    // a multiply-add in one inlined copy only).
+    const T rel = sizeof(T) <= 4 ? T(1e-6) : T(1e-13);
+    const ggx_lobe<T> plain(shade::ggx<T>(T(0.05), T(0.6)), shade::schlick<T>(rgb<T>(T(0.9), T(0.5), T(0.2))));
+    const compensated_lobe<T> compensated(shade::ggx<T>(T(0.4)), shade::schlick<T>(rgb<T>(T(0.9), T(0.5), T(0.2))));
+    shade::rng random(31);
+    const auto direction = [&random] {
+        const T z = T(0.02) + T(0.98) * random.uniform<T>();
+        const T phi = T(2) * shade::pi<T> * random.uniform<T>();
+        const T r = std::sqrt((T(1) - z) * (T(1) + z));
+        return vec3<T>(r * std::cos(phi), r * std::sin(phi), z);
+    };
+    const auto check = [&](const auto& lobe, const vec3<T>& l, const vec3<T>& v, T q) {
+        const auto both = lobe.template evaluate_local<true, true>(l, v, rgb<T>(1), q);
+        const auto given = lobe.template evaluate_local<true, true>(l, v, shade::detail::half_vector_and_cos(l, v),
+                                                                    rgb<T>(1), q);
+        const auto f_only = lobe.template evaluate_local<true, false>(l, v, rgb<T>(1), q);
+        const auto pdf_only = lobe.template evaluate_local<false, true>(l, v, rgb<T>(1), q);
+        CHECK(close(given.single, both.single, rel));
+        CHECK(close(given.pdf, both.pdf, rel));
+        CHECK(close(both.single, f_only.single, rel));
+        CHECK(close(both.multiple, f_only.multiple, rel));
+        CHECK(close(both.pdf, pdf_only.pdf, rel));
+        CHECK(both.pdf > T(0));
+    };
+    for (int i = 0; i < 500; ++i) {
+        const vec3<T> l = direction(), v = direction();
+        check(plain, l, v, T(0));
+        check(compensated, l, v, compensated.multiple_scattering_probability(v.z));
+    }
+}
+
 TEST_CASE_TEMPLATE("cook-torrance with k_s = 1, k_d = 0 is its lobe, bit for bit", T, float, double) {
     using namespace shade;
     const rgb<T> one(1);

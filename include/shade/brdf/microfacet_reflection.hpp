@@ -393,9 +393,19 @@ public:
     /// shade::sampled_microfacet_distribution.
     template <bool with_f, bool with_pdf>
     [[nodiscard]] parts evaluate_local(const vec3<T>& l, const vec3<T>& v, const rgb<T>& k, T q) const noexcept {
+        if (!(l.z > T(0)) || !(v.z > T(0))) return parts{};
+        return evaluate_local<with_f, with_pdf>(l, v, detail::half_vector_and_cos(l, v), k, q);
+    }
+
+    /// evaluate_local(l, v, k, q) for a caller that has half = detail::half_vector_and_cos(l,
+    /// v) already (several lobes evaluated at one pair).
+    template <bool with_f, bool with_pdf>
+    [[nodiscard]] parts evaluate_local(const vec3<T>& l, const vec3<T>& v, const detail::half_angle<T>& half,
+                                       const rgb<T>& k, T q) const noexcept {
         parts out;
         if (!(l.z > T(0)) || !(v.z > T(0))) return out;
-        const auto [h, v_dot_h] = detail::half_vector_and_cos(l, v);
+        const vec3<T>& h = half.h;
+        const T v_dot_h = half.cos_theta_d;
         const T d = D_of(h);
         // Height-correlated Smith masking over a distribution that gives Lambda(v) and
         // G1(v) together (shade::ggx): f's G2 and the density's G1(v) share a square root.

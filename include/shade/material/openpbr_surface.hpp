@@ -587,17 +587,17 @@ private:
         return out;
     }
 
-    // A microfacet lobe's f and its density at the local pair (the lobe's own pdf uses
-    // the same cosine share q).
+    // A microfacet lobe's f and its density at the local pair, whose half vector is `half`
+    // (the lobe's own pdf uses the same cosine share q).
     template <bool with_f, bool with_pdf, class Lobe>
-    static void microfacet(const Lobe& lobe, const vec3<T>& l_local, const vec3<T>& v_local, T weight, T probability,
-                           rgb<T>& f, T& pdf) noexcept {
+    static void microfacet(const Lobe& lobe, const vec3<T>& l_local, const vec3<T>& v_local,
+                           const detail::half_angle<T>& half, T weight, T probability, rgb<T>& f, T& pdf) noexcept {
         const bool density = with_pdf && probability > T(0);
         if (!with_f && !density) return;
         T q = T(0);
         if constexpr (std::derived_from<typename Lobe::scattering_type, kulla_conty>)
             q = lobe.multiple_scattering_probability(v_local.z);
-        const auto parts = lobe.template evaluate_local<with_f, with_pdf>(l_local, v_local, rgb<T>(1), q);
+        const auto parts = lobe.template evaluate_local<with_f, with_pdf>(l_local, v_local, half, rgb<T>(1), q);
         if constexpr (with_f) f = weight * (parts.single + parts.multiple);
         if constexpr (with_pdf) pdf += probability * parts.pdf;
     }
@@ -612,6 +612,11 @@ private:
         const auto p = [&](lobe k) { return with_pdf ? w.p[std::size_t(k)] : T(0); };
         const vec3<T> l_local = at.shading.to_local(l);
         const vec3<T>& v_local = w.v_local;
+        // The half vector of the pair, computed once for all the microfacet lobes (each
+        // reads it only where l and v are both above the surface).
+        const detail::half_angle<T> half = (coat_ || metal_ || specular_) && l_local.z > T(0) && v_local.z > T(0)
+                                               ? detail::half_vector_and_cos(l_local, v_local)
+                                               : detail::half_angle<T>{};
         rgb<T> top(0), lobe_f(0);
         if (fuzz_) {
             if constexpr (with_f) top += p_.fuzz_weight * fuzz_->f(l, v, at);
@@ -637,19 +642,20 @@ private:
             }
         }
         if (coat_) {
-            microfacet<with_f, with_pdf>(*coat_, l_local, v_local, fuzz_keep * p_.coat_weight, p(lobe::coat), lobe_f,
-                                         out.pdf);
+            microfacet<with_f, with_pdf>(*coat_, l_local, v_local, half, fuzz_keep * p_.coat_weight, p(lobe::coat),
+                                         lobe_f, out.pdf);
             if constexpr (with_f) top += lobe_f;
         }
         rgb<T> base(0);
         if (metal_ && M > T(0)) {
-            microfacet<with_f, with_pdf>(*metal_, l_local, v_local, M, p(lobe::metal), lobe_f, out.pdf);
+            microfacet<with_f, with_pdf>(*metal_, l_local, v_local, half, M, p(lobe::metal), lobe_f, out.pdf);
             if constexpr (with_f) base += lobe_f;
         }
         if (M < T(1)) {
             rgb<T> dielectric(0);
             if (specular_) {
-                microfacet<with_f, with_pdf>(*specular_, l_local, v_local, T(1), p(lobe::specular), lobe_f, out.pdf);
+                microfacet<with_f, with_pdf>(*specular_, l_local, v_local, half, T(1), p(lobe::specular), lobe_f,
+                                             out.pdf);
                 if constexpr (with_f) dielectric += lobe_f;
             }
             if (Tw < T(1)) {
