@@ -188,7 +188,8 @@ private:
 ///     view's azimuth) plus, with a film, thin_film_weight times the integral of
 ///     F_film - F (F the exact dielectric Fresnel at eta'_s) against the lobe's measure of
 ///     c = v·h (shade/brdf/microfacet/cosine_weights.hpp, summed once per material at
-///     sqrt(alpha_x alpha_y)).
+///     sqrt(alpha_x alpha_y)); for eta'_s < 1, whose F has a total-reflection kink finer
+///     than the nodes, F_film's integral minus the table's R_ss.
 ///   * f_transmission: the transmitted part of shade::compensated_rough_dielectric at the
 ///     index specular_ior, divided by its transmittance from v, so that it carries all
 ///     the energy the specular reflection leaves (the specification's "the transmission
@@ -456,7 +457,9 @@ private:
             // The film's part: the lobe's albedo with F_film is R_ss plus the integral of
             // F_film - F against the lobe's measure of c = v·h (cosine_weights.hpp), summed
             // once per material in film_albedo_; exact for a smooth lobe (c = mu).
-            const rgb<T> film_part = specular_ ? film_albedo_.at(mu)
+            // Below an index ratio of 1 the row sums F_film alone (film_alone_) and the
+            // table's R_ss, which holds F's total-reflection kink, is subtracted here.
+            const rgb<T> film_part = specular_ ? film_albedo_.at(mu) - rgb<T>(film_alone_ ? e_dielectric : T(0))
                                                : film_dielectric_->F(mu) - rgb<T>(e_dielectric);
             e = glm::clamp(e + p_.thin_film_weight * film_part, rgb<T>(0), rgb<T>(1));
         }
@@ -915,6 +918,7 @@ private:
     std::optional<openpbr::surface_fresnel<T>> specular_fresnel_;
     std::optional<thin_film_fresnel<T>> film_dielectric_;
     detail::fresnel_albedo_row<T> film_albedo_{}; // integral of F_film - F at eta'_s (rough, with a film)
+    bool film_alone_ = false;                      // film_albedo_ integrates F_film alone (eta'_s < 1)
     rgb<T> transmission_tint_{1};
     rgb<T> subsurface_tint_{1};
     rgb<T> base_albedo_{1};
@@ -1020,8 +1024,12 @@ void openpbr_surface<T>::build() {
         if (film_dielectric_) {
             const T eta = specular_eta_;
             const thin_film_fresnel<T>& film = *film_dielectric_;
+            // Below 1, F is 1 under the critical cosine and falls steeply above it, a kink the
+            // nodes' linear interpolation misses (overestimating F near it): the row then sums
+            // F_film alone and specular_albedo subtracts the table's R_ss.
+            film_alone_ = eta < T(1);
             film_albedo_ = detail::fresnel_albedo_row<T>(specular_alpha_, [&](T c) {
-                return film.F(c) - rgb<T>(eta == T(1) ? T(0) : F_dielectric(c, eta));
+                return film.F(c) - rgb<T>(film_alone_ || eta == T(1) ? T(0) : F_dielectric(c, eta));
             });
         }
     }
