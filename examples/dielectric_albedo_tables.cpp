@@ -18,7 +18,7 @@
 // whose centre has mu >= 0.05
 // (the views the compensation promises R + T for).
 //
-//   dielectric_albedo_tables --beckmann --strata 256 --envelope 64 --out include/shade/bsdf/detail/beckmann_dielectric_albedo_data.hpp
+//   dielectric_albedo_tables --beckmann --strata 256 --envelope 64 --envelope-margin 0.0003 --envelope-view-steps 4 --out include/shade/bsdf/detail/beckmann_dielectric_albedo_data.hpp
 //
 // stores an upper envelope of E instead of point values (raise_to_envelope): the
 // compensation's R + T is 1 + E_true - E_table, so a table that errs high by design keeps
@@ -129,6 +129,12 @@ writes the header of constants.
                     interior with mu >= 0.05, and the nodes of each cell whose interpolated
                     value falls below an estimate are raised by the shortfall, until none does;
                     with --anisotropic --reflection, of R at cell centres and edge middles
+  --envelope-margin M  with --envelope (total-albedo tables): raise until the table is at least
+                    the estimate + M (M in [0, 0.01], default 0; never above 1) at every check
+                    point, so that it errs high between the check points too
+  --envelope-view-steps S  with --envelope (total-albedo tables): check places per cell along
+                    the view coordinate, 2 to 8 (default 2: the middle; 4 adds the quarters,
+                    where E falls steeply)
   --threads K       worker threads, 1 to 64 (default 2)
   --quiet           no progress bar
 )";
@@ -145,6 +151,8 @@ struct settings {
     bool verbose = false;       // print every check point (--anisotropic)
     std::size_t points = 4000;  // random check points (--anisotropic)
     std::size_t envelope = 0; // S^2 samples per check point of the upper envelope (0: point values)
+    double envelope_margin = 0; // the envelope's height above the check points' estimates
+    std::size_t envelope_view_steps = 2; // check places per view cell (2: its middle)
 };
 
 // E of a model of index eta_s at view cosine mu: the importance-mode weight of its sampler.
@@ -265,30 +273,32 @@ void parallel_for(std::size_t count, unsigned threads, const std::function<void(
 // The eta_s of side `side` (0 entering, 1 exiting) at eta_hat.
 double eta_of_side(std::size_t side, double eta_hat) { return side == 0 ? eta_hat : 1 / eta_hat; }
 
-// A check point of the upper envelope: a side and the half-integer place (2 i + 1 a cell's
-// middle, 2 i a node) along each axis, not every coordinate a node.
+// A check point of the upper envelope: a side and its place along each axis (along alpha
+// and eta 2 i + 1 a cell's middle, 2 i a node; along the view coordinate in steps of 1 / S
+// of a cell, S = --envelope-view-steps), not every coordinate a node.
 struct check_point {
     std::size_t side, mu2, alpha2, eta2;
     double mu, alpha, eta_s;
 };
 
 // Every check point of grid g with mu >= 0.05: the middles of the cells' edges, faces and
-// interiors (each axis at a node or halfway between two, in the table's own coordinates:
+// interiors, and along the view coordinate every 1 / steps of a cell (each axis at a node or
+// between two, in the table's own coordinates:
 // the view coordinate, sqrt(alpha), log(eta_hat - 1)), where interpolation errs most.
-std::vector<check_point> envelope_points(const d::dielectric_albedo_grid& g) {
+std::vector<check_point> envelope_points(const d::dielectric_albedo_grid& g, std::size_t steps) {
     std::vector<check_point> points;
     for (std::size_t side = 0; side < 2; ++side)
         for (std::size_t e2 = 0; e2 + 1 < 2 * g.eta_nodes; ++e2)
             for (std::size_t a2 = 0; a2 + 1 < 2 * g.alpha_nodes; ++a2)
-                for (std::size_t m2 = 0; m2 + 1 < 2 * g.mu_nodes; ++m2) {
-                    if (e2 % 2 == 0 && a2 % 2 == 0 && m2 % 2 == 0) continue;
+                for (std::size_t m2 = 0; m2 + 1 < steps * (g.mu_nodes - 1) + 1; ++m2) {
+                    if (e2 % 2 == 0 && a2 % 2 == 0 && m2 % steps == 0) continue;
                     const double y = 0.5 * double(a2) / double(g.alpha_nodes - 1);
                     const double alpha = std::max(y * y, d::albedo_grid_alpha_min);
                     const double eta_hat =
                         e2 % 2 == 0 ? d::dielectric_albedo_eta(g, e2 / 2)
                                     : 1 + std::sqrt((d::dielectric_albedo_eta(g, e2 / 2) - 1) *
                                                     (d::dielectric_albedo_eta(g, e2 / 2 + 1) - 1));
-                    const double mu = d::dielectric_albedo_view_mu(0.5 * double(m2) / double(g.mu_nodes - 1), alpha,
+                    const double mu = d::dielectric_albedo_view_mu(double(m2) / double(steps * (g.mu_nodes - 1)), alpha,
                                                                    eta_hat, side, g.near_critical);
                     if (mu < 0.05) continue;
                     points.push_back({side, m2, a2, e2, mu, alpha, eta_of_side(side, eta_hat)});
@@ -305,7 +315,7 @@ std::vector<check_point> envelope_points(const d::dielectric_albedo_grid& g) {
 // 1 + E_true - E_table, so a table that errs high keeps R + T below 1 + its residual error.
 void raise_to_envelope(table& out, const estimator& albedo, const settings& s, ex::progress& bar) {
     const d::dielectric_albedo_grid& g = s.grid;
-    const std::vector<check_point> points = envelope_points(g);
+    const std::vector<check_point> points = envelope_points(g, s.envelope_view_steps);
     std::vector<double> estimate(points.size());
     parallel_for(points.size(), s.threads, [&](std::size_t p) {
         const check_point& c = points[p];
@@ -320,7 +330,9 @@ void raise_to_envelope(table& out, const estimator& albedo, const settings& s, e
         for (std::size_t p = 0; p < points.size(); ++p) {
             const check_point& c = points[p];
             const auto cell = d::dielectric_albedo_locate(g, c.alpha, c.eta_s);
-            const double shortfall = estimate[p] - d::dielectric_albedo_interpolate(out.e.data(), g, cell, c.mu);
+            // The target stops at 1, which nodes cannot pass (E <= 1).
+            const double target = std::min(estimate[p] + s.envelope_margin, 1.0);
+            const double shortfall = target - d::dielectric_albedo_interpolate(out.e.data(), g, cell, c.mu);
             // Below 1e-6 the shortfall is the float rounding of the raised nodes.
             if (!(shortfall > 1e-6)) continue;
             any = true;
@@ -421,6 +433,19 @@ table compute(const std::string& name, const std::string& what, const estimator&
     return out;
 }
 
+// The envelope's options as given (" --envelope S --envelope-margin M"), or "".
+std::string envelope_options(const settings& s) {
+    if (s.envelope == 0) return "";
+    std::string text = " --envelope " + std::to_string(s.envelope);
+    if (s.envelope_margin > 0) {
+        char margin[32];
+        std::snprintf(margin, sizeof margin, "%g", s.envelope_margin);
+        text += std::string(" --envelope-margin ") + margin;
+    }
+    if (s.envelope_view_steps != 2) text += " --envelope-view-steps " + std::to_string(s.envelope_view_steps);
+    return text;
+}
+
 void write(std::FILE* f, const std::vector<table>& tables, const settings& s) {
     const d::dielectric_albedo_grid& g = s.grid;
     std::fprintf(f, "#pragma once\n");
@@ -428,7 +453,7 @@ void write(std::FILE* f, const std::vector<table>& tables, const settings& s) {
                  "// Generated by examples/dielectric_albedo_tables.cpp (%s--mu-nodes %zu --alpha-nodes %zu --eta-nodes %zu "
                  "--strata %zu%s);\n// do not edit by hand.\n",
                  s.beckmann ? "--beckmann " : s.reflection ? "--reflection " : "", g.mu_nodes, g.alpha_nodes, g.eta_nodes,
-                 s.strata, s.envelope > 0 ? (" --envelope " + std::to_string(s.envelope)).c_str() : "");
+                 s.strata, envelope_options(s).c_str());
     if (s.reflection) {
         std::fprintf(f, "// The reflection table of shade/bsdf/dielectric_reflection_albedo.hpp (meaning) on the grid\n");
         std::fprintf(f, "// detail::dielectric_reflection_albedo_grid of shade/bsdf/dielectric_albedo_table.hpp (grid,\n");
@@ -455,10 +480,11 @@ void write(std::FILE* f, const std::vector<table>& tables, const settings& s) {
         if (t.checks > 0) {
             std::fprintf(f, "/// An upper envelope, not point values: %zu nodes raised (by at most %.1e) so that the\n", t.raised,
                          t.max_raise);
-            std::fprintf(f, "/// interpolated table is at least a fresh estimate (%zu samples each) at %zu check points\n",
-                         s.envelope * s.envelope, t.checks);
-            std::fprintf(f, "/// with mu >= 0.05, the middles of every cell's edges, faces and interior (%d passes).\n",
-                         t.passes);
+            std::fprintf(f, "/// interpolated table is at least a fresh estimate (%zu samples each) + %g (never above 1)\n/// at %zu check points\n",
+                         s.envelope * s.envelope, s.envelope_margin, t.checks);
+            std::fprintf(f, "/// with mu >= 0.05, the middles of every cell's edges, faces and interior, and every 1/%zu of a\n",
+                         s.envelope_view_steps);
+            std::fprintf(f, "/// cell along the view coordinate (%d passes).\n", t.passes);
             std::fprintf(f, "/// Table minus a fresh estimate at the cell centres with mu >= 0.05: from %.1e to %.1e.\n",
                          t.lowest, t.highest);
         }
@@ -976,6 +1002,8 @@ int main(int argc, char** argv) {
             else if (args.flag("--verbose")) s.verbose = true;
             else if (args.option("--points")) s.points = args.integer<std::size_t>(0, 1000000);
             else if (args.option("--envelope")) s.envelope = args.integer<std::size_t>(16, 2048);
+            else if (args.option("--envelope-margin")) s.envelope_margin = args.real(0, 0.01);
+            else if (args.option("--envelope-view-steps")) s.envelope_view_steps = args.integer<std::size_t>(2, 8);
             else args.unknown();
         }
         (void)ex::output_format("--out", s.out, {".hpp", ".h"});
@@ -986,6 +1014,8 @@ int main(int argc, char** argv) {
             throw ex::usage_error("--reflection does not apply to --beckmann (it is tabulated for GGX)");
         if (s.envelope > 0 && (s.reflection != s.anisotropic))
             throw ex::usage_error("--envelope applies to the total-albedo tables and to --anisotropic --reflection only");
+        if ((s.envelope_margin > 0 || s.envelope_view_steps != 2) && (s.envelope == 0 || s.anisotropic))
+            throw ex::usage_error("--envelope-margin and --envelope-view-steps need --envelope on a total-albedo table");
         if (s.reflection && !s.anisotropic) {
             if (s.out == "dielectric_albedo_data.hpp") s.out = "dielectric_reflection_albedo_data.hpp";
             s.grid = d::dielectric_reflection_albedo_grid;
@@ -1046,7 +1076,7 @@ int main(int argc, char** argv) {
         ex::output_file header(s.out);
         const d::dielectric_albedo_grid& g = s.grid;
         const std::size_t cells = 2 * (g.eta_nodes - 1) * (g.alpha_nodes - 1) * (g.mu_nodes - 1);
-        const std::size_t checks = s.envelope > 0 ? envelope_points(g).size() : 0;
+        const std::size_t checks = s.envelope > 0 ? envelope_points(g, s.envelope_view_steps).size() : 0;
         std::optional<ex::progress> bar(std::in_place, "dielectric_albedo_tables", g.size() + cells + checks, !s.quiet);
         std::vector<table> tables;
         if (s.reflection)

@@ -7,11 +7,12 @@
 //
 // (GGX), and for Beckmann (its m read as alpha) into beckmann_dielectric_albedo_data.hpp by
 //
-//   examples/dielectric_albedo_tables --beckmann --strata 256 --envelope 64 --out include/shade/bsdf/detail/beckmann_dielectric_albedo_data.hpp
+//   examples/dielectric_albedo_tables --beckmann --strata 256 --envelope 64 --envelope-margin 0.0003 --envelope-view-steps 4 --out include/shade/bsdf/detail/beckmann_dielectric_albedo_data.hpp
 //
 // The GGX table holds point values (each node an estimate of E there). The Beckmann table
 // holds an upper envelope of E: its nodes raised until the interpolated table is at least a
-// fresh estimate of E at the middle of every cell edge, face and interior with mu >= 0.05
+// fresh estimate of E plus 3e-4 at the middle of every cell edge, face and interior, and at
+// the quarters of every cell along the view coordinate, with mu >= 0.05
 // (what the compensation needs: its R + T is 1 + E - E_table, so a table that errs high
 // keeps R + T at or below 1 where interpolation between point values would err low). Its
 // header states by how much the nodes were raised.
