@@ -436,7 +436,7 @@ std::vector<openpbr_point> openpbr_points() {
     openpbr_parameters<T> gold = openpbr::gold<T>();
     gold.specular_roughness = 0.3;
     out.push_back({"metal: F82 gold (preset colours, roughness 0.3)", gold});
-    out.push_back({"coated plastic (preset: smooth coat of eta 1.5, delta)", openpbr::coated_plastic<T>(),
+    out.push_back({"coated plastic (preset: coat of roughness 0.1, eta 1.5)", openpbr::coated_plastic<T>(),
                    layering::albedo_scaling, true});
     out.push_back({"velvet (preset: fuzz 0.5 over a rough base)", openpbr::velvet<T>()});
     openpbr_parameters<T> p;
@@ -465,7 +465,7 @@ std::vector<openpbr_point> openpbr_points() {
     out.push_back({"everything at once (metal 0.3, transmission 0.4, subsurface 0.5, coat 0.6, fuzz 0.5, film 0.5)", p});
     p = openpbr::coated_plastic<T>();
     p.fuzz_weight = 0.5;
-    out.push_back({"coated plastic + fuzz 0.5, layering::reciprocal (delta coat)", p, layering::reciprocal, true});
+    out.push_back({"coated plastic + fuzz 0.5, layering::reciprocal", p, layering::reciprocal, true});
     return out;
 }
 
