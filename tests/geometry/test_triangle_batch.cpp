@@ -88,6 +88,14 @@ void check_against_scalar(const shade::ray<T>& r, const shade::triangle_batch<T,
             CHECK(bits(form.b2[i]) == bits(all.b2[i]));
         }
     }
+    // The any-hit form (shade::triangle_bvh::any's leaves) decides as hit_bits does, in
+    // its portable and build-target forms on both layouts (its AVX form runs inlined in
+    // the eight-wide walk, checked against brute force in test_bvh.cpp).
+    const bool any_hit = all.hit_bits != 0;
+    CHECK(shade::detail::intersect_batch_any<shade::detail::scalar_lanes<T>>(r, batch, cull) == any_hit);
+    CHECK(shade::detail::intersect_batch_any<shade::detail::default_lanes<T, N>>(r, batch, cull) == any_hit);
+    CHECK(shade::detail::intersect_batch_any<shade::detail::scalar_lanes<T>>(r, vertices, cull) == any_hit);
+    CHECK(shade::detail::intersect_batch_any<shade::detail::default_lanes<T, N>>(r, vertices, cull) == any_hit);
     std::optional<std::size_t> nearest;
     std::optional<shade::triangle_hit<T>> nearest_hit;
     for (std::size_t i = 0; i < N; ++i) {

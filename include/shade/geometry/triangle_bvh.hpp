@@ -138,7 +138,7 @@ public:
         const auto leaf = [&](std::uint32_t first, std::uint32_t count, auto avx) SHADE_DETAIL_LEAF_INLINE {
             if constexpr (batched) {
                 for (std::uint32_t b = first; b < first + count; ++b)
-                    if (test(r, leaves_[b].batch, cull, avx).hit_bits != 0) return found = true;
+                    if (test_any(r, leaves_[b].batch, cull, avx)) return found = true;
             } else {
                 for (std::uint32_t i = first; i < first + count; ++i)
                     if (Algorithm::find(r, triangles_[i], cull)) return found = true;
@@ -213,6 +213,18 @@ private:
         }
 #endif
         return detail::intersect_batch<detail::default_lanes<T, batch_width>>(r, batch, cull);
+    }
+
+    /// test(r, batch, cull, avx).hit_bits != 0, for any(): in the walk compiled for AVX the
+    /// kernel's any-hit form (detail::intersect_batch_any: the same decision, without the
+    /// hit record, stopping at the first step with a hit), elsewhere test() itself.
+    template <bool Avx>
+    [[nodiscard]] SHADE_DETAIL_LEAF_INLINE static bool test_any(const ray<T>& r, const leaf_vertices& batch, culling cull,
+                                                                std::bool_constant<Avx> avx) noexcept {
+#if defined(__GNUC__) && defined(__x86_64__)
+        if constexpr (Avx) return detail::intersect_batch_any<detail::vector_lanes<T, 32>>(r, batch, cull);
+#endif
+        return test(r, batch, cull, avx).hit_bits != 0;
     }
 
     /// One batch test of a leaf (its triangles' vertices, which also make the hit record)

@@ -263,6 +263,57 @@ intersect_batch(const ray<T>& r, const Batch<T, N>& batch, culling cull) noexcep
     }
     return out;
 }
+/// The any-hit form of intersect_batch: true exactly when intersect_batch(r, batch,
+/// cull).hit_bits != 0 (the same operations up to the test of t), without the
+/// barycentric divisions and the stores of the hit record, returning at the first step
+/// with a hit.
+template <class L, template <class, std::size_t> class Batch, std::floating_point T, std::size_t N>
+[[nodiscard]] SHADE_DETAIL_BATCH_INLINE bool intersect_batch_any(const ray<T>& r, const Batch<T, N>& batch,
+                                                                 culling cull) noexcept {
+    static_assert(N % L::width == 0, "the lane step must divide the batch width");
+    using vec = typename L::vec;
+    using mask = typename L::mask;
+    if (!(r.t_min >= T(0))) return false;
+    vec o_x, o_y, o_z, d_x, d_y, d_z, zero, largest, t_lo, t_hi;
+    L::splat(o_x, r.origin.x);
+    L::splat(o_y, r.origin.y);
+    L::splat(o_z, r.origin.z);
+    L::splat(d_x, r.direction.x);
+    L::splat(d_y, r.direction.y);
+    L::splat(d_z, r.direction.z);
+    L::splat(zero, T(0));
+    L::splat(largest, std::numeric_limits<T>::max());
+    const bool front_only = cull == culling::back_faces;
+    L::splat(t_lo, r.t_min);
+    L::splat(t_hi, glm::min(r.t_max, std::numeric_limits<T>::max()));
+#if defined(__GNUC__)
+#pragma GCC unroll 16
+#endif
+    for (std::size_t k = 0; k < N / L::width; ++k) {
+        // intersect_batch's operations, in its order (see there).
+        vec p_x, p_y, p_z, f_x, f_y, f_z, g_x, g_y, g_z, m_x, m_y, m_z;
+        load_step<L>(batch, k * L::width, p_x, p_y, p_z, f_x, f_y, f_z, g_x, g_y, g_z, m_x, m_y, m_z);
+        const vec q_x = p_x - o_x;
+        const vec q_y = p_y - o_y;
+        const vec q_z = p_z - o_z;
+        const vec c_x = d_y * q_z - q_y * d_z;
+        const vec c_y = d_z * q_x - q_z * d_x;
+        const vec c_z = d_x * q_y - q_x * d_y;
+        const vec det = d_x * m_x + d_y * m_y + d_z * m_z;
+        vec a, un, vn, t_num;
+        L::abs(a, det);
+        L::flip_sign(un, g_x * c_x + g_y * c_y + g_z * c_z, det);
+        L::flip_sign(vn, f_x * c_x + f_y * c_y + f_z * c_z, det);
+        const vec wn = a - (un + vn);
+        mask candidate = (un >= zero) & (vn >= zero) & (wn >= zero) & (a > zero) & (a <= largest);
+        if (front_only) candidate = candidate & (det > zero);
+        if (!L::any(candidate)) continue;
+        L::flip_sign(t_num, q_x * m_x + q_y * m_y + q_z * m_z, det);
+        const vec t = t_num / a;
+        if (L::any(candidate & (t >= t_lo) & (t <= t_hi))) return true;
+    }
+    return false;
+}
 #undef SHADE_DETAIL_BATCH_INLINE
 
 } // namespace detail
