@@ -1012,11 +1012,9 @@ int main(int argc, char** argv) {
                          "estimate at %zu points with mu >= 0.1: entering %.2e to %.2e, exiting %.2e to %.2e\n",
                          t.max_error, t.max_delta, t.checks, t.raised, t.max_raise, t.passes, t.envelope_left, t.points,
                          t.side_lowest[0], t.side_highest[0], t.side_lowest[1], t.side_highest[1]);
-            std::FILE* f = std::fopen(header.temporary().c_str(), "w");
-            if (!f) throw std::runtime_error("cannot write " + header.temporary().string());
-            write_reflection(f, t, s);
-            if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + header.temporary().string());
-            header.commit();
+            header.write_stream([&](std::FILE* f) {
+                write_reflection(f, t, s);
+            });
             std::fprintf(stderr, "dielectric_albedo_tables: wrote %s\n", s.out.string().c_str());
             return 0;
         }
@@ -1035,11 +1033,9 @@ int main(int argc, char** argv) {
                          "exiting %.2e to %.2e)\n",
                          t.max_error, t.max_delta, t.lowest, t.highest, t.points, t.side_lowest[0], t.side_highest[0],
                          t.side_lowest[1], t.side_highest[1]);
-            std::FILE* f = std::fopen(header.temporary().c_str(), "w");
-            if (!f) throw std::runtime_error("cannot write " + header.temporary().string());
-            write_anisotropic(f, t, s);
-            if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + header.temporary().string());
-            header.commit();
+            header.write_stream([&](std::FILE* f) {
+                write_anisotropic(f, t, s);
+            });
             std::fprintf(stderr, "dielectric_albedo_tables: wrote %s\n", s.out.string().c_str());
             return 0;
         }
@@ -1069,11 +1065,9 @@ int main(int argc, char** argv) {
                          "raised by at most %.2e in %d passes\n",
                          t.name.c_str(), t.max_error, t.max_interpolation, t.max_domain, t.max_side[0], t.max_side[1],
                          t.worst.c_str(), t.lowest, t.highest, t.checks, t.raised, t.max_raise, t.passes);
-        std::FILE* f = std::fopen(header.temporary().c_str(), "w");
-        if (!f) throw std::runtime_error("cannot write " + header.temporary().string());
-        write(f, tables, s);
-        if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + header.temporary().string());
-        header.commit();
+        header.write_stream([&](std::FILE* f) {
+            write(f, tables, s);
+        });
         std::fprintf(stderr, "dielectric_albedo_tables: wrote %s\n", s.out.string().c_str());
         return 0;
     });

@@ -28,6 +28,7 @@
 #include <charconv>
 #include <concepts>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <initializer_list>
@@ -196,6 +197,24 @@ public:
     /// Renames temporary() to target(). Throws std::runtime_error "cannot write '<target>':
     /// <reason>" if that fails (the temporary file is then removed by the destructor).
     void commit();
+
+    /// Opens temporary() for writing as a C stream, calls write(stream), closes it and
+    /// commit()s: the whole of writing a generated file. Throws std::runtime_error
+    /// "cannot write <temporary>" if the stream cannot be opened or closed (the stream is
+    /// closed, and the temporary file removed, if write throws).
+    template <class Write>
+    void write_stream(Write&& write) {
+        std::FILE* f = std::fopen(temporary_.c_str(), "w");
+        if (!f) throw std::runtime_error("cannot write " + temporary_.string());
+        try {
+            write(f);
+        } catch (...) {
+            std::fclose(f);
+            throw;
+        }
+        if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + temporary_.string());
+        commit();
+    }
 
 private:
     std::filesystem::path target_;
