@@ -94,13 +94,15 @@ public:
         if (size_ == 0 || !r.valid()) return std::nullopt;
         std::uint32_t best = no_hit;
         triangle_intersection<T> x;
-        const auto leaf = [&](std::uint32_t first, std::uint32_t count, auto avx) SHADE_DETAIL_LEAF_INLINE {
+        // The leaf data and cull held in the leaf function itself (one load each in a leaf).
+        const auto* const data = leaf_data();
+        const auto leaf = [&, data, cull](std::uint32_t first, std::uint32_t count, auto avx) SHADE_DETAIL_LEAF_INLINE {
             if constexpr (batched) {
                 for (std::uint32_t b = first; b < first + count; ++b) {
                     // The line of the indices, fetched with the batch's (the lane is not
                     // known yet): one latency for both in a hierarchy beyond the caches.
-                    detail::bvh_prefetch(leaves_[b].id.data());
-                    const auto hits = test(r, leaves_[b].batch, cull, avx);
+                    detail::bvh_prefetch(data[b].id.data());
+                    const auto hits = test(r, data[b].batch, cull, avx);
                     if (hits.hit_bits == 0) continue;
                     const std::size_t lane = *hits.closest(); // every hit has t <= r.t_max
                     r.t_max = hits.t[lane];
@@ -111,7 +113,7 @@ public:
                 }
             } else {
                 for (std::uint32_t i = first; i < first + count; ++i) {
-                    if (auto h = Algorithm::find(r, triangles_[i], cull)) {
+                    if (auto h = Algorithm::find(r, data[i], cull)) {
                         r.t_max = h->t;
                         x = *h;
                         best = i;
@@ -135,13 +137,14 @@ public:
     [[nodiscard]] bool any(const ray<T>& r, culling cull = culling::none) const {
         if (size_ == 0 || !r.valid()) return false;
         bool found = false;
-        const auto leaf = [&](std::uint32_t first, std::uint32_t count, auto avx) SHADE_DETAIL_LEAF_INLINE {
+        const auto* const data = leaf_data();
+        const auto leaf = [&, data, cull](std::uint32_t first, std::uint32_t count, auto avx) SHADE_DETAIL_LEAF_INLINE {
             if constexpr (batched) {
                 for (std::uint32_t b = first; b < first + count; ++b)
-                    if (test_any(r, leaves_[b].batch, cull, avx)) return found = true;
+                    if (test_any(r, data[b].batch, cull, avx)) return found = true;
             } else {
                 for (std::uint32_t i = first; i < first + count; ++i)
-                    if (Algorithm::find(r, triangles_[i], cull)) return found = true;
+                    if (Algorithm::find(r, data[i], cull)) return found = true;
             }
             return false;
         };
@@ -166,6 +169,14 @@ public:
 
 private:
     static constexpr std::uint32_t no_hit = ~std::uint32_t(0);
+
+    /// What the leaves' ranges index: the leaf blocks (batched), else the triangles.
+    [[nodiscard]] const auto* leaf_data() const noexcept {
+        if constexpr (batched)
+            return leaves_.data();
+        else
+            return triangles_.data();
+    }
 
     void build(std::span<const triangle<T>> triangles, bvh_width width, detail::executor_ref run) {
         detail::require_bvh_size("triangles", triangles.size());

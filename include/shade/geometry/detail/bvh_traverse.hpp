@@ -234,11 +234,19 @@ struct bvh_ray_lanes {
     std::array<std::uint32_t, 4> far_offset;  ///< [k < 3]: byte offset of planes[near_plane[k] ^ 1]
     Lanes t_min;
     Lanes enlarge;
+    Lanes far_start; ///< +infinity in every lane, where the far distance starts
 
     template <std::floating_point T>
     [[gnu::always_inline]] explicit bvh_ray_lanes(const ray<T>& r, const bvh_ray_scale<T>& scale) noexcept
         : t_min(Lanes{} + scale.t_down(r.t_min)),
-          enlarge(Lanes{} + (1.0f + 2.0f * rounding_gamma<float>(sizeof(T) == sizeof(float) ? 3 : 4))) {
+          enlarge(Lanes{} + (1.0f + 2.0f * rounding_gamma<float>(sizeof(T) == sizeof(float) ? 3 : 4))),
+          far_start(Lanes{} + infinity<float>) {
+#if defined(__x86_64__)
+        // Kept opaque to g++, so that the box test reads both from memory, one operand each,
+        // rather than rebuilding the constants at every node (and testing far < infinity
+        // with a comparison and a blend instead of one minps).
+        __asm__("" : "+m"(enlarge), "+m"(far_start));
+#endif
         const vec3<T> d = !scale.scaled ? r.direction
                                         : vec3<T>(scale.direction(r.direction.x), scale.direction(r.direction.y),
                                                   scale.direction(r.direction.z));
@@ -324,7 +332,7 @@ template <std::size_t W, class Lanes>
     static_assert(sizeof(Lanes) == sizeof(node.planes[0]));
     const auto* planes = reinterpret_cast<const unsigned char*>(node.planes.data());
     Lanes near = r.t_min;
-    Lanes far = Lanes{} + infinity<float>;
+    Lanes far = r.far_start;
     const auto slab = [&](std::size_t k) { // called with constants: the ray stays in registers
         Lanes lo, hi;
         __builtin_memcpy(&lo, planes + r.near_offset[k], sizeof lo);
