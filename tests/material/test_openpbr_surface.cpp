@@ -570,6 +570,13 @@ TEST_CASE_TEMPLATE("openpbr_surface: the reciprocal form is reciprocal for opaqu
     pairs.model = "openpbr_surface (reciprocal form)";
     const surface<T> reciprocal(p, shade::layering::reciprocal);
     shade::check::doctest_expect(shade::check::adjoint_reciprocity(reciprocal, at, 1, pairs));
+    // Anisotropic coat and specular: E_coat and E_spec read at each direction's azimuth, l's
+    // as v's (reading l's at its cosine alone, as an isotropic table, breaks the symmetry).
+    params<T> q = p;
+    q.coat_roughness_anisotropy = T(0.8);
+    q.specular_roughness_anisotropy = T(0.9);
+    pairs.model = "openpbr_surface (reciprocal form, anisotropic)";
+    shade::check::doctest_expect(shade::check::adjoint_reciprocity(surface<T>(q, shade::layering::reciprocal), at, 1, pairs));
     pairs.model = "openpbr_surface (albedo scaling)";
     const surface<T> scaled(p);
     shade::check::doctest_expect_failure(shade::check::adjoint_reciprocity(scaled, at, 1, pairs));

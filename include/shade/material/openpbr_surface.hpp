@@ -423,16 +423,18 @@ private:
         return T(0);
     }
 
-    // The reciprocal form's factor under the coat for cosines mu_l, mu_v (per channel):
+    // The reciprocal form's factor under the coat for the light l (cosine mu_l, local
+    // direction l_local) and the view w (per channel):
     // (1 - C E_coat(l)) (1 - C E_coat(v)) / (1 - C E_coat,avg) lerp(1, T_coat, C)
-    // sqrt(D(l) D(v)).
-    [[nodiscard]] rgb<T> reciprocal_under_coat(T mu_l, const view& w) const noexcept {
+    // sqrt(D(l) D(v)); E_coat read alike at l and v (anisotropic: at each one's azimuth), so
+    // that the factor is symmetric in l and v.
+    [[nodiscard]] rgb<T> reciprocal_under_coat(T mu_l, const vec3<T>& l_local, const view& w) const noexcept {
         const T C = p_.coat_weight;
         if (C == T(0)) return rgb<T>(1);
         const rgb<T> absorbed = coat_absorbed(mu_l, w.mu);
         const rgb<T> darkening_l = openpbr::coat_darkening_factor(
             base_albedo_, coat_eta_, coat_rough_reflection_, mu_l, base_roughness_estimate_, C, p_.coat_darkening);
-        const T keep = (T(1) - C * coat_albedo(mu_l)) * (T(1) - C * w.coat_albedo) * coat_loss_inverse_;
+        const T keep = (T(1) - C * coat_albedo(mu_l, l_local)) * (T(1) - C * w.coat_albedo) * coat_loss_inverse_;
         return keep * glm::mix(rgb<T>(1), absorbed, C) * glm::sqrt(darkening_l * w.darkening);
     }
 
@@ -638,8 +640,8 @@ private:
                 const T mu_l = glm::min(n_dot_l, T(1));
                 const T F = p_.fuzz_weight;
                 fuzz_keep = (T(1) - F * fuzz_albedo(mu_l)) * w.fuzz_keep * fuzz_loss_inverse_;
-                coat_keep = reciprocal_under_coat(mu_l, w);
-                if (M < T(1)) specular_keep *= (rgb<T>(1) - specular_albedo(mu_l)) * specular_loss_inverse_;
+                coat_keep = reciprocal_under_coat(mu_l, l_local, w);
+                if (M < T(1)) specular_keep *= (rgb<T>(1) - specular_albedo(mu_l, l_local)) * specular_loss_inverse_;
             } else {
                 coat_keep = under_coat(n_dot_l, w);
             }
@@ -1095,21 +1097,37 @@ void openpbr_surface<T>::build() {
     base_roughness_estimate_ =
         openpbr::base_roughness_estimate(p.specular_roughness, p.base_metalness, p.specular_weight, eta_s);
 
-    // The reciprocal form's averages E_avg = 2 integral E(mu) mu dmu, by the midpoint rule
-    // on 32 cells of x = sqrt(mu) (E_avg = 4 integral E(x^2) x^3 dx), normalised so that a
-    // constant E is exact. A loss of 0 (a layer that reflects everything) leaves nothing
-    // below it: its inverse is taken as 0.
+    // The reciprocal form's averages E_avg = (1 / pi) integral E(w) mu dw, by the midpoint
+    // rule on 32 cells of x = sqrt(mu) (E_avg = 4 integral E(x^2) x^3 dx for an E of mu
+    // alone), normalised so that a constant E is exact; an anisotropic E (read at each
+    // direction's azimuth, as the layers read it) also by the midpoint rule on 4 cells of the
+    // azimuth over a quarter turn (E is even in each of the direction's local x and y). A loss
+    // of 0 (a layer that reflects everything) leaves nothing below it: its inverse is taken
+    // as 0.
     if (form_ == layering::reciprocal) {
         const auto inverse_loss = [](T loss) { return loss > T(0) ? T(1) / loss : T(0); };
         if (fuzz_reciprocal_) fuzz_loss_inverse_ = inverse_loss(T(1) - p.fuzz_weight * fuzz_reciprocal_->average_albedo());
         constexpr int cells = 32;
+        constexpr int azimuths = 4;
+        const bool anisotropic = (coat_ && coat_anisotropic_) || (specular_ && specular_anisotropic_);
         T coat_sum = 0, weights = 0;
         rgb<T> specular_sum(0);
         for (int k = 0; k < cells; ++k) {
             const T x = (T(k) + T(0.5)) / T(cells);
             const T w = x * x * x;
-            coat_sum += w * coat_albedo(x * x);
-            specular_sum += w * specular_albedo(x * x);
+            const T mu = x * x;
+            if (!anisotropic) {
+                coat_sum += w * coat_albedo(mu);
+                specular_sum += w * specular_albedo(mu);
+            } else {
+                const T sin_theta = std::sqrt((T(1) - mu) * (T(1) + mu));
+                for (int j = 0; j < azimuths; ++j) {
+                    const T phi = (T(j) + T(0.5)) * (pi<T> / T(2)) / T(azimuths);
+                    const vec3<T> w_local(sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu);
+                    coat_sum += w / T(azimuths) * coat_albedo(mu, w_local);
+                    specular_sum += w / T(azimuths) * specular_albedo(mu, w_local);
+                }
+            }
             weights += w;
         }
         coat_loss_inverse_ = inverse_loss(T(1) - C * coat_sum / weights);
