@@ -61,7 +61,12 @@ public:
     template <parallel_executor E>
         requires(!std::same_as<std::remove_cvref_t<E>, executor_ref>)
     explicit executor_ref(E& run) noexcept
-        : run_(const_cast<std::remove_const_t<E>*>(&run)), call_([](void* e, std::size_t n, const parallel_task& t) { (*static_cast<E*>(e))(n, t); }) {}
+        : run_(const_cast<std::remove_const_t<E>*>(&run)), call_([](void* e, std::size_t n, const parallel_task& t) { (*static_cast<E*>(e))(n, t); }),
+          serial_(std::same_as<std::remove_cvref_t<E>, serial_executor>) {}
+
+    /// Whether it refers to a shade::serial_executor: then the work may take a path made
+    /// for one thread (whose result must be the same as the parallel path's).
+    [[nodiscard]] bool serial() const noexcept { return serial_; }
 
     /// Runs body(i) for every i in [0, n) through the executor.
     template <class F>
@@ -74,6 +79,7 @@ public:
 private:
     void* run_;
     void (*call_)(void*, std::size_t, const parallel_task&);
+    bool serial_;
 };
 
 } // namespace detail

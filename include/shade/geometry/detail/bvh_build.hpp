@@ -190,16 +190,18 @@ struct bvh_tree {
 /// depth and so the traversal's stack).
 ///
 /// In parallel (through an executor, shade/core/parallel.hpp), as Wald 2007 proposes for
-/// few cores: nodes of more than task_size primitives are split level by level, their
-/// binning shared out task_size primitives per task and the partitions of a level's
-/// nodes run side by side; each smaller node's subtree is then built by one task. Bins
-/// merge by min, max and integer sums, which no order changes, and each partition is the
-/// recursive build's, so the tree is the same whatever the executor and task_size.
+/// few cores: nodes of more than t primitives (t = n / 8 for n primitives, at least 256,
+/// at most task_size: task_for) are split level by level, their binning shared out t
+/// primitives per task and the partitions of a level's nodes run side by side; each
+/// smaller node's subtree is then built by one task. Bins merge by min, max and integer
+/// sums, which no order changes, and each partition is the recursive build's, so the tree
+/// is the same whatever the executor and task_size; through shade::serial_executor the
+/// build is the recursive one.
 class bvh_builder {
 public:
     static constexpr int bins = 16;
     static constexpr int median_depth = 48;
-    /// Primitives per task of the parallel build (see above), unless given.
+    /// The most primitives per task of the parallel build (see above), unless given.
     static constexpr std::uint32_t default_task_size = 4096;
 
     /// block: a power of two; task_size > 0.
@@ -218,11 +220,14 @@ public:
         if (refs.empty()) return tree;
         const auto n = static_cast<std::uint32_t>(refs.size());
         binary_.reserve(2 * refs.size() / block_ + 2);
+        task_ = task_for(n);
         std::vector<std::array<bvh_box, 2>> part(tasks(n)); // each task's box and centroid box
         run(part.size(), [&](std::size_t c) { bounds_of(task_begin(0, c), task_end(0, n, c), part[c][0], part[c][1]); });
         bvh_box box, centroids;
         for (const auto& b : part) box.grow(b[0]), centroids.grow(b[1]);
-        if (n <= task_size_) build_binary(0, n, 0, box, centroids); // the root is binary_[0]
+        // Through a serial executor, the recursive build (the same tree, without the level
+        // phase's bins and merges).
+        if (n <= task_ || run.serial()) build_binary(0, n, 0, box, centroids); // the root is binary_[0]
         else build_top(n, box, centroids, run);
         tree.order.resize(refs.size());
         run(part.size(), [&](std::size_t c) {
@@ -246,13 +251,20 @@ private:
         std::uint32_t right = 0; ///< inner: right child
     };
 
-    /// The tasks of task_size primitives over n, and the range of task c from `first`.
-    [[nodiscard]] std::size_t tasks(std::uint32_t n) const noexcept { return (n - 1) / task_size_ + 1; }
+    /// The primitives per task of the level phase for a build over n: n / 8, so that a
+    /// small mesh is shared out too, but no fewer than 256 (each task's bins and merges
+    /// have their cost) and no more than task_size.
+    [[nodiscard]] std::uint32_t task_for(std::uint32_t n) const noexcept {
+        const std::uint32_t t = n / 8 > 256 ? n / 8 : 256;
+        return t < task_size_ ? t : task_size_;
+    }
+    /// The tasks of task_ primitives over n, and the range of task c from `first`.
+    [[nodiscard]] std::size_t tasks(std::uint32_t n) const noexcept { return (n - 1) / task_ + 1; }
     [[nodiscard]] std::uint32_t task_begin(std::uint32_t first, std::size_t c) const noexcept {
-        return first + static_cast<std::uint32_t>(c) * task_size_;
+        return first + static_cast<std::uint32_t>(c) * task_;
     }
     [[nodiscard]] std::uint32_t task_end(std::uint32_t first, std::uint32_t end, std::size_t c) const noexcept {
-        return end - task_begin(first, c) > task_size_ ? task_begin(first, c) + task_size_ : end;
+        return end - task_begin(first, c) > task_ ? task_begin(first, c) + task_ : end;
     }
 
     /// plan_slots's result for one binary node.
@@ -521,7 +533,7 @@ private:
                 binary_[p.node] = binary_node{p.box, left, 0, left + 1};
                 for (const pending& c : {pending{p.begin, s.mid, p.depth + 1, s.left_box, s.left_centroids, left},
                                          pending{s.mid, p.end, p.depth + 1, s.right_box, s.right_centroids, left + 1}})
-                    (c.end - c.begin > task_size_ ? next : subtrees).push_back(c);
+                    (c.end - c.begin > task_ ? next : subtrees).push_back(c);
             }
             level = std::move(next);
         }
@@ -771,6 +783,7 @@ private:
     std::uint32_t block_;
     std::uint32_t block_shift_;
     std::uint32_t task_size_;
+    std::uint32_t task_ = 0; // the current build's primitives per task (task_for)
     bvh_prim_ref* refs_ = nullptr;
     std::vector<binary_node> binary_;
     std::vector<slot_plan> plans_;
