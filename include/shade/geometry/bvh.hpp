@@ -116,7 +116,8 @@ public:
         using H = typename std::invoke_result_t<Test&, std::uint32_t, const ray<T>&>::value_type;
         std::optional<primitive_hit<H>> best;
         if (tree_.order.empty() || !r.valid()) return best;
-        detail::bvh_traverse<true>(tree_, r, r.t_max, [&](std::uint32_t first, std::uint32_t count, auto) {
+        constexpr auto order = detail::bvh_order::sorted;
+        detail::bvh_traverse<order>(tree_, r, r.t_max, [&](std::uint32_t first, std::uint32_t count, auto) {
             for (std::uint32_t i = first; i < first + count; ++i) {
                 const std::uint32_t p = tree_.order[i];
                 if (auto h = test(p, std::as_const(r))) {
@@ -135,7 +136,8 @@ public:
     [[nodiscard]] bool any(const ray<T>& r, Test&& test) const {
         if (tree_.order.empty() || !r.valid()) return false;
         bool found = false;
-        detail::bvh_traverse<false>(tree_, r, r.t_max, [&](std::uint32_t first, std::uint32_t count, auto) {
+        constexpr auto order = detail::bvh_order::child;
+        detail::bvh_traverse<order>(tree_, r, r.t_max, [&](std::uint32_t first, std::uint32_t count, auto) {
             for (std::uint32_t i = first; i < first + count; ++i)
                 if (test(tree_.order[i], r)) return found = true;
             return false;

@@ -122,7 +122,7 @@ public:
             }
             return false;
         };
-        detail::bvh_traverse<true>(tree_, r, r.t_max, leaf);
+        detail::bvh_traverse<detail::bvh_order::sorted>(tree_, r, r.t_max, leaf);
         if (best == no_hit) return std::nullopt;
         if constexpr (batched) {
             const leaf_batch& b = leaves_[best / leaf_width];
@@ -148,8 +148,9 @@ public:
             }
             return false;
         };
-        // Nearest child first, as for closest hits: a blocker is found after fewer nodes.
-        detail::bvh_traverse<true>(tree_, r, r.t_max, leaf);
+        // Nearest child first, as for closest hits: a blocker is found after fewer nodes;
+        // the others unsorted (sorting them costs more than the nodes it saves).
+        detail::bvh_traverse<detail::bvh_order::nearest>(tree_, r, r.t_max, leaf);
         return found;
     }
 

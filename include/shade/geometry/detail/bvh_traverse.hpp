@@ -399,8 +399,15 @@ struct bvh_stack_entry {
 template <std::size_t W>
 inline constexpr std::size_t bvh_stack_size = W == 4 ? 256 : 544;
 
+/// The order in which bvh_traverse visits the children of a node that the ray enters.
+enum class bvh_order {
+    child,   ///< the stored order (no comparisons)
+    nearest, ///< the nearest first, the others in no particular order
+    sorted,  ///< nearest first, then by entry distance
+};
+
 /// bvh_traverse's walk over nodes of W children (inlined there and in bvh_walk_wide).
-template <bool Ordered, class Ray, std::size_t W, std::floating_point T, class Leaf>
+template <bvh_order Order, class Ray, std::size_t W, std::floating_point T, class Leaf>
 [[gnu::always_inline]] inline void bvh_walk(const bvh_node<W>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf) {
     // Built only for the rare rays that need scaling, so that the common case stays a few
     // inlined comparisons.
@@ -433,13 +440,17 @@ template <bool Ordered, class Ray, std::size_t W, std::floating_point T, class L
                 bits &= bits - 1;
                 if (bits == 0) {
                     // Two: go to the nearer, stack the other.
-                    const bool first_nearer = !Ordered || t_enter[i0] <= t_enter[i1];
+                    const bool first_nearer = Order == bvh_order::child || t_enter[i0] <= t_enter[i1];
                     const std::size_t go = first_nearer ? i0 : i1, later = first_nearer ? i1 : i0;
                     stack[top++] = {node.child[later], t_enter[later]};
                     ref = node.child[go];
                     continue;
                 }
-                // Three or more: stack them all, sorted so the nearest is on top, and pop it.
+                // Three or more: stack them all, then (sorted) sort them so that the
+                // nearest is on top and pop it, or (nearest) take the nearest off the stack
+                // and fill its place with the top entry: a linear scan, cheaper than the
+                // sort, which pays for closest hits (a pop beyond the hit is pruned) but
+                // not for any-hit rays.
                 const std::size_t base = top;
                 stack[top++] = {node.child[i0], t_enter[i0]};
                 stack[top++] = {node.child[i1], t_enter[i1]};
@@ -447,13 +458,21 @@ template <bool Ordered, class Ray, std::size_t W, std::floating_point T, class L
                     const auto i = static_cast<std::size_t>(std::countr_zero(bits));
                     stack[top++] = {node.child[i], t_enter[i]};
                 }
-                for (std::size_t a = base + 1; Ordered && a < top; ++a) {
-                    const bvh_stack_entry e = stack[a];
-                    std::size_t b = a;
-                    for (; b > base && stack[b - 1].t < e.t; --b) stack[b] = stack[b - 1];
-                    stack[b] = e;
+                if constexpr (Order == bvh_order::nearest) {
+                    std::size_t best = base;
+                    for (std::size_t a = base + 1; a < top; ++a)
+                        if (stack[a].t < stack[best].t) best = a;
+                    ref = stack[best].ref;
+                    stack[best] = stack[--top];
+                } else {
+                    for (std::size_t a = base + 1; Order == bvh_order::sorted && a < top; ++a) {
+                        const bvh_stack_entry e = stack[a];
+                        std::size_t b = a;
+                        for (; b > base && stack[b - 1].t < e.t; --b) stack[b] = stack[b - 1];
+                        stack[b] = e;
+                    }
+                    ref = stack[--top].ref;
                 }
-                ref = stack[--top].ref;
                 continue;
             }
         pop:
@@ -478,16 +497,16 @@ template <bool Ordered, class Ray, std::size_t W, std::floating_point T, class L
 #define SHADE_DETAIL_BVH_WIDE 1 // this build has the eight-wide walk (undefined at the end)
 /// bvh_walk over nodes of eight, compiled for AVX (without FMA: leaf tests inlined here
 /// give the baseline build's bits); used only where the CPU has AVX (bvh_node_width).
-template <bool Ordered, std::floating_point T, class Leaf>
+template <bvh_order Order, std::floating_point T, class Leaf>
 [[gnu::target("avx")]] void bvh_walk_wide(const bvh_node<8>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf) {
-    bvh_walk<Ordered, bvh_ray_lanes<bvh_f8>>(nodes, r, t_max, leaf);
+    bvh_walk<Order, bvh_ray_lanes<bvh_f8>>(nodes, r, t_max, leaf);
 }
 #endif
 
 /// bvh_walk over nodes of four, as a function of its own (bvh_traverse is only the choice).
-template <bool Ordered, std::floating_point T, class Leaf>
+template <bvh_order Order, std::floating_point T, class Leaf>
 void bvh_walk_four(const bvh_node<4>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf) {
-    bvh_walk<Ordered, bvh_ray4>(nodes, r, t_max, leaf);
+    bvh_walk<Order, bvh_ray4>(nodes, r, t_max, leaf);
 }
 
 /// The children per node (4 or 8) a build uses when `requested` are asked for.
@@ -501,16 +520,16 @@ void bvh_walk_four(const bvh_node<4>* nodes, const ray<T>& r, const T& t_max, Le
 /// Walks the nodes of tree (of either width) whose boxes r enters, and calls leaf(first,
 /// count, avx) for every leaf reached, avx being std::true_type in the walk compiled for
 /// AVX (a leaf test may then use AVX inline) and std::false_type otherwise; stops when
-/// leaf returns true (any-hit). Ordered: nearest child first (closest hits); otherwise in
-/// child order (any-hit: no sorting). t_max is read again after each leaf (a closest-hit
+/// leaf returns true (any-hit). Order: the order of the children (see bvh_order). t_max is
+/// read again after each leaf (a closest-hit
 /// leaf shrinks it), which prunes the boxes and the stacked entries beyond it.
 /// Precondition: the tree has nodes and r is valid.
-template <bool Ordered, std::floating_point T, class Leaf>
+template <bvh_order Order, std::floating_point T, class Leaf>
 [[gnu::always_inline]] inline void bvh_traverse(const bvh_tree& tree, const ray<T>& r, const T& t_max, Leaf&& leaf) {
 #if defined(SHADE_DETAIL_BVH_WIDE)
-    if (!tree.wide_nodes.empty()) return bvh_walk_wide<Ordered>(tree.wide_nodes.data(), r, t_max, leaf);
+    if (!tree.wide_nodes.empty()) return bvh_walk_wide<Order>(tree.wide_nodes.data(), r, t_max, leaf);
 #endif
-    bvh_walk_four<Ordered>(tree.nodes.data(), r, t_max, leaf);
+    bvh_walk_four<Order>(tree.nodes.data(), r, t_max, leaf);
 }
 #undef SHADE_DETAIL_BVH_WIDE
 
