@@ -641,10 +641,13 @@ private:
                 const float split_cost = area + best_cost; // C_trav A + (A_L N_L + A_R N_R)
                 const float leaf_cost = area * float(blocks(n));
                 if (n <= max_leaf_ && leaf_cost <= split_cost) return result;
-                // Partition (Hoare), gathering both sides' boxes on the way. A primitive goes
-                // left when its bin (bin_into's) is below best_split, an integer in [1, nb - 1]:
-                // for the scaled coordinate x that is !(x >= best_split) (the clamp to
-                // [0, nb - 1] and the truncation change no side; a NaN x, bin 0, goes left).
+                // Partition (Hoare), gathering both sides' centroid boxes on the way. A
+                // primitive goes left when its bin (bin_into's) is below best_split, an
+                // integer in [1, nb - 1]: for the scaled coordinate x that is
+                // !(x >= best_split) (the clamp to [0, nb - 1] and the truncation change no
+                // side; a NaN x, bin 0, goes left). So each side's box is its bins' union on
+                // the split axis (min and max: the same floats as over its primitives).
+                for (std::size_t b = 0; b < nb; ++b) (b < best_split ? left_box : right_box).grow(bin_box[best_axis][b]);
                 const float lo = c_lo[best_axis], sc = scale[best_axis];
                 const auto plane = static_cast<float>(best_split);
                 const auto goes_left = [&](const bvh_prim_ref& r) {
@@ -653,14 +656,12 @@ private:
                 std::uint32_t i = begin, j = end;
                 for (;;) {
                     while (i < j && goes_left(refs_[i])) {
-                        left_box.grow(refs_[i].lo, refs_[i].hi);
                         const bvh_v4 c = refs_[i].centroid2();
                         left_centroids.grow(c, c);
                         ++i;
                     }
                     while (i < j && !goes_left(refs_[j - 1])) {
                         --j;
-                        right_box.grow(refs_[j].lo, refs_[j].hi);
                         const bvh_v4 c = refs_[j].centroid2();
                         right_centroids.grow(c, c);
                     }
