@@ -165,16 +165,21 @@ shade::check::albedo_sample<T> estimate(double mu, double alpha, double eta_s, s
     const shade::vec3<T> v(std::sqrt((1 - c) * (1 + c)), 0, c);
     // The lobe choice uc is integrated out exactly: for each u, the reflection (uc = 0 < F)
     // and the refraction (uc just below 1, drawn unless F = 1) weighted by the F and 1 - F
-    // with which sample() chooses them at the visible normal it draws from u.
-    const auto weight = [&](const shade::vec2<T>& u, T uc) {
-        const auto s = model.sample(v, uc, u, at, shade::transport_mode::importance);
-        return s ? s->weight.x : 0.0;
-    };
+    // with which sample() chooses them at the visible normal m it draws from u. m is read
+    // off the drawn reflection as the half vector normalize(v + l) (the same m up to
+    // rounding; F > 0 at every m, so the reflection is always drawn), and drawn again only
+    // where that reflection is lost below the surface: the visible normal, the costly part of
+    // a Beckmann sample, is then drawn about once per u instead of three times.
     return shade::check::detail::stratified_estimate<T>(v, strata, seed, true, [&](const shade::vec2<T>& u, shade::rng&) {
-        const shade::vec3<T> m = model.distribution().sample_visible_normal(v, u);
+        const auto r = model.sample(v, 0, u, at, shade::transport_mode::importance);
+        const shade::vec3<T> m = r ? glm::normalize(v + r->l) : model.distribution().sample_visible_normal(v, u);
         const double F = shade::F_dielectric(glm::dot(v, m), eta_s);
-        const double reflected = F > 0 ? F * weight(u, 0) : 0.0;
-        const double refracted = F < 1 ? (1 - F) * weight(u, std::nextafter(1.0, 0.0)) : 0.0;
+        const double reflected = r ? F * r->weight.x : 0.0;
+        double refracted = 0;
+        if (F < 1) {
+            const auto t = model.sample(v, std::nextafter(1.0, 0.0), u, at, shade::transport_mode::importance);
+            refracted = t ? (1 - F) * t->weight.x : 0.0;
+        }
         return glm::dvec3(reflected + refracted);
     });
 }
