@@ -42,7 +42,7 @@
 // of E_iso + Delta (the table) minus a fresh estimate at random points of the domain with
 // mu >= 0.1.
 //
-//   dielectric_albedo_tables --anisotropic --reflection --envelope 48 --out include/shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp
+//   dielectric_albedo_tables --anisotropic --reflection --envelope 48 --envelope-margin 0.0002 --envelope-random 100000 --out include/shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp
 //
 // writes instead the correction of the anisotropic shade::dielectric_reflection_albedo on its
 // own grid (shade/bsdf/dielectric_anisotropic_reflection_table.hpp: anisotropy
@@ -129,7 +129,9 @@ writes the header of constants.
                     interior with mu >= 0.05, and the nodes of each cell whose interpolated
                     value falls below an estimate are raised by the shortfall, until none does;
                     with --anisotropic --reflection, of R at cell centres and edge middles
-  --envelope-margin M  with --envelope (total-albedo tables): raise until the table is at least
+  --envelope-random N  with --anisotropic --reflection --envelope S: N random check points
+                    besides the fixed ones (between them the read can fall below the truth)
+  --envelope-margin M  with --envelope (total-albedo tables, --anisotropic --reflection): raise until the table is at least
                     the estimate + M (M in [0, 0.01], default 0; never above 1) at every check
                     point, so that it errs high between the check points too
   --envelope-view-steps S  with --envelope (total-albedo tables): check places per cell along
@@ -153,6 +155,7 @@ struct settings {
     std::size_t envelope = 0; // S^2 samples per check point of the upper envelope (0: point values)
     double envelope_margin = 0; // the envelope's height above the check points' estimates
     std::size_t envelope_view_steps = 2; // check places per view cell (2: its middle)
+    std::size_t envelope_random = 0; // random check points besides the fixed ones (--anisotropic --reflection)
 };
 
 // E of a model of index eta_s at view cosine mu: the importance-mode weight of its sampler.
@@ -448,6 +451,7 @@ std::string envelope_options(const settings& s) {
         text += std::string(" --envelope-margin ") + margin;
     }
     if (s.envelope_view_steps != 2) text += " --envelope-view-steps " + std::to_string(s.envelope_view_steps);
+    if (s.envelope_random > 0) text += " --envelope-random " + std::to_string(s.envelope_random);
     return text;
 }
 
@@ -670,7 +674,9 @@ struct reflection_interface {
     double alpha_x, alpha_y, eta_s;
 };
 reflection_interface reflection_interface_at(double z_coord, double y_coord, double e_coord, std::size_t side) {
-    const double alpha_max = d::reflection_anisotropic_alpha_top * y_coord * y_coord;
+    // Both alphas at least 1e-4: a check point with y near 0 would otherwise have alpha_max
+    // below the floored alpha_min (the smoother axis would be the rougher one).
+    const double alpha_max = std::max(d::reflection_anisotropic_alpha_top * y_coord * y_coord, 1e-4);
     const double alpha_min = std::max(z_coord * z_coord * alpha_max, 1e-4);
     const double eta_hat = 1 + std::exp(d::dielectric_albedo_x_min + e_coord * (d::dielectric_albedo_x_max - d::dielectric_albedo_x_min));
     return {alpha_min, alpha_max, eta_of_side(side, eta_hat)};
@@ -748,6 +754,7 @@ struct reflection_table {
     double max_raise = 0;            // the largest raise
     int passes = 0;                  // raising passes
     double envelope_left = 0;        // the largest check estimate - table left after the passes and rounding
+    std::size_t random_checks = 0;   // of the checks, random ones (--envelope-random)
     double side_lowest[2] = {0, 0};  // table - fresh estimate at the random points, per side
     double side_highest[2] = {0, 0};
     std::size_t points = 0;
@@ -794,11 +801,38 @@ std::vector<reflection_check> reflection_checks() {
     return out;
 }
 
+// Random check points (count of them, seeded apart from the random test points of
+// compute_reflection): side, e and u uniform; x uniform over the views with mu >= 0.05 (as
+// the fixed ones); y and z uniform between the stored nodes' ends (y from its first node
+// above 0, z up to its last node below 1: beyond them the read leans on the unstored rows,
+// and a check there would raise the few stored nodes it reads without bound), z = 0
+// (anisotropy 1) for every fifth. They reach the places between the fixed check points, where
+// Catmull-Rom's negative weights can still leave the read below the truth.
+std::vector<reflection_check> reflection_random_checks(std::size_t count) {
+    std::vector<reflection_check> out;
+    out.reserve(count);
+    for (std::size_t p = 0; p < count; ++p) {
+        shade::rng random(0xc4ec0000 + p);
+        const std::size_t side = p % 2;
+        const double e = random.uniform<double>(), u = random.uniform<double>();
+        const double x = std::sqrt(0.05) + (1 - std::sqrt(0.05)) * random.uniform<double>();
+        const double y_first = 1.0 / double(rg::ny - 1), z_last = double(rg::ns - 2) / double(rg::ns - 1);
+        const double y = y_first + (1 - y_first) * random.uniform<double>();
+        const double z = z_last * random.uniform<double>();
+        out.push_back({x, u, y, p % 5 == 2 ? 0.0 : z, e, side});
+    }
+    return out;
+}
+
 // R_ss(v) of the interface as the table reads it (unclamped, the correction unscaled).
 double reflection_read(const std::vector<float>& delta, const reflection_interface& at, const shade::vec3<T>& v) {
     const auto cell = d::reflection_anisotropic_locate(at.alpha_x, at.alpha_y, at.eta_s);
     return reflection_base(at, v) + d::reflection_anisotropic_delta(delta.data(), cell, v.x, v.y, v.z);
 }
+
+// The most by which the envelope raises one node (tests/bsdf/test_dielectric_reflection_albedo.cpp
+// holds the committed table to it).
+constexpr double reflection_raise_cap = 0.15;
 
 reflection_table compute_reflection(const settings& s, ex::progress& bar, const std::vector<reflection_check>& checks) {
     reflection_table out;
@@ -846,7 +880,8 @@ reflection_table compute_reflection(const settings& s, ex::progress& bar, const 
                 double read = reflection_base(where[p], view[p]);
                 for (const tap& t : taps) read += t.weight * node[t.index];
                 // 2e-5 above the estimate: room for writing the nodes with 4 digits.
-                const double shortfall = fresh[p] + 2e-5 - read;
+                // With --envelope-margin M, M more (the read then errs high between check points).
+                const double shortfall = std::min(fresh[p] + s.envelope_margin, 1.0) + 2e-5 - read;
                 if (!(shortfall > 0)) continue;
                 if (s.verbose && out.passes == 1 && shortfall > 0.01)
                     std::fprintf(stderr, "check side %zu x %.4f u %.4f y %.4f s %.4f e %.4f: fresh %.5f table %.5f\n",
@@ -856,10 +891,15 @@ reflection_table compute_reflection(const settings& s, ex::progress& bar, const 
                 for (const tap& t : taps)
                     if (t.weight > 0) norm += t.weight * t.weight;
                 if (!(norm > 0)) continue;
+                // No node raised by more than reflection_raise_cap in all: where the spline
+                // cannot follow R_ss (a kink between nodes), raising for one check point lowers
+                // others through the negative weights, and the passes would escalate.
                 for (const tap& t : taps)
                     if (t.weight > 0) {
-                        node[t.index] += shortfall * t.weight / norm;
-                        raise[t.index] += shortfall * t.weight / norm;
+                        const double step = std::min(shortfall * t.weight / norm, reflection_raise_cap - raise[t.index]);
+                        if (!(step > 0)) continue;
+                        node[t.index] += step;
+                        raise[t.index] += step;
                     }
             }
             if (below == 0) break;
@@ -871,6 +911,7 @@ reflection_table compute_reflection(const settings& s, ex::progress& bar, const 
         }
         for (std::size_t p = 0; p < checks.size(); ++p)
             out.envelope_left = std::max(out.envelope_left, fresh[p] - reflection_read(out.delta, where[p], view[p]));
+        out.random_checks = s.envelope_random;
     } else {
         for (std::size_t n = 0; n < node.size(); ++n) out.delta[n] = as_written(node[n], 4);
     }
@@ -911,7 +952,7 @@ reflection_table compute_reflection(const settings& s, ex::progress& bar, const 
 void write_reflection(std::FILE* f, const reflection_table& t, const settings& s) {
     std::fprintf(f, "#pragma once\n");
     std::fprintf(f, "// Generated by examples/dielectric_albedo_tables.cpp (--anisotropic --reflection --strata %zu%s); do not edit by hand.\n",
-                 s.strata, s.envelope > 0 ? (" --envelope " + std::to_string(s.envelope)).c_str() : "");
+                 s.strata, envelope_options(s).c_str());
     std::fprintf(f, "// The anisotropic correction of shade/bsdf/dielectric_anisotropic_reflection_albedo.hpp (meaning)\n");
     std::fprintf(f, "// on the grid of shade/bsdf/dielectric_anisotropic_reflection_table.hpp (grid, interpolation):\n");
     std::fprintf(f, "// 2 sides x %zu (e) x %zu (z < 1) x %zu (y > 0) x %zu (u) rows of %zu (x) nodes, the %zu azimuth rows of\n",
@@ -928,9 +969,10 @@ void write_reflection(std::FILE* f, const reflection_table& t, const settings& s
     if (t.checks > 0)
         std::fprintf(f,
                      "\n/// An upper envelope, not point values: %zu nodes raised (by at most %.1e) so that no fresh\n"
-                     "/// %zu-sample estimate at %zu check points with mu >= 0.05 (cell centres and edge middles) is\n"
-                     "/// above the table by more than %.1e.",
-                     t.raised, t.max_raise, s.envelope * s.envelope, t.checks, std::max(t.envelope_left, 0.0));
+                     "/// %zu-sample estimate (+ %g) at %zu check points with mu >= 0.05 (cell centres and edge middles,\n"
+                     "/// %zu of them random) is above the table by more than %.1e.",
+                     t.raised, t.max_raise, s.envelope * s.envelope, s.envelope_margin, t.checks, t.random_checks,
+                     std::max(t.envelope_left, 0.0));
     std::fprintf(f, "\n/// The table read minus a fresh estimate at %zu random points with mu >= 0.1 (interpolation\n"
                     "/// and both estimates' noise): entering side %.1e to %.1e, exiting side %.1e to %.1e.\n",
                  t.points, t.side_lowest[0], t.side_highest[0], t.side_lowest[1], t.side_highest[1]);
@@ -981,6 +1023,7 @@ int main(int argc, char** argv) {
             else if (args.option("--envelope")) s.envelope = args.integer<std::size_t>(16, 2048);
             else if (args.option("--envelope-margin")) s.envelope_margin = args.real(0, 0.01);
             else if (args.option("--envelope-view-steps")) s.envelope_view_steps = args.integer<std::size_t>(2, 8);
+            else if (args.option("--envelope-random")) s.envelope_random = args.integer<std::size_t>(1, 10000000);
             else args.unknown();
         }
         (void)ex::output_format("--out", s.out, {".hpp", ".h"});
@@ -991,8 +1034,12 @@ int main(int argc, char** argv) {
             throw ex::usage_error("--reflection does not apply to --beckmann (it is tabulated for GGX)");
         if (s.envelope > 0 && (s.reflection != s.anisotropic))
             throw ex::usage_error("--envelope applies to the total-albedo tables and to --anisotropic --reflection only");
-        if ((s.envelope_margin > 0 || s.envelope_view_steps != 2) && (s.envelope == 0 || s.anisotropic))
-            throw ex::usage_error("--envelope-margin and --envelope-view-steps need --envelope on a total-albedo table");
+        if (s.envelope_view_steps != 2 && (s.envelope == 0 || s.anisotropic))
+            throw ex::usage_error("--envelope-view-steps needs --envelope on a total-albedo table");
+        if (s.envelope_margin > 0 && (s.envelope == 0 || (s.anisotropic && !s.reflection)))
+            throw ex::usage_error("--envelope-margin needs --envelope on a total-albedo table or on --anisotropic --reflection");
+        if (s.envelope_random > 0 && (s.envelope == 0 || !s.anisotropic || !s.reflection))
+            throw ex::usage_error("--envelope-random needs --anisotropic --reflection --envelope S");
         if (s.reflection && !s.anisotropic) {
             if (s.out == "dielectric_albedo_data.hpp") s.out = "dielectric_reflection_albedo_data.hpp";
             s.grid = d::dielectric_reflection_albedo_grid;
@@ -1006,7 +1053,8 @@ int main(int argc, char** argv) {
             if (s.out == "dielectric_albedo_data.hpp") s.out = "dielectric_anisotropic_reflection_albedo_data.hpp";
             if (!strata_given) s.strata = 128;
             ex::output_file header(s.out);
-            const std::vector<reflection_check> checks = s.envelope > 0 ? reflection_checks() : std::vector<reflection_check>{};
+            std::vector<reflection_check> checks = s.envelope > 0 ? reflection_checks() : std::vector<reflection_check>{};
+            for (const reflection_check& c : reflection_random_checks(s.envelope_random)) checks.push_back(c);
             std::optional<ex::progress> bar(std::in_place, "dielectric_albedo_tables",
                                             d::reflection_anisotropic_size + checks.size() + s.points, !s.quiet);
             const reflection_table t = compute_reflection(s, *bar, checks);
