@@ -32,15 +32,16 @@
 // stored as R_ss - F(mu, eta_s), F the exact Fresnel reflectance at the view (the node's
 // mu); the cell centres compare F + the interpolated difference with a fresh R_ss.
 //
-//   dielectric_albedo_tables --anisotropic --out include/shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp
+//   dielectric_albedo_tables --anisotropic --envelope 40 --out include/shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp
 //
 // writes instead the anisotropic corrections of
-// shade/bsdf/dielectric_anisotropic_albedo_table.hpp: at each node, Delta = E(w) - E_iso(mu,
-// sqrt(alpha_x alpha_y), eta_s), E(w) estimated as above for the anisotropic interface and
-// the view w at the node's azimuth, E_iso read from the committed isotropic table; each row's
-// cosine average; and, as the stated accuracy, the largest node standard error and the range
-// of E_iso + Delta (the table) minus a fresh estimate at random points of the domain with
-// mu >= 0.1.
+// shade/bsdf/dielectric_anisotropic_albedo_table.hpp (anisotropy alpha_min / alpha_max down to
+// 0, alpha_max up to sqrt 2): at each node, Delta = E(w) - E_iso(mu, alpha_rms, eta_s), E(w)
+// estimated as above for the anisotropic interface and the view w at the node's azimuth,
+// E_iso read from the committed isotropic table at the root-mean-square roughness; with
+// --envelope, an upper envelope of E (compute_anisotropic, as compute_reflection's); each
+// row's cosine average; and, as the stated accuracy, the largest node standard error and the
+// range of the table minus a fresh estimate at random points of the domain with mu >= 0.1.
 //
 //   dielectric_albedo_tables --anisotropic --reflection --envelope 48 --envelope-margin 0.0002 --envelope-random 100000 --out include/shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp
 //
@@ -94,7 +95,7 @@ using T = double;
 constexpr std::string_view usage =
     R"(usage: dielectric_albedo_tables [--beckmann | --reflection] [--out FILE.hpp] [--mu-nodes N] [--alpha-nodes N]
                                 [--eta-nodes N] [--strata S] [--envelope S] [--threads K] [--quiet]
-       dielectric_albedo_tables --anisotropic [--reflection [--envelope S]] [--out FILE.hpp] [--strata S]
+       dielectric_albedo_tables --anisotropic [--reflection] [--envelope S] [--out FILE.hpp] [--strata S]
                                 [--points N] [--verbose] [--threads K] [--quiet]
 
 Computes E(mu, alpha, eta_s) = R + T (importance mode) of
@@ -113,8 +114,8 @@ writes the header of constants.
   --reflection      the reflected part R alone of GGX, stored as R - F(mu, eta_s), on the
                     reflection grid (eta_hat from 1.001, 20 eta nodes by default, a spline
                     along eta; default output dielectric_reflection_albedo_data.hpp)
-  --anisotropic     write instead the corrections Delta = E(w) - E_iso(mu, sqrt(alpha_x
-                    alpha_y), eta_s) of anisotropic GGX interfaces on the fixed grid of
+  --anisotropic     write instead the corrections Delta = E(w) - E_iso(mu, alpha_rms, eta_s)
+                    of anisotropic GGX interfaces on the fixed grid of
                     dielectric_anisotropic_albedo_table.hpp, and their row averages (default
                     output dielectric_anisotropic_albedo_data.hpp; the node options do not apply);
                     with --reflection, the corrections Delta_R = R(w) - R_iso(mu, alpha_b,
@@ -128,7 +129,8 @@ writes the header of constants.
                     E is estimated (S^2 samples) at the middle of every cell edge, face and
                     interior with mu >= 0.05, and the nodes of each cell whose interpolated
                     value falls below an estimate are raised by the shortfall, until none does;
-                    with --anisotropic --reflection, of R at cell centres and edge middles
+                    with --anisotropic, of E (or R with --reflection) at cell centres and
+                    edge middles
   --envelope-random N  with --anisotropic --reflection --envelope S: N random check points
                     besides the fixed ones (between them the read can fall below the truth)
   --envelope-margin M  with --envelope (total-albedo tables, --anisotropic --reflection): raise until the table is at least
@@ -520,145 +522,6 @@ float as_written(double x, int digits) {
     return std::strtof(text, nullptr);
 }
 
-struct anisotropic_table {
-    std::vector<float> delta;   // dielectric_anisotropic_size values
-    std::vector<float> average; // one per row
-    double max_error = 0;       // largest standard error of a node
-    double max_delta = 0;       // largest |Delta|
-    double lowest = 0;          // smallest table - fresh estimate at the random points
-    double highest = 0;         // largest
-    double side_lowest[2] = {0, 0};  // lowest per side (0 entering, 1 exiting)
-    double side_highest[2] = {0, 0}; // highest per side
-    std::size_t points = 0;     // random points compared
-};
-
-// The unit local view at cosine mu and sin^2 of the azimuth from t (v.z > 0).
-shade::vec3<T> view_of(double mu, double sin2) {
-    const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
-    return {sin_theta * std::sqrt(1 - sin2), sin_theta * std::sqrt(sin2), mu};
-}
-
-// E_iso of the committed table at (mu, alpha, eta_s).
-double iso_albedo(double mu, double alpha, double eta_s) {
-    const d::dielectric_albedo_grid g{};
-    return d::dielectric_albedo_lookup(d::ggx_rough_dielectric_albedo, g, d::dielectric_albedo_locate(g, alpha, eta_s), mu);
-}
-
-anisotropic_table compute_anisotropic(const settings& s, ex::progress& bar, std::size_t points) {
-    constexpr std::size_t nx = d::dielectric_anisotropic_mu_nodes, nu = d::dielectric_anisotropic_azimuth_nodes;
-    constexpr std::size_t ny = d::dielectric_anisotropic_roughness_nodes, nr = d::dielectric_anisotropic_ratio_nodes;
-    constexpr std::size_t ne = d::dielectric_anisotropic_eta_nodes;
-    anisotropic_table out{std::vector<float>(d::dielectric_anisotropic_size, 0.0f),
-                          std::vector<float>(d::dielectric_anisotropic_rows, 0.0f), 0, 0, 0, 0, {0, 0}, {0, 0}, points};
-    std::vector<double> errors(d::dielectric_anisotropic_size, 0.0);
-    parallel_for(d::dielectric_anisotropic_size, s.threads, [&](std::size_t index) {
-        const std::size_t i_x = index % nx, i_u = index / nx % nu, j = index / (nx * nu) % ny,
-                          k = index / (nx * nu * ny) % nr, m = index / (nx * nu * ny * nr) % ne,
-                          side = index / (nx * nu * ny * nr * ne);
-        // r = 0 (isotropic) and y = 0 (a smooth interface) hold 0 by definition.
-        if (k > 0 && j > 0) {
-            const double y = double(j) / double(ny - 1), alpha = y * y;
-            const double q = std::pow(d::dielectric_anisotropic_ratio_max, double(k) / double(nr - 1));
-            const double eta_s = eta_of_side(side, d::dielectric_albedo_eta(m, ne));
-            const double x = double(i_x) / double(nx - 1);
-            const double mu = std::min(std::max(x * x, d::albedo_grid_mu_min), 1.0);
-            // sin^2 of the azimuth of the node's u.
-            const double phi = d::dielectric_anisotropic_phi(double(i_u) / double(nu - 1), (q - 1) * (q + 1),
-                                                             1 / (2 * std::log(q)));
-            const double sin2 = std::sin(phi) * std::sin(phi);
-            // The seed leaves out the azimuth: the pole column (mu = 1) is then the same
-            // estimate for every u, as Delta there is.
-            const auto a = estimate_view(alpha / std::sqrt(q), alpha * std::sqrt(q), eta_s, view_of(mu, sin2), s.strata,
-                                         1 + index / (nx * nu) * nx + i_x);
-            // Delta is measured from E_iso at the mean roughness.
-            out.delta[index] = as_written(std::min(a.albedo.x, 1.0) - iso_albedo(mu, alpha, eta_s), 4);
-            errors[index] = a.standard_error.x;
-        }
-        bar.advance();
-    });
-    out.max_error = *std::max_element(errors.begin(), errors.end());
-    for (const float x : out.delta) out.max_delta = std::max(out.max_delta, double(std::abs(x)));
-    for (std::size_t n = 0; n < d::dielectric_anisotropic_rows; ++n)
-        out.average[n] = float(d::dielectric_anisotropic_row_average(out.delta.data() + n * nx));
-    // Random points of the domain: eta_hat - 1 log-uniform over [0.05, 2], either side,
-    // anisotropy log-uniform in [1, 20], either axis the smoother, the square root of the
-    // mean roughness uniform in [0.2, 1], mu >= 0.1 uniform in sqrt(mu), azimuth uniform.
-    std::vector<double> difference(points);
-    parallel_for(points, s.threads, [&](std::size_t p) {
-        shade::rng random(0x5eed0000 + p);
-        const double eta_hat = 1 + std::exp(d::dielectric_albedo_x_min + random.uniform<double>() * (d::dielectric_albedo_x_max -
-                                                                                                     d::dielectric_albedo_x_min));
-        const std::size_t side = p % 2;
-        const double eta_s = eta_of_side(side, eta_hat);
-        const double q = std::pow(d::dielectric_anisotropic_ratio_max, random.uniform<double>());
-        const double y = 0.2 + 0.8 * random.uniform<double>(), alpha = y * y;
-        const double x = std::sqrt(0.1) + (1 - std::sqrt(0.1)) * random.uniform<double>(), mu = x * x;
-        const double phi = random.uniform<double>() * 2 * shade::pi<double>;
-        const bool swap = p % 4 >= 2;
-        const double alpha_x = swap ? alpha * std::sqrt(q) : alpha / std::sqrt(q);
-        const double alpha_y = swap ? alpha / std::sqrt(q) : alpha * std::sqrt(q);
-        const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
-        const shade::vec3<T> v(sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu);
-        const auto fresh = estimate_view(alpha_x, alpha_y, eta_s, v, s.strata, 0x0f00000 + p);
-        const auto cell = d::dielectric_anisotropic_locate(alpha_x, alpha_y, eta_s);
-        const double table = iso_albedo(mu, std::sqrt(alpha_x * alpha_y), eta_s) +
-                             d::dielectric_anisotropic_delta(out.delta.data(), cell, side, v.x, v.y, v.z);
-        difference[p] = table - fresh.albedo.x;
-        if (s.verbose)
-            std::fprintf(stderr, "point side %zu eta_hat %.4f q %.3f mean_alpha %.4f mu %.4f phi %.4f swap %d: table %.5f fresh %.5f +- %.1e\n",
-                         side, eta_hat, q, alpha, mu, phi, int(swap), table, fresh.albedo.x, fresh.standard_error.x);
-        bar.advance();
-    });
-    if (points > 0) {
-        out.lowest = *std::min_element(difference.begin(), difference.end());
-        out.highest = *std::max_element(difference.begin(), difference.end());
-        for (std::size_t p = 0; p < points; ++p) {
-            out.side_lowest[p % 2] = std::min(out.side_lowest[p % 2], difference[p]);
-            out.side_highest[p % 2] = std::max(out.side_highest[p % 2], difference[p]);
-        }
-    }
-    return out;
-}
-
-void write_anisotropic(std::FILE* f, const anisotropic_table& t, const settings& s) {
-    constexpr std::size_t nx = d::dielectric_anisotropic_mu_nodes, nu = d::dielectric_anisotropic_azimuth_nodes;
-    std::fprintf(f, "#pragma once\n");
-    std::fprintf(f, "// Generated by examples/dielectric_albedo_tables.cpp (--anisotropic --strata %zu); do not edit by hand.\n",
-                 s.strata);
-    std::fprintf(f, "// The anisotropic corrections of shade/bsdf/dielectric_anisotropic_albedo_table.hpp (meaning) on the grid of\n");
-    std::fprintf(f, "// shade/bsdf/dielectric_anisotropic_albedo_table.hpp (grid, interpolation): 2 sides x %zu (e) x %zu (r)\n",
-                 d::dielectric_anisotropic_eta_nodes, d::dielectric_anisotropic_ratio_nodes);
-    std::fprintf(f, "// x %zu (y) x %zu (u) rows of %zu (x) nodes, one row per line; each node E(w), the mean\n",
-                 d::dielectric_anisotropic_roughness_nodes, nu, nx);
-    std::fprintf(f, "// importance-mode weight of %zu jittered samples of the interface's own sampler, minus\n",
-                 s.strata * s.strata);
-    std::fprintf(f, "// the isotropic table (dielectric_albedo_data.hpp) at the geometric-mean roughness,\n");
-    std::fprintf(f, "// written with 4 significant digits.\n\n");
-    std::fprintf(f, "#include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>\n\n");
-    std::fprintf(f, "namespace shade::detail {\n\n");
-    std::fprintf(f, "/// Delta_s(w) of shade::rough_dielectric<ggx> with alpha_x != alpha_y.\n");
-    std::fprintf(f, "/// Node standard error <= %.1e; |Delta| <= %.3f. The table read minus a fresh\n",
-                 t.max_error, t.max_delta);
-    std::fprintf(f, "/// estimate at %zu random points with mu >= 0.1 (interpolation, both estimates' noise and the\n",
-                 t.points);
-    std::fprintf(f, "/// isotropic table's error): from %.1e to %.1e", t.lowest, t.highest);
-    std::fprintf(f, ".\ninline constexpr float ggx_dielectric_anisotropic_delta[dielectric_anisotropic_size] = {\n");
-    for (std::size_t row = 0; row < d::dielectric_anisotropic_rows; ++row) {
-        ex::write_float_literals(f, t.delta.data() + row * nx, nx, 4);
-        std::fprintf(f, ",\n");
-    }
-    std::fprintf(f, "};\n\n");
-    std::fprintf(f, "/// The cosine averages of the rows of ggx_dielectric_anisotropic_delta\n");
-    std::fprintf(f, "/// (dielectric_anisotropic_row_average), the %zu azimuth rows of one node per line.\n", nu);
-    std::fprintf(f, "inline constexpr float ggx_dielectric_anisotropic_delta_average[dielectric_anisotropic_rows] = {\n");
-    for (std::size_t n = 0; n < d::dielectric_anisotropic_rows / nu; ++n) {
-        ex::write_float_literals(f, t.average.data() + n * nu, nu);
-        std::fprintf(f, ",\n");
-    }
-    std::fprintf(f, "};\n\n");
-    std::fprintf(f, "} // namespace shade::detail\n");
-}
-
 // ---- The anisotropic reflection correction (--anisotropic --reflection), on its own grid
 // (shade/bsdf/dielectric_anisotropic_reflection_table.hpp).
 
@@ -985,6 +848,284 @@ void write_reflection(std::FILE* f, const reflection_table& t, const settings& s
     std::fprintf(f, "} // namespace shade::detail\n");
 }
 
+// ---- The anisotropic total-albedo correction (--anisotropic), on the grid of
+// shade/bsdf/dielectric_anisotropic_albedo_table.hpp.
+
+namespace tg {
+constexpr std::size_t nx = d::dielectric_anisotropic_mu_nodes, nu = d::dielectric_anisotropic_azimuth_nodes;
+constexpr std::size_t ny = d::dielectric_anisotropic_roughness_nodes, nz = d::dielectric_anisotropic_ratio_nodes;
+constexpr std::size_t ne = d::dielectric_anisotropic_eta_nodes;
+} // namespace tg
+
+// The interface of a (z, y, e, side) point of the grid: the smoother alpha along t, at least
+// OpenPBR's smallest alpha 1e-4 (z = 0: OpenPBR's anisotropy 1); eta_s of the side.
+struct total_interface {
+    double alpha_x, alpha_y, eta_s;
+};
+total_interface total_interface_at(double z_coord, double y_coord, double e_coord, std::size_t side) {
+    const double alpha_max = d::dielectric_anisotropic_alpha_top * y_coord * y_coord;
+    const double alpha_min = std::max(z_coord * z_coord * alpha_max, 1e-4);
+    const double eta_hat = 1 + std::exp(d::dielectric_albedo_x_min + e_coord * (d::dielectric_albedo_x_max - d::dielectric_albedo_x_min));
+    return {alpha_min, alpha_max, eta_of_side(side, eta_hat)};
+}
+
+// The unit local view (v.z > 0) at the grid coordinates x = sqrt(mu) and u (from t).
+shade::vec3<T> total_view_at(double x_coord, double u_coord) {
+    const double mu = std::min(std::max(x_coord * x_coord, d::albedo_grid_mu_min), 1.0);
+    const double sin_theta = std::sqrt((1 - mu) * (1 + mu)), phi = d::dielectric_anisotropic_phi(u_coord);
+    return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu};
+}
+
+// E_iso of the committed table at (mu, alpha, eta_s).
+double iso_albedo(double mu, double alpha, double eta_s) {
+    const d::dielectric_albedo_grid g{};
+    return d::dielectric_albedo_lookup(d::ggx_rough_dielectric_albedo, g, d::dielectric_albedo_locate(g, alpha, eta_s), mu);
+}
+
+// What Delta is measured from: E_iso at the root-mean-square roughness.
+double total_base(const total_interface& at, double mu) {
+    return iso_albedo(std::min(mu, 1.0), d::dielectric_anisotropic_base_alpha(at.alpha_x, at.alpha_y), at.eta_s);
+}
+
+// The taps with which dielectric_anisotropic_delta reads the interface `at` at view v.
+std::vector<tap> total_taps(const total_interface& at, const shade::vec3<T>& v) {
+    const auto cell = d::dielectric_anisotropic_locate(at.alpha_x, at.alpha_y, at.eta_s);
+    const std::size_t side = at.eta_s > 1 ? 0 : 1;
+    const double along = cell.swapped ? v.y : v.x, across = cell.swapped ? v.x : v.y;
+    const auto u = d::albedo_grid_locate(d::dielectric_anisotropic_u(std::atan2(std::abs(across), std::abs(along))), tg::nu);
+    const auto x = d::albedo_grid_locate(std::sqrt(std::min(v.z, 1.0)), tg::nx);
+    const d::spline_taps<double> wx(x.i, x.t, tg::nx);
+    std::vector<tap> out;
+    for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b)
+            for (int c = 0; c < 4; ++c) {
+                const double w = cell.e.weight[a] * cell.z.weight[b] * cell.y.weight[c];
+                if (w == 0 || cell.y.node[c] == 0) continue;
+                for (std::size_t du = 0; du < 2; ++du) {
+                    const double wu = du == 0 ? 1 - u.t : u.t;
+                    if (wu == 0) continue;
+                    const std::size_t row =
+                        d::dielectric_anisotropic_row_index(side, cell.e.node[a], cell.z.node[b], cell.y.node[c], u.i + du);
+                    for (int k = 0; k < 4; ++k)
+                        if (wx.weight[k] != 0) out.push_back({row * tg::nx + wx.node[k], w * wu * wx.weight[k]});
+                }
+            }
+    return out;
+}
+
+// E(v) of the interface as the table reads it (unclamped).
+double total_read(const std::vector<float>& delta, const total_interface& at, const shade::vec3<T>& v) {
+    const auto cell = d::dielectric_anisotropic_locate(at.alpha_x, at.alpha_y, at.eta_s);
+    return total_base(at, v.z) + d::dielectric_anisotropic_delta(delta.data(), cell, at.eta_s > 1 ? 0 : 1, v.x, v.y, v.z);
+}
+
+struct anisotropic_table {
+    std::vector<float> delta;        // dielectric_anisotropic_size values
+    std::vector<float> average;      // one per stored row
+    double max_error = 0;            // largest standard error of a node
+    double max_delta = 0;            // largest |Delta|
+    std::size_t checks = 0;          // envelope check points (0: point values)
+    std::size_t raised = 0;          // nodes raised by the envelope
+    double max_raise = 0;            // the largest raise
+    int passes = 0;                  // raising passes
+    double envelope_left = 0;        // the largest check estimate - table left after the passes and rounding
+    double side_lowest[2] = {0, 0};  // table - fresh estimate at the random points, per side
+    double side_highest[2] = {0, 0};
+    std::size_t points = 0;
+};
+
+// The envelope's check points with mu >= 0.05, as for the reflection table: on every stored
+// (side, e, z, y) slice the middles of the (x, u) cells and edges; the middle of every y, z
+// and e edge at the other axes' nodes; the centre of every cell of the whole grid.
+std::vector<reflection_check> total_checks() {
+    std::vector<reflection_check> out;
+    const auto at = [](std::size_t i, std::size_t n) { return double(i) / double(n - 1); };
+    const auto mid = [](std::size_t i, std::size_t n) { return (double(i) + 0.5) / double(n - 1); };
+    for (std::size_t side = 0; side < 2; ++side)
+        for (std::size_t m = 0; m < tg::ne; ++m)
+            for (std::size_t k = 0; k < tg::nz; ++k)
+                for (std::size_t j = 1; j < tg::ny; ++j)
+                    for (std::size_t i_u = 0; i_u < tg::nu; ++i_u)
+                        for (std::size_t i_x = 0; i_x < tg::nx; ++i_x) {
+                            const double y = at(j, tg::ny), z = at(k, tg::nz), e = at(m, tg::ne);
+                            if (i_x + 1 < tg::nx && i_u + 1 < tg::nu) out.push_back({mid(i_x, tg::nx), mid(i_u, tg::nu), y, z, e, side});
+                            if (i_x + 1 < tg::nx) out.push_back({mid(i_x, tg::nx), at(i_u, tg::nu), y, z, e, side});
+                            if (i_u + 1 < tg::nu) out.push_back({at(i_x, tg::nx), mid(i_u, tg::nu), y, z, e, side});
+                            const double x = at(i_x, tg::nx), u = at(i_u, tg::nu);
+                            if (j + 1 < tg::ny) out.push_back({x, u, mid(j, tg::ny), z, e, side});
+                            if (j == 1) out.push_back({x, u, mid(0, tg::ny), z, e, side}); // toward y = 0
+                            if (k + 1 < tg::nz) out.push_back({x, u, y, mid(k, tg::nz), e, side});
+                            if (m + 1 < tg::ne) out.push_back({x, u, y, z, mid(m, tg::ne), side});
+                        }
+    for (std::size_t side = 0; side < 2; ++side)
+        for (std::size_t m = 0; m + 1 < tg::ne; ++m)
+            for (std::size_t k = 0; k + 1 < tg::nz; ++k)
+                for (std::size_t j = 0; j + 1 < tg::ny; ++j)
+                    for (std::size_t i_u = 0; i_u + 1 < tg::nu; ++i_u)
+                        for (std::size_t i_x = 0; i_x + 1 < tg::nx; ++i_x)
+                            out.push_back({mid(i_x, tg::nx), mid(i_u, tg::nu), mid(j, tg::ny), mid(k, tg::nz), mid(m, tg::ne), side});
+    // Only views with mu >= 0.05: raising nodes for the grazing views would lower the
+    // interpolation above them through Catmull-Rom's negative weights.
+    std::erase_if(out, [](const reflection_check& c) { return c.x * c.x < 0.05; });
+    return out;
+}
+
+anisotropic_table compute_anisotropic(const settings& s, ex::progress& bar, const std::vector<reflection_check>& checks) {
+    anisotropic_table out;
+    out.delta.assign(d::dielectric_anisotropic_size, 0.0f);
+    out.average.assign(d::dielectric_anisotropic_rows, 0.0f);
+    std::vector<double> errors(d::dielectric_anisotropic_size, 0.0), node(d::dielectric_anisotropic_size, 0.0);
+    parallel_for(d::dielectric_anisotropic_size, s.threads, [&](std::size_t index) {
+        const std::size_t i_x = index % tg::nx, i_u = index / tg::nx % tg::nu, j = 1 + index / (tg::nx * tg::nu) % (tg::ny - 1),
+                          k = index / (tg::nx * tg::nu * (tg::ny - 1)) % tg::nz,
+                          m = index / (tg::nx * tg::nu * (tg::ny - 1) * tg::nz) % tg::ne,
+                          side = index / (tg::nx * tg::nu * (tg::ny - 1) * tg::nz * tg::ne);
+        const auto at = total_interface_at(double(k) / double(tg::nz - 1), double(j) / double(tg::ny - 1),
+                                           double(m) / double(tg::ne - 1), side);
+        const shade::vec3<T> v = total_view_at(double(i_x) / double(tg::nx - 1), double(i_u) / double(tg::nu - 1));
+        // Isotropic (z = 1) up to alpha 1: E_iso is the isotropic table itself, Delta 0.
+        if (k + 1 == tg::nz && at.alpha_y <= 1) {
+            bar.advance();
+            return;
+        }
+        // The seed leaves out the azimuth: the pole column (mu = 1) is then the same
+        // estimate for every u, as Delta there is.
+        const auto a = estimate_view(at.alpha_x, at.alpha_y, at.eta_s, v, s.strata, 1 + index / (tg::nx * tg::nu) * tg::nx + i_x);
+        node[index] = std::min(a.albedo.x, 1.0) - total_base(at, v.z);
+        errors[index] = a.standard_error.x;
+        bar.advance();
+    });
+    out.max_error = *std::max_element(errors.begin(), errors.end());
+    // The upper envelope, as compute_reflection's: fresh estimates at the check points, then
+    // passes that raise the nodes a check point reads with positive weight by its shortfall
+    // (least squares) until no check point is above the table.
+    if (!checks.empty()) {
+        out.checks = checks.size();
+        std::vector<double> fresh(checks.size());
+        std::vector<total_interface> where(checks.size());
+        std::vector<shade::vec3<T>> view(checks.size());
+        parallel_for(checks.size(), s.threads, [&](std::size_t p) {
+            const auto& c = checks[p];
+            where[p] = total_interface_at(c.s, c.y, c.e, c.side);
+            view[p] = total_view_at(c.x, c.u);
+            fresh[p] = std::min(estimate_view(where[p].alpha_x, where[p].alpha_y, where[p].eta_s, view[p], s.envelope, 3000017 + p)
+                                    .albedo.x,
+                                1.0);
+            bar.advance();
+        });
+        std::vector<double> raise(node.size(), 0.0);
+        for (out.passes = 1; out.passes <= 40; ++out.passes) {
+            std::size_t below = 0;
+            for (std::size_t p = 0; p < checks.size(); ++p) {
+                const std::vector<tap> taps = total_taps(where[p], view[p]);
+                double read = total_base(where[p], view[p].z);
+                for (const tap& t : taps) read += t.weight * node[t.index];
+                // 2e-5 above the estimate: room for writing the nodes with 4 digits.
+                const double shortfall = fresh[p] + 2e-5 - read;
+                if (!(shortfall > 0)) continue;
+                if (s.verbose && out.passes == 1 && shortfall > 0.01)
+                    std::fprintf(stderr, "check side %zu x %.4f u %.4f y %.4f z %.4f e %.4f: fresh %.5f table %.5f\n",
+                                 checks[p].side, checks[p].x, checks[p].u, checks[p].y, checks[p].s, checks[p].e, fresh[p], read);
+                ++below;
+                double norm = 0;
+                for (const tap& t : taps)
+                    if (t.weight > 0) norm += t.weight * t.weight;
+                if (!(norm > 0)) continue;
+                for (const tap& t : taps)
+                    if (t.weight > 0) {
+                        node[t.index] += shortfall * t.weight / norm;
+                        raise[t.index] += shortfall * t.weight / norm;
+                    }
+            }
+            if (below == 0) break;
+        }
+        for (std::size_t n = 0; n < node.size(); ++n) {
+            out.delta[n] = as_written(node[n], 4);
+            if (raise[n] > 0) ++out.raised;
+            out.max_raise = std::max(out.max_raise, raise[n]);
+        }
+        for (std::size_t p = 0; p < checks.size(); ++p)
+            out.envelope_left = std::max(out.envelope_left, fresh[p] - total_read(out.delta, where[p], view[p]));
+    } else {
+        for (std::size_t n = 0; n < node.size(); ++n) out.delta[n] = as_written(node[n], 4);
+    }
+    for (const float x : out.delta) out.max_delta = std::max(out.max_delta, double(std::abs(x)));
+    for (std::size_t n = 0; n < d::dielectric_anisotropic_rows; ++n)
+        out.average[n] = float(d::dielectric_anisotropic_row_average(out.delta.data() + n * tg::nx));
+    // Random points: eta_hat - 1 log-uniform over [0.05, 2], either side, alpha_min /
+    // alpha_max uniform in [0, 1] (every fifth point 0: the smaller alpha 1e-4), either axis
+    // the smoother, y uniform in [0.1, 1], mu >= 0.1 uniform in sqrt(mu), azimuth uniform.
+    out.points = s.points;
+    std::vector<double> difference(s.points);
+    parallel_for(s.points, s.threads, [&](std::size_t p) {
+        shade::rng random(0x5eed0000 + p);
+        const std::size_t side = p % 2;
+        const double e = random.uniform<double>();
+        const double z_coord = p % 10 == 4 || p % 10 == 5 ? 0.0 : std::sqrt(random.uniform<double>());
+        const double y = 0.1 + 0.9 * random.uniform<double>();
+        const auto at0 = total_interface_at(z_coord, y, e, side);
+        const bool swap = p % 4 >= 2;
+        const total_interface at{swap ? at0.alpha_y : at0.alpha_x, swap ? at0.alpha_x : at0.alpha_y, at0.eta_s};
+        const double x = std::sqrt(0.1) + (1 - std::sqrt(0.1)) * random.uniform<double>(), mu = x * x;
+        const double phi = random.uniform<double>() * 2 * shade::pi<double>;
+        const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
+        const shade::vec3<T> v(sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu);
+        const auto fresh = estimate_view(at.alpha_x, at.alpha_y, at.eta_s, v, s.strata, 0x0f00000 + p);
+        const double table = at.alpha_x == at.alpha_y ? total_base(at, mu) : total_read(out.delta, at, v);
+        difference[p] = table - std::min(fresh.albedo.x, 1.0);
+        if (s.verbose)
+            std::fprintf(stderr, "point side %zu eta_s %.4f alpha_x %.5f alpha_y %.5f mu %.4f phi %.4f: table %.5f fresh %.5f +- %.1e\n",
+                         side, at.eta_s, at.alpha_x, at.alpha_y, mu, phi, table, fresh.albedo.x, fresh.standard_error.x);
+        bar.advance();
+    });
+    for (std::size_t p = 0; p < s.points; ++p) {
+        out.side_lowest[p % 2] = std::min(out.side_lowest[p % 2], difference[p]);
+        out.side_highest[p % 2] = std::max(out.side_highest[p % 2], difference[p]);
+    }
+    return out;
+}
+
+void write_anisotropic(std::FILE* f, const anisotropic_table& t, const settings& s) {
+    std::fprintf(f, "#pragma once\n");
+    std::fprintf(f, "// Generated by examples/dielectric_albedo_tables.cpp (--anisotropic --strata %zu%s); do not edit by hand.\n",
+                 s.strata, s.envelope > 0 ? (" --envelope " + std::to_string(s.envelope)).c_str() : "");
+    std::fprintf(f, "// The anisotropic corrections of shade/bsdf/dielectric_anisotropic_albedo_table.hpp (meaning, grid,\n");
+    std::fprintf(f, "// interpolation): 2 sides x %zu (e) x %zu (z) x %zu (y > 0) x %zu (u) rows of %zu (x) nodes, the %zu\n",
+                 tg::ne, tg::nz, tg::ny - 1, tg::nu, tg::nx, tg::nu);
+    std::fprintf(f, "// azimuth rows of one node per line; each node E(w), the mean importance-mode weight of %zu jittered\n",
+                 s.strata * s.strata);
+    std::fprintf(f, "// samples of the interface's own sampler, minus the isotropic table (dielectric_albedo_data.hpp) at\n");
+    std::fprintf(f, "// the root-mean-square roughness, written with 4 significant digits.\n\n");
+    std::fprintf(f, "#include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>\n\n");
+    std::fprintf(f, "namespace shade::detail {\n\n");
+    std::fprintf(f, "/// Delta_s(w) of shade::rough_dielectric<ggx> with alpha_x != alpha_y.\n");
+    std::fprintf(f, "/// Node standard error <= %.1e; |Delta| <= %.3f.", t.max_error, t.max_delta);
+    if (t.checks > 0)
+        std::fprintf(f,
+                     "\n/// An upper envelope of E, not point values: %zu nodes raised (by at most %.1e) so that no fresh\n"
+                     "/// %zu-sample estimate at %zu check points with mu >= 0.05 (cell centres and edge middles) is\n"
+                     "/// above the table by more than %.1e.",
+                     t.raised, t.max_raise, s.envelope * s.envelope, t.checks, std::max(t.envelope_left, 0.0));
+    std::fprintf(f, "\n/// The table read minus a fresh estimate at %zu random points with mu >= 0.1 (interpolation\n"
+                    "/// and both estimates' noise): entering side %.1e to %.1e, exiting side %.1e to %.1e.\n",
+                 t.points, t.side_lowest[0], t.side_highest[0], t.side_lowest[1], t.side_highest[1]);
+    std::fprintf(f, "inline constexpr float ggx_dielectric_anisotropic_delta[dielectric_anisotropic_size] = {\n");
+    for (std::size_t row = 0; row < d::dielectric_anisotropic_rows; row += tg::nu) {
+        ex::write_float_literals(f, t.delta.data() + row * tg::nx, tg::nx * tg::nu, 4);
+        std::fprintf(f, ",\n");
+    }
+    std::fprintf(f, "};\n\n");
+    std::fprintf(f, "/// The cosine averages of the rows of ggx_dielectric_anisotropic_delta\n");
+    std::fprintf(f, "/// (dielectric_anisotropic_row_average), the %zu azimuth rows of one node per line.\n", tg::nu);
+    std::fprintf(f, "inline constexpr float ggx_dielectric_anisotropic_delta_average[dielectric_anisotropic_rows] = {\n");
+    for (std::size_t n = 0; n < d::dielectric_anisotropic_rows / tg::nu; ++n) {
+        ex::write_float_literals(f, t.average.data() + n * tg::nu, tg::nu);
+        std::fprintf(f, ",\n");
+    }
+    std::fprintf(f, "};\n\n");
+    std::fprintf(f, "} // namespace shade::detail\n");
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -1032,7 +1173,7 @@ int main(int argc, char** argv) {
         if (s.beckmann && s.out == "dielectric_albedo_data.hpp") s.out = "beckmann_dielectric_albedo_data.hpp";
         if (s.reflection && s.beckmann)
             throw ex::usage_error("--reflection does not apply to --beckmann (it is tabulated for GGX)");
-        if (s.envelope > 0 && (s.reflection != s.anisotropic))
+        if (s.envelope > 0 && s.reflection && !s.anisotropic)
             throw ex::usage_error("--envelope applies to the total-albedo tables and to --anisotropic --reflection only");
         if (s.envelope_view_steps != 2 && (s.envelope == 0 || s.anisotropic))
             throw ex::usage_error("--envelope-view-steps needs --envelope on a total-albedo table");
@@ -1075,17 +1216,17 @@ int main(int argc, char** argv) {
             if (s.out == "dielectric_albedo_data.hpp") s.out = "dielectric_anisotropic_albedo_data.hpp";
             if (!strata_given) s.strata = 128;
             ex::output_file header(s.out);
-            const std::size_t points = s.points;
-            std::optional<ex::progress> bar(std::in_place, "dielectric_albedo_tables", d::dielectric_anisotropic_size + points,
-                                            !s.quiet);
-            const anisotropic_table t = compute_anisotropic(s, *bar, points);
+            const std::vector<reflection_check> checks = s.envelope > 0 ? total_checks() : std::vector<reflection_check>{};
+            std::optional<ex::progress> bar(std::in_place, "dielectric_albedo_tables",
+                                            d::dielectric_anisotropic_size + checks.size() + s.points, !s.quiet);
+            const anisotropic_table t = compute_anisotropic(s, *bar, checks);
             bar.reset();
             std::fprintf(stderr,
-                         "dielectric_albedo_tables: anisotropic: largest node standard error %.2e, |Delta| <= %.3f, table - "
-                         "fresh estimate from %.2e to %.2e at %zu points with mu >= 0.1 (entering %.2e to %.2e, "
-                         "exiting %.2e to %.2e)\n",
-                         t.max_error, t.max_delta, t.lowest, t.highest, t.points, t.side_lowest[0], t.side_highest[0],
-                         t.side_lowest[1], t.side_highest[1]);
+                         "dielectric_albedo_tables: anisotropic: largest node standard error %.2e, |Delta| <= %.3f; "
+                         "envelope: %zu check points, %zu nodes raised by at most %.2e in %d passes, %.2e left; table - fresh "
+                         "estimate at %zu points with mu >= 0.1: entering %.2e to %.2e, exiting %.2e to %.2e\n",
+                         t.max_error, t.max_delta, t.checks, t.raised, t.max_raise, t.passes, t.envelope_left, t.points,
+                         t.side_lowest[0], t.side_highest[0], t.side_lowest[1], t.side_highest[1]);
             header.write_stream([&](std::FILE* f) {
                 write_anisotropic(f, t, s);
             });

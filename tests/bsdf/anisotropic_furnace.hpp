@@ -81,4 +81,21 @@ furnace white_furnace(const compensated<T>& model, const shade::vec3<T>& v, std:
     return {e.albedo.x, multiple_scattering_albedo(model, v), e.standard_error.x};
 }
 
+// R + T of the compensated interface for the local view v (either side) without the
+// integral of f_ms: 1 + E_true(v) - E_read(v), E_true the single-scattering R + T estimated
+// as white_furnace does and E_read the model's own single_scattering_albedo. Exact when f_ms
+// returns 1 - E_read(v) (test_compensated_rough_dielectric_anisotropic.cpp checks that it does,
+// to 4e-4); `error` is the standard error of E_true.
+template <class T>
+furnace table_furnace(const compensated<T>& model, const shade::vec3<T>& v, std::size_t strata = 128) {
+    const bool inside = v.z < T(0);
+    const auto& d = model.distribution();
+    const shade::rough_dielectric<shade::ggx<double>> mirrored{
+        shade::ggx<double>(double(d.alpha_x()), double(d.alpha_y())), inside ? 1 / double(model.eta()) : double(model.eta())};
+    const shade::vec3<double> v_up(double(v.x), double(v.y), std::abs(double(v.z)));
+    const auto e = single_scattering_albedo(mirrored, glm::normalize(v_up), strata, 5);
+    const double read = double(model.single_scattering_albedo(v, flat_frame<T>()));
+    return {e.albedo.x, 1 - read, e.standard_error.x};
+}
+
 } // namespace bsdf_test::anisotropic

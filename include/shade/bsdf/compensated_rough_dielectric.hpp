@@ -120,14 +120,15 @@ struct dielectric_albedo_tables_of<beckmann<T>> {
 ///
 /// Anisotropic GGX (alpha_x != alpha_y): E_s(w) depends on the azimuth of w as well as on
 /// mu, and no isotropic roughness reproduces it at every azimuth, so E_s(w) is the
-/// isotropic table at sqrt(alpha_x alpha_y) plus the tabulated correction Delta_s(w) of
+/// isotropic table at sqrt((alpha_x^2 + alpha_y^2) / 2) plus the tabulated correction Delta_s(w) of
 /// shade/bsdf/dielectric_anisotropic_albedo_table.hpp, read at each direction's own azimuth
 /// (for l on the far side, with the far side's table), and E_s,avg is the cosine-weighted
 /// hemispherical average of that same E_s(w). The formulas above hold unchanged with
 /// E_s(mu) read as E_s(w): f_ms stays a product of one factor per direction (adjoint
-/// reciprocal) and returns 1 - E_s(v) at every view. The correction covers anisotropy up to
-/// detail::dielectric_anisotropic_ratio_max (20:1); beyond, the 20:1 correction is read and
-/// the compensation is approximate. Isotropic interfaces read no correction (the values are
+/// reciprocal) and returns 1 - E_s(v) at every view. The correction covers every anisotropy
+/// (alpha_min / alpha_max down to 0, OpenPBR's anisotropy 1) for the larger alpha up to
+/// sqrt 2, and is an upper envelope of E_s, so that R + T errs below 1 rather than above
+/// (measured ranges in docs/properties.md). Isotropic interfaces read no correction (the values are
 /// those of the isotropic tables alone). Anisotropic Beckmann has no correction table: it
 /// reads the isotropic table at sqrt(m_x m_y) whatever the azimuth, an approximation that
 /// departs from R + T = 1 both ways as anisotropic GGX did before its correction.
@@ -353,8 +354,10 @@ private:
         const detail::dielectric_albedo_grid grid{};
         const T eta = single_.eta();
         const T alpha_x = tables::alpha_x(single_.distribution()), alpha_y = tables::alpha_y(single_.distribution());
-        const T alpha = std::sqrt(alpha_x * alpha_y);
         anisotropic_ = tables::anisotropic && alpha_x != alpha_y;
+        // The isotropic table's roughness: the root mean square under the anisotropic
+        // correction, else sqrt(alpha_x alpha_y) (alpha itself when isotropic).
+        const T alpha = anisotropic_ ? detail::dielectric_anisotropic_base_alpha(alpha_x, alpha_y) : std::sqrt(alpha_x * alpha_y);
         if constexpr (tables::anisotropic)
             if (anisotropic_) anisotropic_cell_ = detail::dielectric_anisotropic_locate(alpha_x, alpha_y, eta);
         for (std::size_t s = 0; s < 2; ++s) {
