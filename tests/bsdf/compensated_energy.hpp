@@ -142,4 +142,29 @@ energy_range expect_energy_conserved_at(const Make& make, const std::string& nam
     return range;
 }
 
+/// Issue #31's lattice of views for the compensated rough dielectric: every eta x alpha x mu
+/// of the lists, from the given sides (the defaults span alpha <= 1, mu >= 0.05, eta in
+/// [1.05, 3], both sides).
+struct view_set {
+    std::vector<double> etas{1.05, 1.2, 1.5, 2.4, 3.0};
+    std::vector<double> alphas{0.02, 0.1, 0.3, 0.6, 1.0};
+    std::vector<double> mus{0.05, 0.2, 0.5, 0.9};
+    std::vector<bool> sides{false, true}; ///< inside?
+};
+
+/// expect_view_conserved at every view of `set` for the interface make(alpha, eta): R + T in
+/// [0.99, upper] (upper = 1.001 in issue #31).
+template <class Make>
+void expect_energy_conserved(const Make& make, const std::string& name, double upper, const view_set& set = {}) {
+    energy_range range;
+    for (const double eta : set.etas)
+        for (const double alpha : set.alphas) {
+            const auto model = make(alpha, eta);
+            for (const bool inside : set.sides)
+                for (const double mu : set.mus) expect_view_conserved(model, name, upper, eta, alpha, inside, mu, range);
+        }
+    MESSAGE(name << ": compensated R + T over " << range.views << " views: from " << range.lowest << " to "
+                 << range.highest << " (largest standard error " << range.largest_error << ")");
+}
+
 } // namespace bsdf_test
