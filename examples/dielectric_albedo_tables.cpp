@@ -132,7 +132,7 @@ writes the header of constants.
                     with --anisotropic, of E (or R with --reflection) at cell centres and
                     edge middles
   --envelope-random N  with --anisotropic --reflection --envelope S: N random check points
-                    besides the fixed ones (between them the read can fall below the truth)
+                    besides the fixed ones, those with mu >= 0.05 kept (between the fixed ones the read can fall below the truth)
   --envelope-margin M  with --envelope (total-albedo tables, --anisotropic --reflection): raise until the table is at least
                     the estimate + M (M in [0, 0.01], default 0; never above 1) at every check
                     point, so that it errs high between the check points too
@@ -617,7 +617,7 @@ struct reflection_table {
     double max_raise = 0;            // the largest raise
     int passes = 0;                  // raising passes
     double envelope_left = 0;        // the largest check estimate - table left after the passes and rounding
-    std::size_t random_checks = 0;   // of the checks, random ones (--envelope-random)
+    std::size_t random_checks = 0;   // of the checks, random ones (--envelope-random, those with mu >= 0.05)
     double side_lowest[2] = {0, 0};  // table - fresh estimate at the random points, per side
     double side_highest[2] = {0, 0};
     std::size_t points = 0;
@@ -631,6 +631,12 @@ struct reflection_check {
     double x, u, y, s, e;
     std::size_t side;
 };
+// Whether the check point's view has mu >= 0.05 (x is sqrt(mu) only entering: exiting, x =
+// 1/2 is the critical cosine).
+bool reflection_check_steep(const reflection_check& c) {
+    const reflection_interface at = reflection_interface_at(c.s, c.y, c.e, c.side);
+    return reflection_view_at(c.x, c.u, at, c.side).v.z >= 0.05;
+}
 std::vector<reflection_check> reflection_checks() {
     std::vector<reflection_check> out;
     const auto at = [](std::size_t i, std::size_t n) { return double(i) / double(n - 1); };
@@ -660,13 +666,13 @@ std::vector<reflection_check> reflection_checks() {
                             out.push_back({mid(i_x, rg::nx), mid(i_u, rg::nu), mid(j, rg::ny), mid(k, rg::ns), mid(m, rg::ne), side});
     // Only views with mu >= 0.05: raising nodes for the grazing views would lower the
     // interpolation above them through Catmull-Rom's negative weights.
-    std::erase_if(out, [](const reflection_check& c) { return c.x * c.x < 0.05; });
+    std::erase_if(out, [](const reflection_check& c) { return !reflection_check_steep(c); });
     return out;
 }
 
 // Random check points (count of them, seeded apart from the random test points of
-// compute_reflection): side, e and u uniform; x uniform over the views with mu >= 0.05 (as
-// the fixed ones); y and z uniform between the stored nodes' ends (y from its first node
+// compute_reflection): side, e, u and x uniform, those with mu >= 0.05 kept (as the fixed
+// ones); y and z uniform between the stored nodes' ends (y from its first node
 // above 0, z up to its last node below 1: beyond them the read leans on the unstored rows,
 // and a check there would raise the few stored nodes it reads without bound), z = 0
 // (anisotropy 1) for every fifth. They reach the places between the fixed check points, where
@@ -678,11 +684,12 @@ std::vector<reflection_check> reflection_random_checks(std::size_t count) {
         shade::rng random(0xc4ec0000 + p);
         const std::size_t side = p % 2;
         const double e = random.uniform<double>(), u = random.uniform<double>();
-        const double x = std::sqrt(0.05) + (1 - std::sqrt(0.05)) * random.uniform<double>();
+        const double x = random.uniform<double>();
         const double y_first = 1.0 / double(rg::ny - 1), z_last = double(rg::ns - 2) / double(rg::ns - 1);
         const double y = y_first + (1 - y_first) * random.uniform<double>();
         const double z = z_last * random.uniform<double>();
-        out.push_back({x, u, y, p % 5 == 2 ? 0.0 : z, e, side});
+        const reflection_check c{x, u, y, p % 5 == 2 ? 0.0 : z, e, side};
+        if (reflection_check_steep(c)) out.push_back(c);
     }
     return out;
 }
@@ -774,7 +781,6 @@ reflection_table compute_reflection(const settings& s, ex::progress& bar, const 
         }
         for (std::size_t p = 0; p < checks.size(); ++p)
             out.envelope_left = std::max(out.envelope_left, fresh[p] - reflection_read(out.delta, where[p], view[p]));
-        out.random_checks = s.envelope_random;
     } else {
         for (std::size_t n = 0; n < node.size(); ++n) out.delta[n] = as_written(node[n], 4);
     }
@@ -1195,10 +1201,12 @@ int main(int argc, char** argv) {
             if (!strata_given) s.strata = 128;
             ex::output_file header(s.out);
             std::vector<reflection_check> checks = s.envelope > 0 ? reflection_checks() : std::vector<reflection_check>{};
+            const std::size_t fixed_checks = checks.size();
             for (const reflection_check& c : reflection_random_checks(s.envelope_random)) checks.push_back(c);
             std::optional<ex::progress> bar(std::in_place, "dielectric_albedo_tables",
                                             d::reflection_anisotropic_size + checks.size() + s.points, !s.quiet);
-            const reflection_table t = compute_reflection(s, *bar, checks);
+            reflection_table t = compute_reflection(s, *bar, checks);
+            t.random_checks = checks.size() - fixed_checks;
             bar.reset();
             std::fprintf(stderr,
                          "dielectric_albedo_tables: anisotropic reflection: largest node standard error %.2e, |Delta_R| <= %.3f; "
