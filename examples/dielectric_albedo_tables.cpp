@@ -61,6 +61,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -700,6 +701,92 @@ double reflection_read(const std::vector<float>& delta, const reflection_interfa
     return reflection_base(at, v) + d::reflection_anisotropic_delta(delta.data(), cell, v.x, v.y, v.z);
 }
 
+// The upper envelope's raising passes, shared by the anisotropic tables: every check point p
+// whose table read (base(p) plus its taps' weights times the nodes) falls below
+// min(fresh[p] + margin, 1) + 2e-5 (room for writing the nodes with 4 digits) raises the
+// nodes it reads with positive weight by its shortfall, in the least-squares sense (each by
+// shortfall x weight / sum of squared weights), no node by more than `cap` in all; passes
+// repeat until no check point is below, 40 at most. `raise` gets each node's total raise.
+// With `verbose`, the first pass prints the check points more than 0.01 below (axis names
+// the grid's anisotropy coordinate). Returns the number of passes made (41: not converged).
+template <class Taps, class Base>
+int raise_to_envelope(std::vector<double>& node, std::vector<double>& raise, const std::vector<reflection_check>& checks,
+                      const std::vector<double>& fresh, double margin, double cap, bool verbose, const char* axis,
+                      const Taps& taps_of, const Base& base_of) {
+    raise.assign(node.size(), 0.0);
+    int passes = 1;
+    for (; passes <= 40; ++passes) {
+        std::size_t below = 0;
+        for (std::size_t p = 0; p < checks.size(); ++p) {
+            const std::vector<tap> taps = taps_of(p);
+            double read = base_of(p);
+            for (const tap& t : taps) read += t.weight * node[t.index];
+            const double shortfall = std::min(fresh[p] + margin, 1.0) + 2e-5 - read;
+            if (!(shortfall > 0)) continue;
+            if (verbose && passes == 1 && shortfall > 0.01)
+                std::fprintf(stderr, "check side %zu x %.4f u %.4f y %.4f %s %.4f e %.4f: fresh %.5f table %.5f\n",
+                             checks[p].side, checks[p].x, checks[p].u, checks[p].y, axis, checks[p].s, checks[p].e, fresh[p],
+                             read);
+            ++below;
+            double norm = 0;
+            for (const tap& t : taps)
+                if (t.weight > 0) norm += t.weight * t.weight;
+            if (!(norm > 0)) continue;
+            for (const tap& t : taps)
+                if (t.weight > 0) {
+                    const double step = std::min(shortfall * t.weight / norm, cap - raise[t.index]);
+                    if (!(step > 0)) continue;
+                    node[t.index] += step;
+                    raise[t.index] += step;
+                }
+        }
+        if (below == 0) break;
+    }
+    return passes;
+}
+
+// What a table reads at a random point and a fresh estimate there.
+struct point_check {
+    double table, fresh, error;
+};
+
+// The anisotropic tables' check at s.points random points: eta_hat - 1 log-uniform over
+// [0.05, 2], either side, alpha_min / alpha_max uniform in [0, 1] (every fifth point 0: the
+// smaller alpha 1e-4), either axis the smoother, y uniform in [0.1, 1], mu >= 0.1 uniform in
+// sqrt(mu), azimuth uniform. interface_at(z, y, e, side) is the grid's interface;
+// compare(at, v, seed) what the table reads and a fresh estimate (seeded) there. Writes
+// out.points and the per-side range of table - fresh.
+template <class Table, class InterfaceAt, class Compare>
+void check_random_points(const settings& s, ex::progress& bar, Table& out, const InterfaceAt& interface_at,
+                         const Compare& compare) {
+    out.points = s.points;
+    std::vector<double> difference(s.points);
+    parallel_for(s.points, s.threads, [&](std::size_t p) {
+        shade::rng random(0x5eed0000 + p);
+        const std::size_t side = p % 2;
+        const double e = random.uniform<double>();
+        const double z_coord = p % 10 == 4 || p % 10 == 5 ? 0.0 : std::sqrt(random.uniform<double>());
+        const double y = 0.1 + 0.9 * random.uniform<double>();
+        const auto at0 = interface_at(z_coord, y, e, side);
+        const bool swap = p % 4 >= 2;
+        const decltype(at0) at{swap ? at0.alpha_y : at0.alpha_x, swap ? at0.alpha_x : at0.alpha_y, at0.eta_s};
+        const double x = std::sqrt(0.1) + (1 - std::sqrt(0.1)) * random.uniform<double>(), mu = x * x;
+        const double phi = random.uniform<double>() * 2 * shade::pi<double>;
+        const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
+        const shade::vec3<T> v(sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu);
+        const point_check c = compare(at, v, 0x0f00000 + p);
+        difference[p] = c.table - c.fresh;
+        if (s.verbose)
+            std::fprintf(stderr, "point side %zu eta_s %.4f alpha_x %.5f alpha_y %.5f mu %.4f phi %.4f: table %.5f fresh %.5f +- %.1e\n",
+                         side, at.eta_s, at.alpha_x, at.alpha_y, mu, phi, c.table, c.fresh, c.error);
+        bar.advance();
+    });
+    for (std::size_t p = 0; p < s.points; ++p) {
+        out.side_lowest[p % 2] = std::min(out.side_lowest[p % 2], difference[p]);
+        out.side_highest[p % 2] = std::max(out.side_highest[p % 2], difference[p]);
+    }
+}
+
 // The most by which the envelope raises one node (tests/bsdf/test_dielectric_reflection_albedo.cpp
 // holds the committed table to it).
 constexpr double reflection_raise_cap = 0.15;
@@ -742,38 +829,14 @@ reflection_table compute_reflection(const settings& s, ex::progress& bar, const 
                                 1.0);
             bar.advance();
         });
-        std::vector<double> raise(node.size(), 0.0);
-        for (out.passes = 1; out.passes <= 40; ++out.passes) {
-            std::size_t below = 0;
-            for (std::size_t p = 0; p < checks.size(); ++p) {
-                const std::vector<tap> taps = reflection_taps(where[p], view[p]);
-                double read = reflection_base(where[p], view[p]);
-                for (const tap& t : taps) read += t.weight * node[t.index];
-                // 2e-5 above the estimate: room for writing the nodes with 4 digits.
-                // With --envelope-margin M, M more (the read then errs high between check points).
-                const double shortfall = std::min(fresh[p] + s.envelope_margin, 1.0) + 2e-5 - read;
-                if (!(shortfall > 0)) continue;
-                if (s.verbose && out.passes == 1 && shortfall > 0.01)
-                    std::fprintf(stderr, "check side %zu x %.4f u %.4f y %.4f s %.4f e %.4f: fresh %.5f table %.5f\n",
-                                 checks[p].side, checks[p].x, checks[p].u, checks[p].y, checks[p].s, checks[p].e, fresh[p], read);
-                ++below;
-                double norm = 0;
-                for (const tap& t : taps)
-                    if (t.weight > 0) norm += t.weight * t.weight;
-                if (!(norm > 0)) continue;
-                // No node raised by more than reflection_raise_cap in all: where the spline
-                // cannot follow R_ss (a kink between nodes), raising for one check point lowers
-                // others through the negative weights, and the passes would escalate.
-                for (const tap& t : taps)
-                    if (t.weight > 0) {
-                        const double step = std::min(shortfall * t.weight / norm, reflection_raise_cap - raise[t.index]);
-                        if (!(step > 0)) continue;
-                        node[t.index] += step;
-                        raise[t.index] += step;
-                    }
-            }
-            if (below == 0) break;
-        }
+        // No node raised by more than reflection_raise_cap in all: where the spline cannot
+        // follow R_ss (a kink between nodes), raising for one check point lowers others through
+        // the negative weights, and the passes would escalate.
+        std::vector<double> raise;
+        out.passes = raise_to_envelope(
+            node, raise, checks, fresh, s.envelope_margin, reflection_raise_cap, s.verbose, "s",
+            [&](std::size_t p) { return reflection_taps(where[p], view[p]); },
+            [&](std::size_t p) { return reflection_base(where[p], view[p]); });
         for (std::size_t n = 0; n < node.size(); ++n) {
             out.delta[n] = as_written(node[n], 4);
             if (raise[n] > 0) ++out.raised;
@@ -785,36 +848,13 @@ reflection_table compute_reflection(const settings& s, ex::progress& bar, const 
         for (std::size_t n = 0; n < node.size(); ++n) out.delta[n] = as_written(node[n], 4);
     }
     for (const float x : out.delta) out.max_delta = std::max(out.max_delta, double(std::abs(x)));
-    // Random points: eta_hat - 1 log-uniform over [0.05, 2], either side, alpha_min /
-    // alpha_max uniform in [0, 1] (every fifth point 0: the smaller alpha 1e-4), either axis
-    // the smoother, y uniform in [0.1, 1], mu >= 0.1 uniform in sqrt(mu), azimuth uniform.
-    out.points = s.points;
-    std::vector<double> difference(s.points);
-    parallel_for(s.points, s.threads, [&](std::size_t p) {
-        shade::rng random(0x5eed0000 + p);
-        const std::size_t side = p % 2;
-        const double e = random.uniform<double>();
-        const double z_coord = p % 10 == 4 || p % 10 == 5 ? 0.0 : std::sqrt(random.uniform<double>());
-        const double y = 0.1 + 0.9 * random.uniform<double>();
-        const auto at0 = reflection_interface_at(z_coord, y, e, side);
-        const bool swap = p % 4 >= 2;
-        const reflection_interface at{swap ? at0.alpha_y : at0.alpha_x, swap ? at0.alpha_x : at0.alpha_y, at0.eta_s};
-        const double x = std::sqrt(0.1) + (1 - std::sqrt(0.1)) * random.uniform<double>(), mu = x * x;
-        const double phi = random.uniform<double>() * 2 * shade::pi<double>;
-        const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
-        const shade::vec3<T> v(sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu);
-        const auto fresh = estimate_view_reflection(at.alpha_x, at.alpha_y, at.eta_s, v, s.strata, 0x0f00000 + p);
-        const double table = d::anisotropic_reflection_albedo<double>(at.alpha_x, at.alpha_y, at.eta_s).at(v, out.delta.data());
-        difference[p] = table - fresh.albedo.x;
-        if (s.verbose)
-            std::fprintf(stderr, "point side %zu eta_s %.4f alpha_x %.5f alpha_y %.5f mu %.4f phi %.4f: table %.5f fresh %.5f +- %.1e\n",
-                         side, at.eta_s, at.alpha_x, at.alpha_y, mu, phi, table, fresh.albedo.x, fresh.standard_error.x);
-        bar.advance();
-    });
-    for (std::size_t p = 0; p < s.points; ++p) {
-        out.side_lowest[p % 2] = std::min(out.side_lowest[p % 2], difference[p]);
-        out.side_highest[p % 2] = std::max(out.side_highest[p % 2], difference[p]);
-    }
+    check_random_points(s, bar, out, reflection_interface_at,
+                        [&](const reflection_interface& at, const shade::vec3<T>& v, std::uint64_t seed) {
+                            const auto fresh = estimate_view_reflection(at.alpha_x, at.alpha_y, at.eta_s, v, s.strata, seed);
+                            const double table =
+                                d::anisotropic_reflection_albedo<double>(at.alpha_x, at.alpha_y, at.eta_s).at(v, out.delta.data());
+                            return point_check{table, fresh.albedo.x, fresh.standard_error.x};
+                        });
     return out;
 }
 
@@ -1019,32 +1059,11 @@ anisotropic_table compute_anisotropic(const settings& s, ex::progress& bar, cons
                                 1.0);
             bar.advance();
         });
-        std::vector<double> raise(node.size(), 0.0);
-        for (out.passes = 1; out.passes <= 40; ++out.passes) {
-            std::size_t below = 0;
-            for (std::size_t p = 0; p < checks.size(); ++p) {
-                const std::vector<tap> taps = total_taps(where[p], view[p]);
-                double read = total_base(where[p], view[p].z);
-                for (const tap& t : taps) read += t.weight * node[t.index];
-                // 2e-5 above the estimate: room for writing the nodes with 4 digits.
-                const double shortfall = fresh[p] + 2e-5 - read;
-                if (!(shortfall > 0)) continue;
-                if (s.verbose && out.passes == 1 && shortfall > 0.01)
-                    std::fprintf(stderr, "check side %zu x %.4f u %.4f y %.4f z %.4f e %.4f: fresh %.5f table %.5f\n",
-                                 checks[p].side, checks[p].x, checks[p].u, checks[p].y, checks[p].s, checks[p].e, fresh[p], read);
-                ++below;
-                double norm = 0;
-                for (const tap& t : taps)
-                    if (t.weight > 0) norm += t.weight * t.weight;
-                if (!(norm > 0)) continue;
-                for (const tap& t : taps)
-                    if (t.weight > 0) {
-                        node[t.index] += shortfall * t.weight / norm;
-                        raise[t.index] += shortfall * t.weight / norm;
-                    }
-            }
-            if (below == 0) break;
-        }
+        std::vector<double> raise;
+        out.passes = raise_to_envelope(
+            node, raise, checks, fresh, 0.0, std::numeric_limits<double>::infinity(), s.verbose, "z",
+            [&](std::size_t p) { return total_taps(where[p], view[p]); },
+            [&](std::size_t p) { return total_base(where[p], view[p].z); });
         for (std::size_t n = 0; n < node.size(); ++n) {
             out.delta[n] = as_written(node[n], 4);
             if (raise[n] > 0) ++out.raised;
@@ -1058,36 +1077,13 @@ anisotropic_table compute_anisotropic(const settings& s, ex::progress& bar, cons
     for (const float x : out.delta) out.max_delta = std::max(out.max_delta, double(std::abs(x)));
     for (std::size_t n = 0; n < d::dielectric_anisotropic_rows; ++n)
         out.average[n] = float(d::dielectric_anisotropic_row_average(out.delta.data() + n * tg::nx));
-    // Random points: eta_hat - 1 log-uniform over [0.05, 2], either side, alpha_min /
-    // alpha_max uniform in [0, 1] (every fifth point 0: the smaller alpha 1e-4), either axis
-    // the smoother, y uniform in [0.1, 1], mu >= 0.1 uniform in sqrt(mu), azimuth uniform.
-    out.points = s.points;
-    std::vector<double> difference(s.points);
-    parallel_for(s.points, s.threads, [&](std::size_t p) {
-        shade::rng random(0x5eed0000 + p);
-        const std::size_t side = p % 2;
-        const double e = random.uniform<double>();
-        const double z_coord = p % 10 == 4 || p % 10 == 5 ? 0.0 : std::sqrt(random.uniform<double>());
-        const double y = 0.1 + 0.9 * random.uniform<double>();
-        const auto at0 = total_interface_at(z_coord, y, e, side);
-        const bool swap = p % 4 >= 2;
-        const total_interface at{swap ? at0.alpha_y : at0.alpha_x, swap ? at0.alpha_x : at0.alpha_y, at0.eta_s};
-        const double x = std::sqrt(0.1) + (1 - std::sqrt(0.1)) * random.uniform<double>(), mu = x * x;
-        const double phi = random.uniform<double>() * 2 * shade::pi<double>;
-        const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
-        const shade::vec3<T> v(sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu);
-        const auto fresh = estimate_view(at.alpha_x, at.alpha_y, at.eta_s, v, s.strata, 0x0f00000 + p);
-        const double table = at.alpha_x == at.alpha_y ? total_base(at, mu) : total_read(out.delta, at, v);
-        difference[p] = table - std::min(fresh.albedo.x, 1.0);
-        if (s.verbose)
-            std::fprintf(stderr, "point side %zu eta_s %.4f alpha_x %.5f alpha_y %.5f mu %.4f phi %.4f: table %.5f fresh %.5f +- %.1e\n",
-                         side, at.eta_s, at.alpha_x, at.alpha_y, mu, phi, table, fresh.albedo.x, fresh.standard_error.x);
-        bar.advance();
-    });
-    for (std::size_t p = 0; p < s.points; ++p) {
-        out.side_lowest[p % 2] = std::min(out.side_lowest[p % 2], difference[p]);
-        out.side_highest[p % 2] = std::max(out.side_highest[p % 2], difference[p]);
-    }
+    check_random_points(s, bar, out, total_interface_at,
+                        [&](const total_interface& at, const shade::vec3<T>& v, std::uint64_t seed) {
+                            const auto fresh = estimate_view(at.alpha_x, at.alpha_y, at.eta_s, v, s.strata, seed);
+                            const double table =
+                                at.alpha_x == at.alpha_y ? total_base(at, v.z) : total_read(out.delta, at, v);
+                            return point_check{table, std::min(fresh.albedo.x, 1.0), fresh.standard_error.x};
+                        });
     return out;
 }
 
