@@ -521,3 +521,62 @@ TEST_CASE("zeltner_sheen: a view along the normal up to rounding, with a grazing
     const auto g = sheen.f(at.shading.to_world(shade::vec3<T>(0, 1, 4e-309)), v, at);
     CHECK(f.x == doctest::Approx(g.x).epsilon(1e-9));
 }
+
+TEST_CASE("sheen, both forms: a colour channel so small that f underflows gets the weight of that f") {
+    // The weight is F E (or F E') in closed form, but f = F x (a lobe value) rounds to a
+    // subnormal or to 0 for a channel of F near the smallest normal float when the lobe
+    // value is small (a sample in the lobe's tail). The weight of such a channel must be
+    // f |n·l| / pdf of the f returned, as for every other sample (found by fuzz_brdf_lobes:
+    // f.y = 0 with weight.y = 1.3e-38). Checked as the fuzz target checks it: within 1e-4
+    // relative plus 32 epsilon of f / pdf plus the smallest normal float.
+    using T = float;
+    const auto at = flat<T>();
+    int subnormal_f = 0;
+    const auto agrees = [&](const shade::brdf_sample<T>& s) {
+        const long double cos_l = std::abs(glm::dot(at.n(), s.l));
+        for (int i = 0; i < 3; ++i) {
+            if (s.f[i] < std::numeric_limits<T>::min()) ++subnormal_f;
+            const long double exact = static_cast<long double>(s.f[i]) * cos_l / s.pdf;
+            const long double slack = 1e-4L * exact +
+                                      static_cast<long double>(s.f[i]) / s.pdf * 32 * std::numeric_limits<T>::epsilon() +
+                                      std::numeric_limits<T>::min();
+            if (!(std::abs(static_cast<long double>(s.weight[i]) - exact) <= slack)) return false;
+        }
+        return true;
+    };
+    // u on a grid of 1/32 with points next to (0.5, 0.5): the concentric map sends the
+    // square's centre to the normal, far in the tail of the LTC lobe of a grazing view at
+    // small roughness (its density there is ~1e-8 for n·v ~ 4e-3), and the separable
+    // lobe's tail is at u.x -> 1.
+    std::vector<T> grid;
+    for (int k = 1; k < 32; ++k) grid.push_back(T(k) / 32);
+    for (const T d : {T(1e-3), T(1e-5)}) {
+        grid.push_back(T(0.5) - d);
+        grid.push_back(T(0.5) + d);
+    }
+    grid.push_back(T(1) - std::numeric_limits<T>::epsilon() / 2);
+    for (const T tiny : {T(2e-38), T(1e-37), T(1e-35), T(1e-31)}) {
+        const rgb<T> color(1, tiny, 0);
+        for (const T roughness : {T(0), T(0.1), T(0.5), T(1)}) {
+            const shade::zeltner_sheen<T> ltc(color, roughness);
+            const shade::zeltner_sheen_reciprocal<T> separable(color, roughness);
+            for (const T mu : {T(1), T(0.5), T(0.05), T(4.3e-3), T(1e-3)}) {
+                const vec3<T> v(std::sqrt(1 - mu * mu), 0, mu);
+                int ltc_bad = 0;
+                int separable_bad = 0;
+                for (const T ux : grid)
+                    for (const T uy : grid) {
+                        const shade::vec2<T> u(ux, uy);
+                        if (const auto s = ltc.sample(v, T(0.5), u, at); s && !agrees(*s)) ++ltc_bad;
+                        if (const auto s = separable.sample(v, T(0.5), u, at); s && !agrees(*s)) ++separable_bad;
+                    }
+                CAPTURE(tiny);
+                CAPTURE(roughness);
+                CAPTURE(mu);
+                CHECK(ltc_bad == 0);
+                CHECK(separable_bad == 0);
+            }
+        }
+    }
+    CHECK(subnormal_f > 0); // the case the test is about did occur
+}

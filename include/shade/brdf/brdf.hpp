@@ -114,6 +114,23 @@ template <std::floating_point T>
     return brdf_sample<T>{l, f, pdf, weight};
 }
 
+/// The brdf_sample for direction l with value f and density pdf when the caller knows the
+/// weight f |n·l| / pdf in closed form (`exact`, e.g. a colour times an albedo). The
+/// closed form is kept in each channel where f is a normal number. Where f has
+/// underflowed to a subnormal or to 0 (a tiny colour channel times a tiny lobe value), it
+/// has lost the digits the closed form still has, and the weight of that channel is
+/// computed from f as make_brdf_sample does, so that f, pdf and weight stay consistent.
+/// nullopt unless pdf is finite and > 0.
+template <std::floating_point T>
+[[nodiscard]] inline std::optional<brdf_sample<T>> make_brdf_sample(const vec3<T>& l, const rgb<T>& f, T pdf,
+                                                                    T abs_n_dot_l, const rgb<T>& exact) noexcept {
+    std::optional<brdf_sample<T>> s = make_brdf_sample(l, f, pdf, abs_n_dot_l);
+    if (!s) return std::nullopt;
+    for (int i = 0; i < 3; ++i)
+        if (f[i] >= std::numeric_limits<T>::min()) s->weight[i] = exact[i];
+    return s;
+}
+
 } // namespace detail
 
 /// A BRDF that also reports its diffuse and specular parts separately (they sum to f).

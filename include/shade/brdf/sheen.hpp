@@ -163,7 +163,7 @@ template <std::floating_point T>
 ///
 /// Sampling (shade::sampled_brdf): exactly proportional to f (n·l), the clamped cosine
 /// drawn from u and mapped by M (Heitz et al. 2016, sec. 3); every sample's weight is
-/// F E(mu_v, alpha); uc is not used.
+/// F E(mu_v, alpha) (in each channel where f is a normal number); uc is not used.
 template <std::floating_point T>
 class zeltner_sheen {
 public:
@@ -210,8 +210,9 @@ public:
 
     /// Draws l with the density pdf() from u (uc is not used): a direction of the clamped
     /// cosine mapped by M = (M^-1)^-1, which sends w_o to (w_o.x - b_inv w_o.z, w_o.y,
-    /// a_inv w_o.z) up to a positive factor. The weight is F E(n·v) exactly. nullopt when v
-    /// is not above the surface or l falls on the horizon.
+    /// a_inv w_o.z) up to a positive factor. The weight is F E(n·v) exactly in each channel
+    /// where f is a normal number (detail::make_brdf_sample). nullopt when v is not above
+    /// the surface or l falls on the horizon.
     [[nodiscard]] std::optional<brdf_sample<T>> sample(const vec3<T>& v, T /*uc*/, const vec2<T>& u,
                                                        const surface_point<T>& at) const noexcept {
         const vec3<T>& n = at.n();
@@ -227,7 +228,8 @@ public:
         if (!(lobe.density_over_cos > T(0))) return std::nullopt;
         const T pdf = lobe.n_dot_l * lobe.density_over_cos;
         if (!(pdf > T(0))) return std::nullopt;
-        return brdf_sample<T>{l, color_ * (lobe.albedo * lobe.density_over_cos), pdf, color_ * lobe.albedo};
+        return detail::make_brdf_sample(l, color_ * (lobe.albedo * lobe.density_over_cos), pdf, lobe.n_dot_l,
+                                        color_ * lobe.albedo);
     }
 
 private:
@@ -366,8 +368,9 @@ public:
     }
 
     /// Draws l with the density pdf() from u (u.x for n·l, u.y for the azimuth; uc is not
-    /// used). The weight is F E'(n·v) exactly. nullopt when v is not above the surface or l
-    /// falls on the horizon.
+    /// used). The weight is F E'(n·v) exactly in each channel where f is a normal number
+    /// (detail::make_brdf_sample). nullopt when v is not above the surface or l falls on
+    /// the horizon.
     [[nodiscard]] std::optional<brdf_sample<T>> sample(const vec3<T>& v, T /*uc*/, const vec2<T>& u,
                                                        const surface_point<T>& at) const noexcept {
         const T n_dot_v = glm::dot(at.n(), v);
@@ -382,7 +385,8 @@ public:
         const T e_v = albedo(n_dot_v);
         const T density = albedo(n_dot_l) * n_dot_l / (pi<T> * e_avg_);
         if (!(density > T(0))) return std::nullopt;
-        return brdf_sample<T>{l, color_ * (albedo(n_dot_l) * e_v / (pi<T> * e_avg_)), density, color_ * e_v};
+        return detail::make_brdf_sample(l, color_ * (albedo(n_dot_l) * e_v / (pi<T> * e_avg_)), density, n_dot_l,
+                                        color_ * e_v);
     }
 
 private:
