@@ -272,6 +272,50 @@ TEST_CASE_TEMPLATE("triangle_bvh: degenerate inputs", T, float, double) {
     }
 }
 
+// closest() and any() test a ray's validity by detail::bvh_ray_valid, a vector form of
+// ray::valid() for float rays: the same answer for every value in every one and every
+// two of the ray's eight numbers (origin, direction, t_min, t_max), from a valid ray and
+// from one with a zero direction; and no hit for the invalid ones.
+TEST_CASE_TEMPLATE("triangle_bvh: a ray's validity as ray::valid() decides it", T, float, double) {
+    using lim = std::numeric_limits<T>;
+    const T values[] = {T(0), -T(0), T(1), T(-2.5), lim::denorm_min(), -lim::min(), lim::max(),
+                        lim::lowest(), lim::infinity(), -lim::infinity(), lim::quiet_NaN()};
+    const auto slot = [](shade::ray<T>& r, int k) -> T& {
+        return k < 3 ? r.origin[k] : k < 6 ? r.direction[k - 3] : k == 6 ? r.t_min : r.t_max;
+    };
+    // The one triangle of the plane z = 0 around the origin's column: hit by valid rays
+    // pointing down from (0, 0, 1), whatever else changes.
+    const std::vector<shade::triangle<T>> tris{{{-10, -10, 0}, {10, -10, 0}, {0, 10, 0}}};
+    const shade::triangle_bvh<T> accel(tris);
+    const shade::ray<T> bases[] = {{{0, 0, 1}, {0, 0, -1}, T(0), lim::infinity()},
+                                   {{0, 0, 1}, {0, 0, 0}, T(0), T(2)}};
+    std::size_t valid = 0, invalid = 0;
+    for (const shade::ray<T>& base : bases)
+        for (int i = 0; i < 8; ++i)
+            for (int j = i; j < 8; ++j)
+                for (const T a : values)
+                    for (const T b : values) {
+                        shade::ray<T> r = base;
+                        slot(r, i) = a;
+                        slot(r, j) = b; // i == j: one number changed
+                        CAPTURE(i);
+                        CAPTURE(j);
+                        CAPTURE(a);
+                        CAPTURE(b);
+                        const bool expected = r.valid();
+                        REQUIRE(shade::detail::bvh_ray_valid(r) == expected);
+                        (expected ? valid : invalid) += 1;
+                        if (!expected) {
+                            CHECK_FALSE(accel.closest(r));
+                            CHECK_FALSE(accel.any(r));
+                        }
+                    }
+    // Both answers occur many times (each base with one number changed to 1 alone gives
+    // valid rays from the valid base and, through the direction, from the zero one).
+    CHECK(valid > 1000);
+    CHECK(invalid > 1000);
+}
+
 TEST_CASE_TEMPLATE("primitive_bvh and bvh: spheres against brute force", T, float, double) {
     shade::rng g(5);
     std::vector<shade::sphere<T>> spheres;

@@ -91,7 +91,7 @@ public:
     /// front_face, barycentrics), or nothing.
     [[nodiscard]] std::optional<primitive_hit<triangle_hit<T>>> closest(ray<T> r,
                                                                        culling cull = culling::none) const {
-        if (size_ == 0 || !r.valid()) return std::nullopt;
+        if (size_ == 0 || !detail::bvh_ray_valid(r)) return std::nullopt;
         std::uint32_t best = no_hit;
         triangle_intersection<T> x;
         // The leaf data and cull held in the leaf function itself (one load each in a leaf).
@@ -135,7 +135,7 @@ public:
 
     /// True when r hits some triangle within [t_min, t_max] (for shadow rays).
     [[nodiscard]] bool any(const ray<T>& r, culling cull = culling::none) const {
-        if (size_ == 0 || !r.valid()) return false;
+        if (size_ == 0 || !detail::bvh_ray_valid(r)) return false;
         bool found = false;
         const auto* const data = leaf_data();
         const auto leaf = [&, data, cull](std::uint32_t first, std::uint32_t count, auto avx) SHADE_DETAIL_LEAF_INLINE {

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <concepts>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 
 #include <shade/core/math.hpp>
@@ -323,6 +324,30 @@ template <std::floating_point T>
     }
 }
 
+/// r.valid() (see shade::ray), the same answer: for a float ray in two comparisons of
+/// four lanes each (origin and direction finite, 0 <= t_min <= t_max, NaN failing every
+/// comparison) and one for a nonzero direction, instead of a branch per test; other
+/// rays call r.valid().
+template <std::floating_point T>
+[[gnu::always_inline]] inline bool bvh_ray_valid(const ray<T>& r) noexcept {
+    if constexpr (sizeof(T) != sizeof(float) || sizeof(ray<T>) != 8 * sizeof(float)) {
+        return r.valid();
+    } else {
+        // The ray's 32 bytes (no padding: 3 + 3 + 1 + 1 floats): origin x, y, z and
+        // direction x; direction y, z, t_min, t_max.
+        bvh_f4 a, b;
+        __builtin_memcpy(&a, &r, sizeof a);
+        __builtin_memcpy(&b, reinterpret_cast<const unsigned char*>(&r) + sizeof a, sizeof b);
+        constexpr float big = std::numeric_limits<float>::max();
+        const bvh_f4 b_low{-big, -big, 0.0f, b[2]};
+        const bvh_f4 b_high{big, big, infinity<float>, infinity<float>};
+        // Finite: -big <= x <= big; t_min in [0, +inf], t_max in [t_min, +inf].
+        const bvh_i4 in_range = (a >= -big) & (a <= big) & (b >= b_low) & (b <= b_high);
+        const bool non_zero = ((bvh_bits(a != 0.0f) & 8u) | (bvh_bits(b != 0.0f) & 3u)) != 0;
+        return bvh_bits(in_range) == 0xfu && non_zero;
+    }
+}
+
 /// The conservative slab test of r against node's boxes (as many as Lanes holds) within
 /// [t_min, t_max]: bit j set where child j's box is entered, t_enter[j] where (bvh_keep
 /// ignores a NaN slab distance).
@@ -358,6 +383,11 @@ using bvh_ray4 = bvh_float_ray;
 template <std::floating_point T>
 inline bool bvh_scale_needed(const vec3<T>& d) noexcept {
     return bvh_ray_scale<T>::needed(d);
+}
+
+template <std::floating_point T>
+inline bool bvh_ray_valid(const ray<T>& r) noexcept {
+    return r.valid();
 }
 
 /// The four-box test one box at a time, where GNU vectors are missing.
