@@ -25,8 +25,15 @@
 // (detail::ggx_cosine_weights at each node, a deterministic quadrature) and, as their stated
 // accuracy, the largest difference at the cell centres with mu >= 0.1 between the table's
 // sum for a few Fresnel factors (F = 1, dielectrics, thin films) and the quadrature itself.
+//
+//   albedo_tables --film-margin --strata 96 --out include/shade/brdf/microfacet/detail/thin_film_margin_data.hpp
+//
+// writes instead the margin of openpbr_surface's thin-film share: per film index and node of
+// the cosine weights' grid, the largest shortfall of their read of a film's integral
+// (run_film_margin).
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -34,6 +41,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -63,6 +71,7 @@ using T = double;
 constexpr std::string_view usage = R"(usage: albedo_tables [--out FILE.hpp] [--nodes N] [--strata S] [--threads K] [--quiet]
        albedo_tables --anisotropic [--out FILE.hpp] [--strata S] [--threads K] [--quiet]
        albedo_tables --cosine-weights [--out FILE.hpp] [--strata S] [--threads K] [--quiet]
+       albedo_tables --film-margin [--out FILE.hpp] [--strata S] [--sub Q] [--fine G] [--coarse-films] [--threads K] [--quiet]
 
 Computes E(mu, alpha) and E_avg(alpha) of the single-scattering GGX and Beckmann lobes
 with F = 1 and of the GGX lobe with the dielectric Fresnel of eta = 1.5, on an N x N grid
@@ -77,7 +86,17 @@ With --cosine-weights, computes instead the weights w_k(mu, alpha) of the c node
 GGX reflection lobe (cosine_weights.hpp) on its fixed grid, by the midpoint rule on S^2
 cells of the visible-normal square, and their stated accuracy.
 
+With --film-margin, computes instead the margin of openpbr_surface's thin-film share
+(thin_film_margin_data.hpp): per film index and node of the cosine weights' grid, the
+largest shortfall of the weights' read of the film's integral over the films' thickness
+and base index (S^2 cells per point of a sub-grid of Q - 1 points inside each cell, the
+measure deposited on G cosines).
+
   --cosine-weights write the cosine weights (default output cosine_weight_data.hpp)
+  --film-margin   write the thin film's margin (default output thin_film_margin_data.hpp)
+  --sub Q         with --film-margin: sub-grid points per cell and axis, 1 to 8 (default 2)
+  --fine G        with --film-margin: fine cosines, 65 to 16385 (default 1025)
+  --coarse-films  with --film-margin: a small set of films (a quick run, not for the header)
   --anisotropic   write the anisotropic corrections (default output anisotropic_albedo_data.hpp)
   --out FILE.hpp  output, a C++ header (.hpp or .h; default albedo_data.hpp)
   --nodes N       nodes per axis, 4 to 512 (default 128)
@@ -95,6 +114,7 @@ struct settings {
     bool quiet = false;
     bool anisotropic = false;
     bool cosine_weights = false;
+    bool film_margin = false;
 };
 
 // E(mu, alpha) estimated for one model family: make(alpha) builds the lobe.
@@ -441,6 +461,271 @@ int run_cosine_weights(const settings& s, ex::output_file& header) {
     return 0;
 }
 
+// --film-margin: the thin film's margin of openpbr_surface's film share (see
+// detail/thin_film_margin_data.hpp), written to `header`. For each point of a sub-grid with
+// q - 1 points inside each cell per axis (in x = mu^(2/3) and in sqrt(alpha)) the functional
+// L(f) = (the table's read of f: sum_k w_k f(c_k), bilinear in x and sqrt(alpha)) minus
+// (the integral of f against the lobe's measure of c = v·h: detail::visit_ggx_cosine_measure
+// on S^2 cells, deposited linearly on a fine grid of G cosines uniform in [0, 1], f read
+// at the grid points) is taken of each film's Delta = F_film - F (F the dielectric Fresnel of
+// the film's base index, per RGB channel) and of the dielectric Fresnel F(eta) itself. Per
+// film index f of the grid (film_iors), the under-read at the point is
+//     u_f = max over films of index f (every thickness, base, channel) of -L(Delta)
+//           [+ max over (base s, ratio e) of -(L(F_s) - L(F_e)) in table 1]
+// (F_1 = 0: e = 1 stands for the rows that sum F_film alone, eta'_s <= 1), and the margin
+// of a node is the largest u_f over the points of the (up to four) cells around it, plus
+// `safety`: the bilinear read of the margins then exceeds u_f at every sub-grid point.
+struct film_margin_settings {
+    std::size_t fine = 1025; // G
+    std::size_t q = 2;       // sub-grid points per cell and axis
+    double safety = 1e-4;
+    bool coarse = false;     // a quick subset of films (for the CLI test)
+};
+
+std::vector<double> film_thicknesses_um(bool coarse) {
+    if (coarse) return {0.1, 0.5, 1, 2, 3};
+    std::vector<double> out;
+    for (int k = 1; k <= 120; ++k) out.push_back(0.025 * k); // 0.025 .. 3 um
+    for (int k = 1; k <= 28; ++k) out.push_back(3 + 0.25 * k); // .. 10 um
+    return out;
+}
+std::vector<double> film_iors(bool coarse) {
+    if (coarse) return {1.0, 1.5, 3};
+    return {1.0, 1.01, 1.02, 1.035, 1.05, 1.075, 1.1, 1.15, 1.2, 1.3, 1.45, 1.6, 1.8, 2.0, 2.3, 2.6, 3.0};
+}
+std::vector<double> film_bases(bool coarse) {
+    if (coarse) return {1.5};
+    return {1.0, 1.2, 1.33, 1.5, 1.75, 2.0, 2.5, 3.0};
+}
+std::vector<double> film_ratios() {
+    return {1.0, 1.02, 1.05, 1.1, 1.15, 1.2, 1.3, 1.4, 1.5, 1.6, 1.8, 2.0, 2.25, 2.5, 3.0};
+}
+
+struct margin_point {
+    double sa = 0, x = 0;          // sqrt(alpha), mu^(2/3)
+    std::array<double, shade::detail::cosine_weight_nodes> read{}; // the table's weights at the point
+    std::size_t g0 = 0;            // first fine index of `fine`
+    std::vector<double> fine;      // the measure deposited on the fine grid from g0
+};
+
+// L(f) at point p for f given at the nodes and on the fine grid.
+double margin_functional(const margin_point& p, const double* nodes, const double* fine) {
+    double read = 0, fresh = 0;
+    for (std::size_t k = 0; k < p.read.size(); ++k) read += p.read[k] * nodes[k];
+    for (std::size_t g = 0; g < p.fine.size(); ++g) fresh += p.fine[g] * fine[p.g0 + g];
+    return read - fresh;
+}
+
+int run_film_margin(const settings& s, const film_margin_settings& fm, ex::output_file& header) {
+    namespace d = shade::detail;
+    using namespace shade;
+    constexpr std::size_t n = d::cosine_weight_nodes, m = d::cosine_weight_alpha_nodes;
+    const std::size_t G = fm.fine, q = fm.q;
+    const std::size_t px = q * (n - 1) + 1, pa = q * (m - 1) + 1; // sub-grid points per axis
+    std::vector<margin_point> points(px * pa);
+    std::optional<ex::progress> bar(std::in_place, "albedo_tables", points.size(), !s.quiet);
+    parallel_for(points.size(), s.threads, [&](std::size_t index) {
+        margin_point& p = points[index];
+        const std::size_t a = index / px, b = index % px;
+        p.sa = double(a) / double(pa - 1);
+        p.x = double(b) / double(px - 1);
+        const double alpha = p.sa * p.sa, mu = p.x * std::sqrt(p.x);
+        // The read: fresnel_albedo_row's interpolation in sqrt(alpha), then at()'s in x.
+        const double ra = p.sa * double(m - 1);
+        const std::size_t j = std::min(std::size_t(ra), m - 2);
+        const double ta = ra - double(j);
+        const double rx = p.x * double(n - 1);
+        const std::size_t i = std::min(std::size_t(rx), n - 2);
+        const double tx = rx - double(i);
+        for (std::size_t k = 0; k < n; ++k) {
+            const auto w = [&](std::size_t jj, std::size_t ii) { return double(d::cosine_weight_table[(jj * n + ii) * n + k]); };
+            const double lower = (1 - ta) * w(j, i) + ta * w(j + 1, i);
+            const double upper = (1 - ta) * w(j, i + 1) + ta * w(j + 1, i + 1);
+            p.read[k] = (1 - tx) * lower + tx * upper;
+        }
+        std::vector<double> fine(G, 0.0);
+        std::size_t lo = G, hi = 0;
+        d::visit_ggx_cosine_measure(mu, alpha, s.strata, [&](double c, double weight) {
+            const double y = std::clamp(c, 0.0, 1.0) * double(G - 1);
+            const std::size_t g = std::min(std::size_t(y), G - 2);
+            const double t = y - double(g);
+            fine[g] += weight * (1 - t);
+            fine[g + 1] += weight * t;
+            lo = std::min(lo, g);
+            hi = std::max(hi, g + 1);
+        });
+        if (lo > hi) lo = hi = 0;
+        p.g0 = lo;
+        p.fine.assign(fine.begin() + std::ptrdiff_t(lo), fine.begin() + std::ptrdiff_t(hi + 1));
+        bar->advance();
+    });
+    // A function on the nodes and the fine grid.
+    struct sampled {
+        std::vector<double> nodes, fine;
+    };
+    const auto sample = [&](const std::function<double(double)>& f) {
+        sampled out{std::vector<double>(n), std::vector<double>(G)};
+        for (std::size_t k = 0; k < n; ++k) out.nodes[k] = f(d::cosine_weight_node(k));
+        for (std::size_t g = 0; g < G; ++g) out.fine[g] = f(double(g) / double(G - 1));
+        return out;
+    };
+    // Dielectric part: L(F_e) per point for every base and ratio.
+    std::vector<double> indices = film_bases(fm.coarse);
+    for (const double e : film_ratios()) indices.push_back(e);
+    std::vector<std::vector<double>> dielectric(indices.size(), std::vector<double>(points.size()));
+    parallel_for(indices.size(), s.threads, [&](std::size_t k) {
+        const double e = indices[k];
+        const sampled f = sample([e](double c) { return e == 1.0 ? 0.0 : F_dielectric(c, e); });
+        for (std::size_t p = 0; p < points.size(); ++p)
+            dielectric[k][p] = margin_functional(points[p], f.nodes.data(), f.fine.data());
+    });
+    const std::size_t bases = film_bases(fm.coarse).size();
+    std::vector<double> under(points.size(), -1.0), over(points.size(), -1.0);
+    for (std::size_t p = 0; p < points.size(); ++p)
+        for (std::size_t a = 0; a < bases; ++a)
+            for (std::size_t b = bases; b < indices.size(); ++b) {
+                const double difference = dielectric[a][p] - dielectric[b][p];
+                under[p] = std::max(under[p], -difference);
+                over[p] = std::max(over[p], difference);
+            }
+    // Film part: max of -L(Delta) and of L(Delta) per film index and point over the films
+    // of that index and the channels.
+    struct film {
+        std::size_t ior_index;
+        double ior, thickness_um, base;
+    };
+    const std::vector<double> iors = film_iors(fm.coarse);
+    const std::size_t fi = iors.size();
+    std::vector<film> films;
+    for (std::size_t f = 0; f < fi; ++f)
+        for (const double base : film_bases(fm.coarse))
+            for (const double t : film_thicknesses_um(fm.coarse)) films.push_back({f, iors[f], t, base});
+    std::vector<std::vector<double>> film_under(fi, std::vector<double>(points.size(), 0.0)),
+        film_over(fi, std::vector<double>(points.size(), 0.0));
+    std::mutex merge;
+    bar.emplace("albedo_tables", films.size(), !s.quiet);
+    parallel_for(films.size(), s.threads, [&](std::size_t k) {
+        const film fl = films[k];
+        const auto F = thin_film_fresnel<double>::over_dielectric(fl.base, fl.ior, fl.thickness_um * 1000);
+        std::array<sampled, 3> channels;
+        {
+            std::vector<rgb<double>> nodes(n), fine(G);
+            for (std::size_t i = 0; i < n; ++i) nodes[i] = F.F(d::cosine_weight_node(i));
+            for (std::size_t g = 0; g < G; ++g) fine[g] = F.F(double(g) / double(G - 1));
+            for (int ch = 0; ch < 3; ++ch) {
+                channels[std::size_t(ch)] = {std::vector<double>(n), std::vector<double>(G)};
+                for (std::size_t i = 0; i < n; ++i)
+                    channels[std::size_t(ch)].nodes[i] = nodes[i][ch] - F_dielectric(d::cosine_weight_node(i), fl.base);
+                for (std::size_t g = 0; g < G; ++g)
+                    channels[std::size_t(ch)].fine[g] = fine[g][ch] - F_dielectric(double(g) / double(G - 1), fl.base);
+            }
+        }
+        std::vector<double> lo(points.size(), 0.0), hi(points.size(), 0.0);
+        for (std::size_t p = 0; p < points.size(); ++p)
+            for (int ch = 0; ch < 3; ++ch) {
+                const double l = margin_functional(points[p], channels[std::size_t(ch)].nodes.data(), channels[std::size_t(ch)].fine.data());
+                lo[p] = std::max(lo[p], -l);
+                hi[p] = std::max(hi[p], l);
+            }
+        const std::lock_guard<std::mutex> lock(merge);
+        for (std::size_t p = 0; p < points.size(); ++p) {
+            film_under[fl.ior_index][p] = std::max(film_under[fl.ior_index][p], lo[p]);
+            film_over[fl.ior_index][p] = std::max(film_over[fl.ior_index][p], hi[p]);
+        }
+        bar->advance();
+    });
+    bar.reset();
+    // Node margins: the largest under-read over the points of the cells around the node;
+    // table 0 for eta'_s equal to the film's base index (no dielectric pair), table 1 for
+    // any; one pair of tables per film index.
+    std::vector<float> margin(fi * 2 * m * n, 0.0f);
+    const auto node_margin = [&](std::size_t f, int t, std::size_t j, std::size_t i) -> float& {
+        return margin[((f * 2 + std::size_t(t)) * m + j) * n + i];
+    };
+    for (std::size_t f = 0; f < fi; ++f)
+        for (int t = 0; t < 2; ++t)
+            for (std::size_t j = 0; j < m; ++j)
+                for (std::size_t i = 0; i < n; ++i) {
+                    double worst = 0;
+                    for (std::size_t a = (j == 0 ? 0 : q * j - q); a <= std::min(q * j + q, pa - 1); ++a)
+                        for (std::size_t b = (i == 0 ? 0 : q * i - q); b <= std::min(q * i + q, px - 1); ++b) {
+                            const std::size_t p = a * px + b;
+                            worst = std::max(worst, film_under[f][p] + (t == 1 ? std::max(under[p], 0.0) : 0.0));
+                        }
+                    node_margin(f, t, j, i) = float(worst > 0 ? worst + fm.safety : 0.0);
+                }
+    // The resulting range of read - true at the sub-grid points (mu >= 0.1 and all), per
+    // film index and table.
+    std::vector<std::string> summary;
+    for (std::size_t f = 0; f < fi; ++f)
+        for (int t = 0; t < 2; ++t) {
+            double lowest[2] = {1, 1}, highest[2] = {-1, -1}, before_low[2] = {1, 1}, before_high[2] = {-1, -1};
+            for (std::size_t p = 0; p < points.size(); ++p) {
+                const margin_point& pt = points[p];
+                const double ra = pt.sa * double(m - 1), rx = pt.x * double(n - 1);
+                const std::size_t j = std::min(std::size_t(ra), m - 2), i = std::min(std::size_t(rx), n - 2);
+                const double ta = ra - double(j), tx = rx - double(i);
+                const auto M = [&](std::size_t jj, std::size_t ii) { return double(node_margin(f, t, jj, ii)); };
+                const double read = (1 - tx) * ((1 - ta) * M(j, i) + ta * M(j + 1, i)) +
+                                    tx * ((1 - ta) * M(j, i + 1) + ta * M(j + 1, i + 1));
+                const double u = film_under[f][p] + (t == 1 ? std::max(under[p], 0.0) : 0.0);
+                const double o = film_over[f][p] + (t == 1 ? std::max(over[p], 0.0) : 0.0);
+                for (int set = 0; set < 2; ++set) {
+                    if (set == 0 && pt.x * std::sqrt(pt.x) < 0.1) continue;
+                    before_low[set] = std::min(before_low[set], -u);
+                    before_high[set] = std::max(before_high[set], o);
+                    lowest[set] = std::min(lowest[set], read - u);
+                    highest[set] = std::max(highest[set], read + o);
+                }
+            }
+            char line[240];
+            std::snprintf(line, sizeof line,
+                          "film %.3f, table %d: without the margin [%+.2e, %+.2e] (mu >= 0.1), [%+.2e, %+.2e] (all mu); "
+                          "with it [%+.2e, %+.2e], [%+.2e, %+.2e]",
+                          iors[f], t, before_low[0], before_high[0], before_low[1], before_high[1], lowest[0],
+                          highest[0], lowest[1], highest[1]);
+            summary.emplace_back(line);
+        }
+    char counts[200];
+    std::snprintf(counts, sizeof counts, "%zu films x 3 channels, %zu dielectric indices, %zu points, S = %zu, G = %zu",
+                  films.size(), indices.size(), points.size(), s.strata, G);
+    const std::vector<double> thicknesses = film_thicknesses_um(fm.coarse), base_list = film_bases(fm.coarse);
+    header.write_stream([&](std::FILE* f) {
+        std::fprintf(f, "#pragma once\n");
+        std::fprintf(f, "// Generated by examples/albedo_tables.cpp (--film-margin --strata %zu --fine %zu --sub %zu%s); do not edit by hand.\n",
+                     s.strata, G, q, fm.coarse ? " --coarse-films" : "");
+        std::fprintf(f, "// The thin film's margin of openpbr_surface's film share (albedo_tables.cpp, run_film_margin):\n");
+        std::fprintf(f, "// per film index n_f of the grid and node (alpha_j, mu_i) of cosine_weight_data.hpp, the\n");
+        std::fprintf(f, "// largest amount by which the table's read of the integral of F_film - F(eta) against the\n");
+        std::fprintf(f, "// lobe's measure of c = v.h falls short of the integral itself, over the films of index n_f\n");
+        std::fprintf(f, "// (thickness %.3f-%.2f um in %zu steps, base index %.2f-%.2f in %zu, every RGB channel) and the\n",
+                     thicknesses.front(), thicknesses.back(), thicknesses.size(), base_list.front(), base_list.back(),
+                     base_list.size());
+        std::fprintf(f, "// points of the cells around the node, plus %.1e. Table 0: eta = the film's base index;\n", fm.safety);
+        std::fprintf(f, "// table 1: any eta in [1, %.1f] (1: the row sums F_film alone). Measured by the generator\n",
+                     film_ratios().back());
+        std::fprintf(f, "// (%s), E_R read - true at the sub-grid points:\n", counts);
+        for (const auto& line : summary) std::fprintf(f, "//   %s\n", line.c_str());
+        std::fprintf(f, "\n#include <cstddef>\n\nnamespace shade::detail {\n\n");
+        std::fprintf(f, "/// The film indices of the margin's tables (ascending).\n");
+        std::fprintf(f, "inline constexpr std::size_t thin_film_margin_iors = %zu;\n", fi);
+        std::fprintf(f, "inline constexpr double thin_film_margin_ior[thin_film_margin_iors] = {");
+        for (std::size_t k = 0; k < fi; ++k) std::fprintf(f, "%s%.3f", k ? ", " : "", iors[k]);
+        std::fprintf(f, "};\n\n");
+        std::fprintf(f, "/// The margins of film index f, table t, at [(f 2 + t) m n + j n + i], n = cosine_weight_nodes,\n");
+        std::fprintf(f, "/// m = cosine_weight_alpha_nodes; one alpha row per line.\n");
+        std::fprintf(f, "inline constexpr float thin_film_albedo_margin[thin_film_margin_iors * 2 * %zu] = {\n", m * n);
+        for (std::size_t row = 0; row < fi * 2 * m; ++row) {
+            ex::write_float_literals(f, margin.data() + row * n, n, 4);
+            std::fprintf(f, ",\n");
+        }
+        std::fprintf(f, "};\n\n} // namespace shade::detail\n");
+    });
+    for (const auto& line : summary) std::fprintf(stderr, "albedo_tables: film margin, %s\n", line.c_str());
+    std::fprintf(stderr, "albedo_tables: film margin, %s\nalbedo_tables: wrote %s\n", counts, s.out.string().c_str());
+    return 0;
+}
+
 // --anisotropic: the GGX and Beckmann corrections, written to `header`.
 int run_anisotropic(const settings& s, ex::output_file& header) {
     using namespace shade;
@@ -474,6 +759,7 @@ int run_anisotropic(const settings& s, ex::output_file& header) {
 int main(int argc, char** argv) {
     return ex::run_cli("albedo_tables", [&] {
         settings s;
+        film_margin_settings fm;
         bool nodes_given = false;
         ex::command_line args(argc, argv);
         while (args.next()) {
@@ -488,18 +774,28 @@ int main(int argc, char** argv) {
             else if (args.flag("--quiet")) s.quiet = true;
             else if (args.flag("--anisotropic")) s.anisotropic = true;
             else if (args.flag("--cosine-weights")) s.cosine_weights = true;
+            else if (args.flag("--film-margin")) s.film_margin = true;
+            else if (args.option("--fine")) fm.fine = args.integer<std::size_t>(65, 16385);
+            else if (args.option("--sub")) fm.q = args.integer<std::size_t>(1, 8);
+            else if (args.flag("--coarse-films")) fm.coarse = true;
             else args.unknown();
         }
         if (s.anisotropic && nodes_given)
             throw ex::usage_error("option --nodes does not apply with --anisotropic (its grid is fixed by anisotropic_albedo_table.hpp)");
         if (s.cosine_weights && (nodes_given || s.anisotropic))
             throw ex::usage_error("options --nodes and --anisotropic do not apply with --cosine-weights (its grid is fixed by cosine_weight_data.hpp)");
+        if (s.film_margin && s.cosine_weights)
+            throw ex::usage_error("options --cosine-weights and --film-margin exclude each other");
+        if (s.film_margin && (nodes_given || s.anisotropic))
+            throw ex::usage_error("options --nodes and --anisotropic do not apply with --film-margin (its grid is cosine_weight_data.hpp's)");
         if (s.anisotropic && s.out == "albedo_data.hpp") s.out = "anisotropic_albedo_data.hpp";
         if (s.cosine_weights && s.out == "albedo_data.hpp") s.out = "cosine_weight_data.hpp";
+        if (s.film_margin && s.out == "albedo_data.hpp") s.out = "thin_film_margin_data.hpp";
         (void)ex::output_format("--out", s.out, {".hpp", ".h"});
         ex::output_file header(s.out);
         if (s.anisotropic) return run_anisotropic(s, header);
         if (s.cosine_weights) return run_cosine_weights(s, header);
+        if (s.film_margin) return run_film_margin(s, fm, header);
         constexpr std::size_t table_count = 3;
         std::optional<ex::progress> bar(std::in_place, "albedo_tables",
                                         table_count * (s.nodes * s.nodes + check_cells(s.nodes).size()), !s.quiet);

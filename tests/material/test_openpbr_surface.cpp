@@ -29,6 +29,7 @@
 #include "bsdf/dielectric_albedo.hpp"
 #include "bsdf/support.hpp"
 #include "check/model_point.hpp"
+#include "material/openpbr_film.hpp"
 
 namespace {
 
@@ -929,9 +930,7 @@ TEST_CASE("openpbr_surface: the anisotropic reflection albedo's furnace error, w
 // Film parameters of the thin-film furnace tests: weight, thickness (um), film index, base
 // index; thin to thick films, the specification's soft index range [1, 3] and both weights.
 template <class T>
-struct film_point {
-    T weight, thickness_um, ior, base_ior;
-};
+using film_point = film_test::film_point<T>;
 
 template <class T>
 std::vector<film_point<T>> film_points() {
@@ -941,43 +940,7 @@ std::vector<film_point<T>> film_points() {
             {T(0.5), T(1.5), T(1.3), T(1.8)}};
 }
 
-// E_R(v) read by the material minus the true E_R(v), per channel, for the film fl at
-// roughness r and view cosine mu over a white Lambertian base (base_diffuse_roughness 0):
-// there f = f_spec + (1 - E_R(v)) / pi, so the material's E_R(v) is 1 - pi (f - f_spec) at
-// any l, f_spec the public specular lobe built here, and the white furnace reads
-// 1 + E_R,true(v) - E_R(v) exactly. The true albedo with the film is R_ss
-// (dielectric_reflection_albedo, the table the material reads without a film, tested on its
-// own) plus w times the integral of F_film - F against the lobe's measure of c = v·h, here
-// by the midpoint rule on 160^2 cells of the visible-normal square with F_film read at each
-// cell's own cosine (ggx_cosine_weights' quadrature at this very mu and alpha, not the
-// table's nodes).
-template <class T>
-rgb<double> film_albedo_error(const film_point<T>& fl, T r, double mu) {
-    const auto at = check_test::model_point<T>();
-    const auto film = shade::thin_film_fresnel<T>::over_dielectric(fl.base_ior, fl.ior, fl.thickness_um * T(1000));
-    const auto fresnel = shade::openpbr::surface_fresnel<T>::dielectric(fl.base_ior, rgb<T>(1), fl.weight, film);
-    params<T> p = white<T>();
-    p.specular_roughness = r;
-    p.specular_ior = fl.base_ior;
-    p.thin_film_weight = fl.weight;
-    p.thin_film_thickness = fl.thickness_um;
-    p.thin_film_ior = fl.ior;
-    const surface<T> m(p);
-    const T alpha = shade::openpbr::roughness_to_alpha(r, T(0)).t;
-    const typename surface<T>::specular_lobe spec(shade::ggx<T>(alpha), fresnel);
-    const vec3<T> v = view_at_cosine(at, mu);
-    const vec3<T> l = at.n();
-    const rgb<T> diffuse_part = m.f(l, v, at) - spec.f(l, v, at);
-    const double r_ss = double(shade::dielectric_reflection_albedo(T(mu), alpha, fl.base_ior));
-    rgb<double> film_part(0);
-    shade::detail::visit_ggx_cosine_measure(mu, double(alpha), 160, [&](double c, double w) {
-        film_part += w * (rgb<double>(film.F(T(c))) - rgb<double>(shade::F_dielectric(c, double(fl.base_ior))));
-    });
-    rgb<double> error;
-    for (int k = 0; k < 3; ++k)
-        error[k] = (1 - shade::pi<double> * double(diffuse_part[k])) - (r_ss + double(fl.weight) * film_part[k]);
-    return error;
-}
+using film_test::film_albedo_error;
 
 TEST_CASE_TEMPLATE("openpbr_surface: white furnace with a thin film, read through the specular albedo", T, float,
                    double) {
@@ -1005,30 +968,40 @@ TEST_CASE_TEMPLATE("openpbr_surface: white furnace with a thin film, read throug
     MESSAGE("thin film: E_R read - true in [", lowest, ", ", highest, "] (white furnace 1 - that)");
 }
 
-TEST_CASE_TEMPLATE("openpbr_surface: a thin film's fringes finer than the cosine nodes, on a narrow lobe (measured band)",
-                   T, float, double) {
+TEST_CASE_TEMPLATE("openpbr_surface: a thin film's share of E_spec never reads low, on narrow lobes too", T, float,
+                   double) {
     // Where the film's reflectance oscillates in c faster than the 64 nodes of
     // cosine_weights.hpp resolve (a low film index, whose refraction angle, and so its
     // optical path, changes most with c, at 1.5 to 5 um; or a thin film of high index) and
-    // the lobe is narrower than a node spacing (roughness <= 0.2), the sum is the linear
-    // interpolation of F_film between two nodes and misses the fringe: over the sweep of
-    // docs/conventions.md (film index 1 to 3, 0.05 to 10 um, base 1.33 to 2, roughness 0.05
-    // to 1, mu 0.1 to 1) 113 of 57330 channel readings fall below the band's -1e-3, down to
-    // -3.2e-3 (white furnace 1.0032), all at roughness <= 0.2. This test holds the measured
-    // range at the worst points found ([-3.18e-3, +4.31e-3]).
+    // the lobe is narrower than a node spacing, the node sum misses the fringe, by up to
+    // 8e-3 low and 1e-2 high at film index >= 1.1 (2e-2 below); the row is raised by the margin of
+    // thin_film_margin_data.hpp (per film index, the largest shortfall over the films of
+    // the specification's range, from the generator), so that the white furnace
+    // 1 + E_R,true - E_R stays at most 1.001 anywhere: E_R read - true >= -1e-3. The
+    // issue's low end 0.99 (read - true <= 1e-2) holds at film index >= 1.2 with eta'_s the
+    // film's base index; below (and for another eta'_s, the margin's table 1) the margin
+    // that keeps the read from falling short reads it high by more: the generator states
+    // at most 1.33e-2 at index >= 1.1 and 4.2e-2 at 1.01-1.075, asserted here. The films
+    // where the margin was largest (index 1.05 and 1.1 at 2-3 um, index 3 at 0.05 um), two
+    // at weight 0.5 and one at specular_weight 0.5 (eta'_s 1.33), on the narrow lobes
+    // (roughness 0.02-0.2) and a wide one, mu 0.1-0.7. float: f's rounding adds 2e-5.
     const double tol = std::is_same_v<T, float> ? 2e-5 : 0.0;
     const std::vector<film_point<T>> corners = {
-        {1, T(2), T(1.05), T(1.5)}, {1, T(3), T(1.05), T(1.5)}, {1, T(3), T(1.1), T(1.5)}, {1, T(0.05), T(3), T(1.5)}};
+        {1, T(2), T(1.05), T(1.5)},        {1, T(3), T(1.05), T(1.5)},       {1, T(3), T(1.1), T(1.5)},
+        {1, T(0.05), T(3), T(1.5)},        {1, T(1.2), T(1.2), T(2)},        {T(0.5), T(2.5), T(1.05), T(1.33)},
+        {T(0.5), T(0.7), T(2.5), T(3)},    {1, T(2), T(1.1), T(1.5), T(0.5)}};
     double lowest = 1, highest = -1;
     for (const auto& fl : corners) {
-        for (const T r : {T(0.05), T(0.1), T(0.2)}) {
-            for (const double mu : {0.3, 0.2, 0.15}) {
+        for (const T r : {T(0.02), T(0.05), T(0.1), T(0.2), T(0.5)}) {
+            for (const double mu : {0.1, 0.15, 0.3, 0.7}) {
                 const rgb<double> error = film_albedo_error(fl, r, mu);
                 for (int k = 0; k < 3; ++k) {
-                    INFO("thickness ", double(fl.thickness_um), " film ior ", double(fl.ior), " roughness ", double(r),
-                         " mu ", mu, " channel ", k, ": E_R read - true ", error[k]);
-                    CHECK(error[k] >= -3.3e-3 - tol);
-                    CHECK(error[k] <= 4.5e-3 + tol);
+                    INFO("weight ", double(fl.weight), " thickness ", double(fl.thickness_um), " film ior ",
+                         double(fl.ior), " base ior ", double(fl.base_ior), " specular_weight ",
+                         double(fl.specular_weight), " roughness ", double(r), " mu ", mu, " channel ", k,
+                         ": E_R read - true ", error[k]);
+                    CHECK(error[k] >= -1e-3 - tol);
+                    CHECK(error[k] <= film_test::film_high_bound(fl) + tol);
                     lowest = std::min(lowest, error[k]);
                     highest = std::max(highest, error[k]);
                 }

@@ -26,6 +26,7 @@
 #include <shade/brdf/f82_tint.hpp>
 #include <shade/brdf/fresnel.hpp>
 #include <shade/brdf/microfacet/cosine_weights.hpp>
+#include <shade/brdf/microfacet/detail/thin_film_margin_data.hpp>
 #include <shade/brdf/microfacet/ggx.hpp>
 #include <shade/brdf/microfacet/masking.hpp>
 #include <shade/brdf/microfacet_reflection.hpp>
@@ -188,8 +189,10 @@ private:
 ///     view's azimuth) plus, with a film, thin_film_weight times the integral of
 ///     F_film - F (F the exact dielectric Fresnel at eta'_s) against the lobe's measure of
 ///     c = v·h (shade/brdf/microfacet/cosine_weights.hpp, summed once per material at
-///     sqrt(alpha_x alpha_y)); for eta'_s < 1, whose F has a total-reflection kink finer
-///     than the nodes, F_film's integral minus the table's R_ss.
+///     sqrt(alpha_x alpha_y)), raised by the node sum's largest shortfall over the
+///     specification's films (detail/thin_film_margin_data.hpp), so that it reads high,
+///     never low; for eta'_s < 1, whose F has a total-reflection kink finer than the
+///     nodes, F_film's integral minus the table's R_ss.
 ///   * f_transmission: the transmitted part of shade::compensated_rough_dielectric at the
 ///     index specular_ior, divided by its transmittance from v, so that it carries all
 ///     the energy the specular reflection leaves (the specification's "the transmission
@@ -458,7 +461,9 @@ private:
         if (p_.thin_film_weight > T(0)) {
             // The film's part: the lobe's albedo with F_film is R_ss plus the integral of
             // F_film - F against the lobe's measure of c = v·h (cosine_weights.hpp), summed
-            // once per material in film_albedo_; exact for a smooth lobe (c = mu).
+            // once per material in film_albedo_ and raised by the margin of
+            // thin_film_margin_data.hpp (the white furnace reads 1 + true - read: a share
+            // read low would create energy); exact for a smooth lobe (c = mu).
             // Below an index ratio of 1 the row sums F_film alone (film_alone_) and the
             // table's R_ss, which holds F's total-reflection kink, is subtracted here.
             const rgb<T> film_part = specular_ ? film_albedo_.at(mu) - rgb<T>(film_alone_ ? e_dielectric : T(0))
@@ -1029,9 +1034,29 @@ void openpbr_surface<T>::build() {
             // Below 1, F is 1 under the critical cosine and falls steeply above it, a kink the
             // nodes' linear interpolation misses (overestimating F near it): the row then sums
             // F_film alone and specular_albedo subtracts the table's R_ss.
+            // The margin: table 0 where eta'_s is the film's own base index (uncoated at
+            // specular_weight 1), table 1 for any eta'_s (a coat, another specular_weight).
             film_alone_ = eta < T(1);
+            const bool film_over_eta = C == T(0) && p.specular_weight == T(1) && !film_alone_;
             film_albedo_ = detail::fresnel_albedo_row<T>(specular_alpha_, [&](T c) {
                 return film.F(c) - rgb<T>(film_alone_ || eta == T(1) ? T(0) : F_dielectric(c, eta));
+            });
+            // The margin's film indices around thin_film_ior (the larger margin of the two,
+            // or the one it equals); outside the grid's range, the largest of all.
+            constexpr std::size_t nf = detail::thin_film_margin_iors;
+            const double n_f = double(film_ior);
+            std::size_t first = 0, last = nf - 1;
+            if (n_f >= detail::thin_film_margin_ior[0] && n_f <= detail::thin_film_margin_ior[nf - 1]) {
+                while (first + 1 < nf && detail::thin_film_margin_ior[first + 1] <= n_f) ++first;
+                last = detail::thin_film_margin_ior[first] == n_f ? first : first + 1;
+            }
+            const std::size_t table = film_over_eta ? 0 : 1;
+            film_albedo_.raise(specular_alpha_, [&](std::size_t j, std::size_t i) {
+                constexpr std::size_t rows = detail::cosine_weight_alpha_nodes, n = detail::cosine_weight_nodes;
+                float largest = 0;
+                for (std::size_t f = first; f <= last; ++f)
+                    largest = glm::max(largest, detail::thin_film_albedo_margin[((f * 2 + table) * rows + j) * n + i]);
+                return double(largest);
             });
         }
     }

@@ -125,6 +125,20 @@ public:
         }
     }
 
+    /// Raises each view node's sum by margin(j, i) (a double for alpha row j and view node
+    /// i of the table), interpolated in sqrt(alpha) as the weights are: with an upper bound
+    /// of the sum's shortfall for a known family of F (the thin films of
+    /// detail/thin_film_margin_data.hpp) the row then reads high, never low. alpha as at
+    /// construction.
+    template <class Margin>
+    void raise(T alpha, const Margin& margin) {
+        constexpr std::size_t n = cosine_weight_nodes, m = cosine_weight_alpha_nodes;
+        const double s = std::sqrt(glm::clamp(double(alpha), 0.0, 1.0)) * double(m - 1);
+        const std::size_t j = glm::min(std::size_t(s), m - 2);
+        const double t = s - double(j);
+        for (std::size_t i = 0; i < n; ++i) row_[i] += rgb<T>(T((1 - t) * margin(j, i) + t * margin(j + 1, i)));
+    }
+
     /// E_F at view cosine mu (clamped to [0, 1]), per channel.
     [[nodiscard]] rgb<T> at(T mu) const noexcept {
         constexpr std::size_t n = cosine_weight_nodes;
