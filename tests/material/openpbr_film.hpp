@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include <shade/brdf/microfacet/cosine_weights.hpp>
+#include <shade/bsdf/dielectric_anisotropic_reflection_albedo.hpp>
 #include <shade/bsdf/dielectric_reflection_albedo.hpp>
 #include <shade/material/openpbr_surface.hpp>
 
@@ -62,6 +63,62 @@ shade::rgb<double> film_albedo_error(const film_point<T>& fl, T r, double mu, st
     shade::detail::visit_ggx_cosine_measure(mu, double(alpha), strata, [&](double c, double w) {
         film_part += w * (rgb<double>(film.F(T(c))) - rgb<double>(shade::F_dielectric(c, double(eta))));
     });
+    rgb<double> error;
+    for (int k = 0; k < 3; ++k)
+        error[k] = (1 - shade::pi<double> * double(diffuse_part[k])) - (r_ss + double(fl.weight) * film_part[k]);
+    return error;
+}
+
+/// film_albedo_error for an anisotropic lobe: roughness r, anisotropy a (alpha_t = r^2
+/// sqrt(2 / (1 + (1 - a)^2)), alpha_b = (1 - a) alpha_t, openpbr::roughness_to_alpha), the
+/// view at cosine mu and azimuth phi from the tangent. The true albedo is the anisotropic
+/// R_ss(v) the material reads without a film (dielectric_reflection_albedo of the local
+/// view, tested on its own) plus w times the integral of F_film - F(eta'_s) against the
+/// anisotropic lobe's measure of c = v·h: the midpoint rule on strata^2 cells of its
+/// visible-normal square (Heitz 2018, "Sampling the GGX Distribution of Visible Normals",
+/// JCGT 7(4)), each weighted by G2(v, l) / G1(v) = (1 + Lambda(v)) / (1 + Lambda(v) +
+/// Lambda(l)) (Heitz 2014, JCGT 3(2), eq. 99), l = reflect(v, h) above the surface.
+template <class T>
+shade::rgb<double> anisotropic_film_albedo_error(const film_point<T>& fl, T r, T a, double mu, double phi,
+                                                 std::size_t strata = 128) {
+    using shade::rgb;
+    using shade::vec3;
+    const auto at = check_test::model_point<T>();
+    const T eta = shade::openpbr::modulated_ior_ratio(fl.base_ior, fl.specular_weight);
+    const auto film = shade::thin_film_fresnel<T>::over_dielectric(fl.base_ior, fl.ior, fl.thickness_um * T(1000));
+    const auto fresnel = shade::openpbr::surface_fresnel<T>::dielectric(eta, rgb<T>(1), fl.weight, film);
+    shade::openpbr_parameters<T> p;
+    p.base_color = rgb<T>(1);
+    p.specular_roughness = r;
+    p.specular_roughness_anisotropy = a;
+    p.specular_ior = fl.base_ior;
+    p.specular_weight = fl.specular_weight;
+    p.thin_film_weight = fl.weight;
+    p.thin_film_thickness = fl.thickness_um;
+    p.thin_film_ior = fl.ior;
+    const shade::openpbr_surface<T> m(p);
+    const auto alpha = shade::openpbr::roughness_to_alpha(r, a);
+    const typename shade::openpbr_surface<T>::specular_lobe spec(shade::ggx<T>(alpha.t, alpha.b), fresnel);
+    const double s = std::sqrt((1 - mu) * (1 + mu));
+    const vec3<T> v_local(T(s * std::cos(phi)), T(s * std::sin(phi)), T(mu));
+    const vec3<T> v = glm::normalize(at.shading.to_world(v_local));
+    const vec3<T> l = at.n();
+    const rgb<T> diffuse_part = m.f(l, v, at) - spec.f(l, v, at);
+    const double r_ss = double(shade::dielectric_reflection_albedo(shade::unchecked, v_local, alpha.t, alpha.b, eta));
+    const shade::ggx<double> d(shade::unchecked, double(alpha.t), double(alpha.b));
+    const vec3<double> w(s * std::cos(phi), s * std::sin(phi), mu);
+    const double lambda_v = d.Lambda(w);
+    rgb<double> film_part(0);
+    for (std::size_t i = 0; i < strata; ++i)
+        for (std::size_t j = 0; j < strata; ++j) {
+            const shade::vec2<double> u((double(i) + 0.5) / double(strata), (double(j) + 0.5) / double(strata));
+            const vec3<double> h = d.sample_visible_normal(w, u);
+            const double c = glm::dot(w, h);
+            const vec3<double> l_local = 2 * c * h - w;
+            if (!(l_local.z > 0) || !(c > 0)) continue;
+            const double weight = (1 + lambda_v) / (1 + lambda_v + d.Lambda(l_local)) / double(strata * strata);
+            film_part += weight * (rgb<double>(film.F(T(c))) - rgb<double>(shade::F_dielectric(c, double(eta))));
+        }
     rgb<double> error;
     for (int k = 0; k < 3; ++k)
         error[k] = (1 - shade::pi<double> * double(diffuse_part[k])) - (r_ss + double(fl.weight) * film_part[k]);

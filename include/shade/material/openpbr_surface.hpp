@@ -188,8 +188,9 @@ private:
 ///     specular_color times dielectric_reflection_albedo at eta'_s (anisotropic: at the
 ///     view's azimuth) plus, with a film, thin_film_weight times the integral of
 ///     F_film - F (F the exact dielectric Fresnel at eta'_s) against the lobe's measure of
-///     c = v·h (shade/brdf/microfacet/cosine_weights.hpp, summed once per material at
-///     sqrt(alpha_x alpha_y)), raised by the node sum's largest shortfall over the
+///     c = v·h (shade/brdf/microfacet/cosine_weights.hpp, summed once per material; an
+///     anisotropic lobe per view at the roughness along the view's azimuth, normalised to
+///     its own albedo with F = 1), raised by the node sum's largest shortfall over the
 ///     specification's films (detail/thin_film_margin_data.hpp), so that it reads high,
 ///     never low; for eta'_s < 1, whose F has a total-reflection kink finer than the
 ///     nodes, F_film's integral minus the table's R_ss.
@@ -449,6 +450,49 @@ private:
         return F_dielectric(mu, coat_eta_);
     }
 
+    // The film's margin (thin_film_margin_data.hpp) at alpha row j and view node i: the
+    // larger of the tables of the film indices around thin_film_ior.
+    [[nodiscard]] double film_node_margin(std::size_t j, std::size_t i) const noexcept {
+        constexpr std::size_t rows = detail::cosine_weight_alpha_nodes, n = detail::cosine_weight_nodes;
+        float largest = 0;
+        for (std::size_t f = film_margin_first_; f <= film_margin_last_; ++f)
+            largest = glm::max(largest, detail::thin_film_albedo_margin[((f * 2 + film_margin_table_) * rows + j) * n + i]);
+        return double(largest);
+    }
+
+    // The film's share (the integral of F_film - F, or of F_film alone below an index ratio
+    // of 1) for an anisotropic lobe at the local view w: the isotropic lobe's node sum at
+    // the roughness along the view's azimuth, alpha_v = sqrt(alpha_x^2 cos^2(phi) +
+    // alpha_y^2 sin^2(phi)) (the slope spread that moves v·h to first order; at the pole,
+    // phi = pi/4), as a mean of F_film - F per unit of that lobe's albedo with F = 1, times
+    // the anisotropic lobe's own albedo with F = 1 (the isotropic table at sqrt(alpha_x
+    // alpha_y) plus the anisotropic correction, as kulla_conty_anisotropic reads it), plus
+    // the margin at (alpha_v, mu).
+    [[nodiscard]] rgb<T> anisotropic_film_share(const vec3<T>& w) const noexcept {
+        const T sin2 = w.x * w.x + w.y * w.y;
+        const T cos2_phi = sin2 > T(0) ? w.x * w.x / sin2 : T(0.5);
+        const T alpha_v = std::sqrt(film_alpha_x_ * film_alpha_x_ * cos2_phi +
+                                    film_alpha_y_ * film_alpha_y_ * (T(1) - cos2_phi));
+        const T mu = glm::clamp(w.z, T(0), T(1));
+        const detail::fresnel_albedo_sum<T> sum = detail::fresnel_albedo_at(alpha_v, mu, film_nodes_);
+        const T e_one = glm::clamp(
+            detail::albedo_lookup(detail::ggx_albedo, detail::albedo_grid_nodes, mu, specular_alpha_) +
+                detail::anisotropic_albedo_delta(detail::ggx_anisotropic_albedo_delta, film_cell_, w.x, w.y, w.z),
+            T(0), T(1));
+        const rgb<T> share = sum.mass > T(0) ? sum.e * (e_one / sum.mass) : sum.e;
+        // The margin, bilinear in sqrt(alpha_v) and x = mu^(2/3) as the weights.
+        constexpr std::size_t n = detail::cosine_weight_nodes, m = detail::cosine_weight_alpha_nodes;
+        const double s = std::sqrt(glm::clamp(double(alpha_v), 0.0, 1.0)) * double(m - 1);
+        const std::size_t j = glm::min(std::size_t(s), m - 2);
+        const double t = s - double(j);
+        const double x = std::cbrt(double(mu) * double(mu)) * double(n - 1);
+        const std::size_t i = glm::min(std::size_t(x), n - 2);
+        const double u = x - double(i);
+        const double margin = (1 - t) * ((1 - u) * film_node_margin(j, i) + u * film_node_margin(j, i + 1)) +
+                              t * ((1 - u) * film_node_margin(j + 1, i) + u * film_node_margin(j + 1, i + 1));
+        return share + rgb<T>(T(margin));
+    }
+
     // E_spec(v): the specular reflection lobe's directional albedo per channel.
     [[nodiscard]] rgb<T> specular_albedo(T mu, const vec3<T>& w_local = vec3<T>(0)) const noexcept {
         const T e_dielectric =
@@ -466,8 +510,12 @@ private:
             // read low would create energy); exact for a smooth lobe (c = mu).
             // Below an index ratio of 1 the row sums F_film alone (film_alone_) and the
             // table's R_ss, which holds F's total-reflection kink, is subtracted here.
-            const rgb<T> film_part = specular_ ? film_albedo_.at(mu) - rgb<T>(film_alone_ ? e_dielectric : T(0))
-                                               : film_dielectric_->F(mu) - rgb<T>(e_dielectric);
+            // An anisotropic lobe: anisotropic_film_share at the view's azimuth.
+            const rgb<T> film_part =
+                !specular_ ? film_dielectric_->F(mu) - rgb<T>(e_dielectric)
+                : specular_anisotropic_ && w_local != vec3<T>(0)
+                    ? anisotropic_film_share(w_local) - rgb<T>(film_alone_ ? e_dielectric : T(0))
+                    : film_albedo_.at(mu) - rgb<T>(film_alone_ ? e_dielectric : T(0));
             e = glm::clamp(e + p_.thin_film_weight * film_part, rgb<T>(0), rgb<T>(1));
         }
         return p_.specular_color * e;
@@ -926,6 +974,11 @@ private:
     std::optional<thin_film_fresnel<T>> film_dielectric_;
     detail::fresnel_albedo_row<T> film_albedo_{}; // integral of F_film - F at eta'_s (rough, with a film)
     bool film_alone_ = false;                      // film_albedo_ integrates F_film alone (eta'_s < 1)
+    std::array<rgb<T>, detail::cosine_weight_nodes> film_nodes_{}; // what film_albedo_ sums, at the nodes (anisotropic)
+    T film_alpha_x_ = 0, film_alpha_y_ = 0;                         // the specular lobe's roughnesses (anisotropic)
+    detail::anisotropic_albedo_cell<T> film_cell_{};                // its cell in the anisotropic tables
+    std::size_t film_margin_first_ = 0, film_margin_last_ = 0;      // the margin's film indices
+    std::size_t film_margin_table_ = 0;                             // the margin's table (0: eta'_s = specular_ior)
     rgb<T> transmission_tint_{1};
     rgb<T> subsurface_tint_{1};
     rgb<T> base_albedo_{1};
@@ -1038,9 +1091,17 @@ void openpbr_surface<T>::build() {
             // specular_weight 1), table 1 for any eta'_s (a coat, another specular_weight).
             film_alone_ = eta < T(1);
             const bool film_over_eta = C == T(0) && p.specular_weight == T(1) && !film_alone_;
-            film_albedo_ = detail::fresnel_albedo_row<T>(specular_alpha_, [&](T c) {
+            const auto film_difference = [&](T c) {
                 return film.F(c) - rgb<T>(film_alone_ || eta == T(1) ? T(0) : F_dielectric(c, eta));
-            });
+            };
+            film_albedo_ = detail::fresnel_albedo_row<T>(specular_alpha_, film_difference);
+            if (specular_anisotropic_) {
+                for (std::size_t k = 0; k < detail::cosine_weight_nodes; ++k)
+                    film_nodes_[k] = film_difference(T(detail::cosine_weight_node(k)));
+                film_alpha_x_ = base_distribution->alpha_x();
+                film_alpha_y_ = base_distribution->alpha_y();
+                film_cell_ = detail::anisotropic_albedo_locate(film_alpha_x_, film_alpha_y_);
+            }
             // The margin's film indices around thin_film_ior (the larger margin of the two,
             // or the one it equals); outside the grid's range, the largest of all.
             constexpr std::size_t nf = detail::thin_film_margin_iors;
@@ -1050,14 +1111,10 @@ void openpbr_surface<T>::build() {
                 while (first + 1 < nf && detail::thin_film_margin_ior[first + 1] <= n_f) ++first;
                 last = detail::thin_film_margin_ior[first] == n_f ? first : first + 1;
             }
-            const std::size_t table = film_over_eta ? 0 : 1;
-            film_albedo_.raise(specular_alpha_, [&](std::size_t j, std::size_t i) {
-                constexpr std::size_t rows = detail::cosine_weight_alpha_nodes, n = detail::cosine_weight_nodes;
-                float largest = 0;
-                for (std::size_t f = first; f <= last; ++f)
-                    largest = glm::max(largest, detail::thin_film_albedo_margin[((f * 2 + table) * rows + j) * n + i]);
-                return double(largest);
-            });
+            film_margin_first_ = first;
+            film_margin_last_ = last;
+            film_margin_table_ = film_over_eta ? 0 : 1;
+            film_albedo_.raise(specular_alpha_, [&](std::size_t j, std::size_t i) { return film_node_margin(j, i); });
         }
     }
 

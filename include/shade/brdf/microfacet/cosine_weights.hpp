@@ -153,4 +153,41 @@ private:
     std::array<rgb<T>, cosine_weight_nodes> row_{};
 };
 
+/// One view's sum of fresnel_albedo_row without keeping a row: e = sum_k w_k F(c_k) per
+/// channel (the lobe's albedo with F) and mass = sum_k w_k (its albedo with F = 1), the
+/// weights at (alpha, mu) interpolated bilinearly in sqrt(alpha) and x = mu^(2/3) as
+/// fresnel_albedo_row builds and reads them.
+template <std::floating_point T>
+struct fresnel_albedo_sum {
+    rgb<T> e{0};
+    T mass = 0;
+};
+
+/// fresnel_albedo_sum for F given at the nodes (f_nodes[k] = F(c_k)), at roughness alpha
+/// (clamped to [0, 1]) and view cosine mu (clamped to [0, 1]).
+template <std::floating_point T>
+[[nodiscard]] fresnel_albedo_sum<T> fresnel_albedo_at(T alpha, T mu,
+                                                      const std::array<rgb<T>, cosine_weight_nodes>& f_nodes) noexcept {
+    constexpr std::size_t n = cosine_weight_nodes, m = cosine_weight_alpha_nodes;
+    const double s = std::sqrt(glm::clamp(double(alpha), 0.0, 1.0)) * double(m - 1);
+    const std::size_t j = glm::min(std::size_t(s), m - 2);
+    const double t = s - double(j);
+    const double c = glm::clamp(double(mu), 0.0, 1.0);
+    const double x = std::cbrt(c * c) * double(n - 1);
+    const std::size_t i = glm::min(std::size_t(x), n - 2);
+    const double u = x - double(i);
+    const float* w00 = cosine_weight_table + (j * n + i) * n;
+    const float* w01 = w00 + n;
+    const float* w10 = w00 + n * n;
+    const float* w11 = w10 + n;
+    const double a00 = (1 - t) * (1 - u), a01 = (1 - t) * u, a10 = t * (1 - u), a11 = t * u;
+    fresnel_albedo_sum<T> out;
+    for (std::size_t k = 0; k < n; ++k) {
+        const double w = a00 * double(w00[k]) + a01 * double(w01[k]) + a10 * double(w10[k]) + a11 * double(w11[k]);
+        out.e += T(w) * f_nodes[k];
+        out.mass += T(w);
+    }
+    return out;
+}
+
 } // namespace shade::detail
