@@ -141,14 +141,19 @@ template <std::floating_point T>
     //   so the term matters only for slivers and needles, where it dominates. Bounded
     //   without square roots: |x|_2 <= |x|_1 above and |x|_2 >= |x|_inf below the line.
     const auto l1 = [](const vec3<T>& w) { return std::abs(w.x) + std::abs(w.y) + std::abs(w.z); };
+    // |w| per component by std::abs, one mask each. (glm::abs is w >= 0 ? w : -w, which keeps
+    // the sign of -0 and so compiles to a branch per component.) Here the sign of a zero
+    // never shows: each magnitude is added to others and then to plane_error > 0, or is
+    // one of the three whose positive maximum divides.
+    const auto abs3 = [](const vec3<T>& w) { return vec3<T>(std::abs(w.x), std::abs(w.y), std::abs(w.z)); };
     const vec3<T> e1 = tri.v1 - tri.v0;
     const vec3<T> e2 = tri.v2 - tri.v0;
-    const vec3<T> c = glm::abs(glm::cross(e1, e2));
+    const vec3<T> c = abs3(glm::cross(e1, e2));
     const T e1_l1 = l1(e1), e2_l1 = l1(e2);
     const T longest = glm::max(glm::max(e1_l1, e2_l1), l1(tri.v2 - tri.v1));
     const T plane_error =
         detail::gamma<T>(6) * longest * (e1_l1 * e2_l1 / glm::max(c.x, glm::max(c.y, c.z)) + T(1));
-    vec3<T> p_error = detail::gamma<T>(7) * (glm::abs(b.x * tri.v0) + glm::abs(b.y * tri.v1) + glm::abs(b.z * tri.v2)) +
+    vec3<T> p_error = detail::gamma<T>(7) * (abs3(b.x * tri.v0) + abs3(b.y * tri.v1) + abs3(b.z * tri.v2)) +
                       vec3<T>(plane_error);
     if (!is_finite(p) || !is_finite(p_error)) {
         for (int k = 0; k < 3; ++k) {
