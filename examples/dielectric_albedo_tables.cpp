@@ -533,14 +533,16 @@ constexpr std::size_t ne = d::reflection_anisotropic_eta_nodes;
 } // namespace rg
 
 // The interface of a (z, y, e, side) point of the grid: the smoother alpha along t, at
-// least openpbr's smallest alpha 1e-4 (z = 0: OpenPBR's anisotropy 1); eta_s of the side.
+// least openpbr's smallest alpha 1e-4 (z = 0: OpenPBR's anisotropy 1); eta_s of the side;
+// y is alpha_max's coordinate on side 0, alpha_rms's on side 1
+// (d::reflection_anisotropic_alpha_max).
 struct reflection_interface {
     double alpha_x, alpha_y, eta_s;
 };
 reflection_interface reflection_interface_at(double z_coord, double y_coord, double e_coord, std::size_t side) {
     // Both alphas at least 1e-4: a check point with y near 0 would otherwise have alpha_max
     // below the floored alpha_min (the smoother axis would be the rougher one).
-    const double alpha_max = std::max(d::reflection_anisotropic_alpha_top * y_coord * y_coord, 1e-4);
+    const double alpha_max = std::max(d::reflection_anisotropic_alpha_max(side, y_coord, z_coord), 1e-4);
     const double alpha_min = std::max(z_coord * z_coord * alpha_max, 1e-4);
     const double eta_hat = 1 + std::exp(d::dielectric_albedo_x_min + e_coord * (d::dielectric_albedo_x_max - d::dielectric_albedo_x_min));
     return {alpha_min, alpha_max, eta_of_side(side, eta_hat)};

@@ -213,20 +213,20 @@ constexpr double anisotropic_standard_error = 7e-4;
 // The generated header states the largest raise of a node by the upper envelope; it is below this.
 constexpr double anisotropic_raise = 0.15;
 // The generated header states the range of (table - fresh estimate) at its random points
-// (mu >= 0.1, alpha_max 0.014 to sqrt 2, alpha_min / alpha_max 0 to 1, eta_hat 1.05 to 3),
-// per side; these enclose them.
-constexpr double anisotropic_low[2] = {-2e-4, -0.0059}, anisotropic_high[2] = {0.0235, 0.1015};
+// (mu >= 0.1, y 0.1 to 1: entering alpha_max 0.014 to sqrt 2, exiting alpha_rms 0.01 to 1;
+// alpha_min / alpha_max 0 to 1, eta_hat 1.05 to 3), per side; these enclose them.
+constexpr double anisotropic_low[2] = {-2e-4, -0.0046}, anisotropic_high[2] = {0.0235, 0.1015};
 
-// The interface and view of a node of the correction (as the generator builds them: the
-// smoother alpha z^2 alpha_max along t, at least 1e-4; the view at the node's x and u), and
+// The interface and view of a node of the correction (as the generator builds them: alpha_max
+// of the node's y and z, the smoother alpha z^2 alpha_max along t, at least 1e-4; the view at the node's x and u), and
 // R_ss,iso, the value Delta_R is measured from (entering: at the roughness projected on the
 // node's azimuth; exiting: at the root-mean-square roughness).
 struct anisotropic_node {
     double alpha_x, alpha_y, eta_s, mu, phi, base;
 };
 anisotropic_node node_at(std::size_t side, std::size_t m, std::size_t k, std::size_t j, std::size_t i_u, std::size_t i_x) {
-    const double y = double(j) / double(ay_nodes - 1), alpha_max = d::reflection_anisotropic_alpha_top * y * y;
-    const double z = double(k) / double(as_nodes - 1), alpha_min = std::max(z * z * alpha_max, 1e-4);
+    const double y = double(j) / double(ay_nodes - 1), z = double(k) / double(as_nodes - 1);
+    const double alpha_max = d::reflection_anisotropic_alpha_max(side, y, z), alpha_min = std::max(z * z * alpha_max, 1e-4);
     const double eta_hat = d::dielectric_albedo_eta(m, ae_nodes), eta_s = eta_of_side(side, eta_hat);
     const double mu_c = std::sqrt(1 - 1 / (eta_hat * eta_hat));
     const double mu =
@@ -365,6 +365,27 @@ TEST_CASE("dielectric reflection albedo: the anisotropic grid's coordinates") {
             }
         }
     }
+}
+
+TEST_CASE("dielectric reflection albedo: the anisotropic grid's roughness coordinate") {
+    // Entering, y = sqrt(alpha_max / sqrt 2): alpha_max sqrt 2 is y = 1, sqrt 2 / 4 is 1/2.
+    // Exiting, y = sqrt(alpha_rms): OpenPBR's roughness_to_alpha gives alpha_t = r^2 sqrt(2 /
+    // (1 + b^2)) and alpha_b = b alpha_t (b = 1 - anisotropy), so alpha_rms^2 = (alpha_t^2 +
+    // alpha_b^2) / 2 = r^4 and y = r whatever the anisotropy: roughness 1 is the last node.
+    CHECK(d::reflection_anisotropic_y(0, 0.3, std::sqrt(2.0)) == doctest::Approx(1.0));
+    CHECK(d::reflection_anisotropic_y(0, 0.0, std::sqrt(2.0) / 4) == doctest::Approx(0.5));
+    for (const double r : {0.1, 0.5, 0.9, 1.0})
+        for (const double anisotropy : {0.0, 0.5, 0.9, 1.0}) {
+            const double b = 1 - anisotropy, alpha_t = r * r * std::sqrt(2 / (1 + b * b)), alpha_b = b * alpha_t;
+            CHECK(d::reflection_anisotropic_y(1, alpha_b, alpha_t) == doctest::Approx(r).epsilon(1e-12));
+            // The generator's inverse: alpha_max of (y, z = sqrt(alpha_min / alpha_max)).
+            CHECK(d::reflection_anisotropic_alpha_max(1, r, std::sqrt(b)) == doctest::Approx(alpha_t).epsilon(1e-12));
+            CHECK(d::reflection_anisotropic_alpha_max(0, d::reflection_anisotropic_y(0, alpha_b, alpha_t), std::sqrt(b)) ==
+                  doctest::Approx(alpha_t).epsilon(1e-12));
+        }
+    // Rougher than the axis's end reads the end (sqrt 2 entering, alpha_rms 1 exiting).
+    CHECK(d::reflection_anisotropic_y(0, 1.0, 3.0) == 1.0);
+    CHECK(d::reflection_anisotropic_y(1, 0.5, 1.5) == 1.0);
 }
 
 TEST_CASE_TEMPLATE("dielectric reflection albedo: the anisotropic form's limits, pole and grid ends", T, float, double) {

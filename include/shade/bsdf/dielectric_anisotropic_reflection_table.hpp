@@ -21,8 +21,12 @@
 //                                       g(u) = u (1 + u) / 2, denser near the smoother axis;
 //                                       side 1 (exiting, eta_s < 1) the same above the kink
 //                                       phi_k, which is on u = 1/2 (below)
-//     y = sqrt(alpha_max / sqrt 2)      alpha_max = max(alpha_x, alpha_y) up to sqrt 2, the
-//                                       largest alpha of OpenPBR's roughness_to_alpha
+//     y                                 the roughness: side 0 y = sqrt(alpha_max / sqrt 2),
+//                                       alpha_max = max(alpha_x, alpha_y) up to sqrt 2, the
+//                                       largest alpha of OpenPBR's roughness_to_alpha; side 1
+//                                       y = sqrt(alpha_rms), alpha_rms = sqrt((alpha_x^2 +
+//                                       alpha_y^2) / 2) up to 1 (OpenPBR's roughness r: its
+//                                       alpha_rms is r^2)
 //     z = sqrt(alpha_min / alpha_max)   the square root of OpenPBR's 1 - anisotropy: 0 a 1-D
 //                                       rough surface (anisotropy 1), 1 isotropic; dense
 //                                       toward 0, where a view near the smoother axis sees
@@ -38,11 +42,16 @@
 // phi_k) / (pi/2 - phi_k), puts it on a node at every mu and eta, so interpolation does not
 // cross it.
 //
+// The exiting side's y follows alpha_rms because its isotropic part is read there
+// (reflection_base_alpha) and that read stops at alpha 1: along alpha_max, Delta_R would
+// bend where alpha_rms reaches 1, between two y nodes and exactly at OpenPBR's roughness 1,
+// and the spline would read it up to 1e-2 low there.
+//
 // Delta_R is Catmull-Rom cubic (Catmull, Rom 1974; shade::detail::spline_taps) along x, y, z
 // and e and linear along u; on side 1 the x axis is two splines, below and above mu_c, so
 // that the kink there does not bend the interpolation on either side. Nodes with y = 0 (a
 // smooth interface) or z = 1 (isotropic) are 0 by construction and not stored. alpha_max
-// beyond sqrt 2 reads the axis's end, eta_hat outside [1.05, 3] the nearest end (the caller
+// beyond sqrt 2 (side 0) or alpha_rms beyond 1 (side 1) reads the axis's end, eta_hat outside [1.05, 3] the nearest end (the caller
 // scales the correction toward eta_hat = 1). Layout: index ((((side * e_nodes + m) *
 // (z_nodes - 1) + k) * (y_nodes - 1) + j - 1) *
 // u_nodes + i_u) * x_nodes + i_x for z node k < z_nodes - 1 and y node j >= 1.
@@ -64,13 +73,14 @@ namespace shade::detail {
 inline constexpr std::size_t reflection_anisotropic_mu_nodes = 17;
 /// Nodes along u, the azimuth coordinate (odd: u = 1/2 is a node).
 inline constexpr std::size_t reflection_anisotropic_azimuth_nodes = 11;
-/// Nodes along y = sqrt(alpha_max / sqrt 2) (node 0, a smooth interface, is not stored).
+/// Nodes along y, the roughness coordinate (reflection_anisotropic_y; node 0, a smooth
+/// interface, is not stored).
 inline constexpr std::size_t reflection_anisotropic_roughness_nodes = 10;
 /// Nodes along z = sqrt(alpha_min / alpha_max) (the last, z = 1, isotropic, is not stored).
 inline constexpr std::size_t reflection_anisotropic_ratio_nodes = 6;
 /// Nodes along e = log(eta_hat - 1).
 inline constexpr std::size_t reflection_anisotropic_eta_nodes = 7;
-/// The largest alpha_max the y axis reaches.
+/// The largest alpha_max the y axis of side 0 reaches.
 inline constexpr double reflection_anisotropic_alpha_top = 1.4142135623730951;
 /// Rows (x nodes of one stored (side, e, s, y, u) node) per table.
 inline constexpr std::size_t reflection_anisotropic_rows =
@@ -162,6 +172,24 @@ template <std::floating_point T>
     return phi_k + reflection_anisotropic_spacing(2 * u - 1) * (half_pi - phi_k);
 }
 
+/// The roughness coordinate y in [0, 1] of the alphas alpha_min <= alpha_max (alpha_max > 0)
+/// on side `side`: side 0 sqrt(alpha_max / sqrt 2), side 1 sqrt(alpha_rms), alpha_rms =
+/// sqrt((alpha_min^2 + alpha_max^2) / 2); each clamped to 1.
+template <std::floating_point T>
+[[nodiscard]] inline T reflection_anisotropic_y(std::size_t side, T alpha_min, T alpha_max) noexcept {
+    if (side == 0) return glm::min(std::sqrt(alpha_max / T(reflection_anisotropic_alpha_top)), T(1));
+    return glm::min(std::sqrt(std::sqrt(T(0.5) * (alpha_min * alpha_min + alpha_max * alpha_max))), T(1));
+}
+
+/// The larger alpha of the grid point (y, z) on side `side` (the inverse of
+/// reflection_anisotropic_y with alpha_min = z^2 alpha_max): side 0 sqrt 2 y^2, side 1
+/// y^2 sqrt(2 / (1 + z^4)).
+[[nodiscard]] inline double reflection_anisotropic_alpha_max(std::size_t side, double y, double z) noexcept {
+    if (side == 0) return reflection_anisotropic_alpha_top * y * y;
+    const double z4 = z * z * z * z;
+    return y * y * std::sqrt(2 / (1 + z4));
+}
+
 /// Where an interface with roughnesses alpha_x != alpha_y and index ratio eta_s reads the
 /// correction. Computed once per interface.
 template <std::floating_point T>
@@ -170,7 +198,7 @@ struct reflection_anisotropic_cell {
     std::size_t side = 0; ///< 0 entering (eta_s > 1), 1 exiting
     T inv_eta_hat = 1;    ///< 1 / eta_hat, eta_hat clamped to the e axis
     T mu_c = 0;           ///< sqrt(1 - 1 / eta_hat^2), the critical cosine of side 1
-    spline_taps<T> y{};   ///< along sqrt(alpha_max / sqrt 2)
+    spline_taps<T> y{};   ///< along the roughness coordinate y
     spline_taps<T> s{};   ///< along sqrt(alpha_min / alpha_max)
     spline_taps<T> e{};   ///< along log(eta_hat - 1)
 };
@@ -187,8 +215,7 @@ template <std::floating_point T>
                                  T(dielectric_albedo_eta_max));
     c.inv_eta_hat = T(1) / eta_hat;
     c.mu_c = std::sqrt((T(1) - c.inv_eta_hat) * (T(1) + c.inv_eta_hat));
-    const auto y = albedo_grid_locate(std::sqrt(hi / T(reflection_anisotropic_alpha_top)),
-                                      reflection_anisotropic_roughness_nodes);
+    const auto y = albedo_grid_locate(reflection_anisotropic_y(c.side, lo, hi), reflection_anisotropic_roughness_nodes);
     const auto s = albedo_grid_locate(std::sqrt(lo / hi), reflection_anisotropic_ratio_nodes);
     const auto e = albedo_grid_locate(dielectric_albedo_eta_coordinate(eta_hat), reflection_anisotropic_eta_nodes);
     c.y = spline_taps<T>(y.i, y.t, reflection_anisotropic_roughness_nodes);
