@@ -32,14 +32,16 @@
 // stored as R_ss - F(mu, eta_s), F the exact Fresnel reflectance at the view (the node's
 // mu); the cell centres compare F + the interpolated difference with a fresh R_ss.
 //
-//   dielectric_albedo_tables --anisotropic --envelope 40 --out include/shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp
+//   dielectric_albedo_tables --anisotropic --envelope 40 --envelope-margin 0.0005 --envelope-below-z 0.5 --envelope-rough-above 1.1 --lift 0.0025,0.0045 --out include/shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp
 //
 // writes instead the anisotropic corrections of
 // shade/bsdf/dielectric_anisotropic_albedo_table.hpp (anisotropy alpha_min / alpha_max down to
-// 0, alpha_max up to sqrt 2): at each node, Delta = E(w) - E_iso(mu, alpha_rms, eta_s), E(w)
+// 0, alpha_max up to sqrt 2): at each node, Delta = E(w) - E_iso(mu, alpha_base, eta_s), E(w)
 // estimated as above for the anisotropic interface and the view w at the node's azimuth,
-// E_iso read from the committed isotropic table at the root-mean-square roughness; with
-// --envelope, an upper envelope of E (compute_anisotropic, as compute_reflection's); each
+// E_iso read from the committed isotropic table at the base roughness
+// (dielectric_anisotropic_base_alpha), plus --lift; with --envelope, raised as an upper envelope of E (compute_anisotropic, as
+// compute_reflection's) at the check points with z below --envelope-below-z or alpha_rms
+// above --envelope-rough-above; each
 // row's cosine average; and, as the stated accuracy, the largest node standard error and the
 // range of the table minus a fresh estimate at random points of the domain with mu >= 0.1.
 //
@@ -115,7 +117,7 @@ writes the header of constants.
   --reflection      the reflected part R alone of GGX, stored as R - F(mu, eta_s), on the
                     reflection grid (eta_hat from 1.001, 20 eta nodes by default, a spline
                     along eta; default output dielectric_reflection_albedo_data.hpp)
-  --anisotropic     write instead the corrections Delta = E(w) - E_iso(mu, alpha_rms, eta_s)
+  --anisotropic     write instead the corrections Delta = E(w) - E_iso(mu, alpha_base, eta_s)
                     of anisotropic GGX interfaces on the fixed grid of
                     dielectric_anisotropic_albedo_table.hpp, and their row averages (default
                     output dielectric_anisotropic_albedo_data.hpp; the node options do not apply);
@@ -134,12 +136,23 @@ writes the header of constants.
                     edge middles
   --envelope-random N  with --anisotropic --reflection --envelope S: N random check points
                     besides the fixed ones, those with mu >= 0.05 kept (between the fixed ones the read can fall below the truth)
-  --envelope-margin M  with --envelope (total-albedo tables, --anisotropic --reflection): raise until the table is at least
+  --envelope-margin M  with --envelope (total-albedo tables, --anisotropic): raise until the table is at least
                     the estimate + M (M in [0, 0.01], default 0; never above 1) at every check
                     point, so that it errs high between the check points too
   --envelope-view-steps S  with --envelope (total-albedo tables): check places per cell along
                     the view coordinate, 2 to 8 (default 2: the middle; 4 adds the quarters,
                     where E falls steeply)
+  --envelope-below-z Z  with --anisotropic --envelope S: only the check points with
+                    z = sqrt(alpha_min / alpha_max) < Z raise nodes (Z in (0, 1])
+  --envelope-rough-above A  with --anisotropic --envelope S: the check points of interfaces
+                    with alpha_rms > A raise nodes too (A in [0, 2])
+  --lift L[,L2]     with --anisotropic: every estimated node raised by L (in [0, 0.01],
+                    default 0; L2 on the exiting side, default L) before the envelope, so that
+                    the table errs high
+  --cache FILE      with --anisotropic: the node and check-point estimates are written to FILE,
+                    or read from it if it exists (for the same --strata and --envelope), so that
+                    --lift, --envelope-margin and --envelope-below-z can be tried without
+                    estimating again
   --threads K       worker threads, 1 to 64 (default 2)
   --quiet           no progress bar
 )";
@@ -159,6 +172,10 @@ struct settings {
     double envelope_margin = 0; // the envelope's height above the check points' estimates
     std::size_t envelope_view_steps = 2; // check places per view cell (2: its middle)
     std::size_t envelope_random = 0; // random check points besides the fixed ones (--anisotropic --reflection)
+    std::filesystem::path cache; // --anisotropic: node and check-point estimates kept here (read back if present)
+    double lift[2] = {0, 0}; // --anisotropic: added to every estimated node before the envelope, per side
+    double envelope_below_z = 2; // --anisotropic: only check points with z below this raise nodes ...
+    double envelope_rough_above = 2; // ... or with alpha_rms above this
 };
 
 // E of a model of index eta_s at view cosine mu: the importance-mode weight of its sampler.
@@ -930,7 +947,7 @@ double iso_albedo(double mu, double alpha, double eta_s) {
     return d::dielectric_albedo_lookup(d::ggx_rough_dielectric_albedo, g, d::dielectric_albedo_locate(g, alpha, eta_s), mu);
 }
 
-// What Delta is measured from: E_iso at the root-mean-square roughness.
+// What Delta is measured from: E_iso at the base roughness (dielectric_anisotropic_base_alpha).
 double total_base(const total_interface& at, double mu) {
     return iso_albedo(std::min(mu, 1.0), d::dielectric_anisotropic_base_alpha(at.alpha_x, at.alpha_y), at.eta_s);
 }
@@ -973,6 +990,7 @@ struct anisotropic_table {
     double max_error = 0;            // largest standard error of a node
     double max_delta = 0;            // largest |Delta|
     std::size_t checks = 0;          // envelope check points (0: point values)
+    std::size_t envelope_checks = 0; // of those, the ones that raise nodes (z below --envelope-below-z)
     std::size_t raised = 0;          // nodes raised by the envelope
     double max_raise = 0;            // the largest raise
     int passes = 0;                  // raising passes
@@ -1023,7 +1041,16 @@ anisotropic_table compute_anisotropic(const settings& s, ex::progress& bar, cons
     out.delta.assign(d::dielectric_anisotropic_size, 0.0f);
     out.average.assign(d::dielectric_anisotropic_rows, 0.0f);
     std::vector<double> errors(d::dielectric_anisotropic_size, 0.0), node(d::dielectric_anisotropic_size, 0.0);
-    parallel_for(d::dielectric_anisotropic_size, s.threads, [&](std::size_t index) {
+    const bool cached = !s.cache.empty() && std::filesystem::exists(s.cache);
+    std::FILE* cache_file = s.cache.empty() ? nullptr : std::fopen(s.cache.string().c_str(), cached ? "rb" : "wb");
+    const auto cache_io = [&](std::vector<double>& values) {
+        if (cache_file == nullptr) return;
+        const std::size_t n = cached ? std::fread(values.data(), sizeof(double), values.size(), cache_file)
+                                     : std::fwrite(values.data(), sizeof(double), values.size(), cache_file);
+        if (n != values.size()) throw std::runtime_error("cache: short read or write");
+    };
+    // node first holds each node's E (min(estimate, 1)), which the cache keeps, then Delta.
+    if (!cached) parallel_for(d::dielectric_anisotropic_size, s.threads, [&](std::size_t index) {
         const std::size_t i_x = index % tg::nx, i_u = index / tg::nx % tg::nu, j = 1 + index / (tg::nx * tg::nu) % (tg::ny - 1),
                           k = index / (tg::nx * tg::nu * (tg::ny - 1)) % tg::nz,
                           m = index / (tg::nx * tg::nu * (tg::ny - 1) * tg::nz) % tg::ne,
@@ -1031,18 +1058,34 @@ anisotropic_table compute_anisotropic(const settings& s, ex::progress& bar, cons
         const auto at = total_interface_at(double(k) / double(tg::nz - 1), double(j) / double(tg::ny - 1),
                                            double(m) / double(tg::ne - 1), side);
         const shade::vec3<T> v = total_view_at(double(i_x) / double(tg::nx - 1), double(i_u) / double(tg::nu - 1));
-        // Isotropic (z = 1) up to alpha 1: E_iso is the isotropic table itself, Delta 0.
+        // Isotropic (z = 1) up to alpha 1: E is the isotropic table itself.
         if (k + 1 == tg::nz && at.alpha_y <= 1) {
+            node[index] = iso_albedo(v.z, at.alpha_y, at.eta_s);
             bar.advance();
             return;
         }
         // The seed leaves out the azimuth: the pole column (mu = 1) is then the same
         // estimate for every u, as Delta there is.
         const auto a = estimate_view(at.alpha_x, at.alpha_y, at.eta_s, v, s.strata, 1 + index / (tg::nx * tg::nu) * tg::nx + i_x);
-        node[index] = std::min(a.albedo.x, 1.0) - total_base(at, v.z);
+        node[index] = std::min(a.albedo.x, 1.0);
         errors[index] = a.standard_error.x;
         bar.advance();
     });
+    cache_io(node);
+    cache_io(errors);
+    // Delta = E - E_iso at the base roughness, plus the lift of the node's side: every node
+    // that holds an estimate (not the isotropic rows up to alpha 1) raised by s.lift[side],
+    // so that the table reads E a little high where the interpolation errs both ways.
+    for (std::size_t index = 0; index < node.size(); ++index) {
+        const std::size_t i_x = index % tg::nx, j = 1 + index / (tg::nx * tg::nu) % (tg::ny - 1),
+                          k = index / (tg::nx * tg::nu * (tg::ny - 1)) % tg::nz,
+                          m = index / (tg::nx * tg::nu * (tg::ny - 1) * tg::nz) % tg::ne,
+                          side = index / (tg::nx * tg::nu * (tg::ny - 1) * tg::nz * tg::ne);
+        const auto at = total_interface_at(double(k) / double(tg::nz - 1), double(j) / double(tg::ny - 1),
+                                           double(m) / double(tg::ne - 1), side);
+        node[index] -= total_base(at, total_view_at(double(i_x) / double(tg::nx - 1), 0).z);
+        if (k + 1 < tg::nz || at.alpha_y > 1) node[index] += s.lift[side];
+    }
     out.max_error = *std::max_element(errors.begin(), errors.end());
     // The upper envelope, as compute_reflection's: fresh estimates at the check points, then
     // passes that raise the nodes a check point reads with positive weight by its shortfall
@@ -1056,14 +1099,25 @@ anisotropic_table compute_anisotropic(const settings& s, ex::progress& bar, cons
             const auto& c = checks[p];
             where[p] = total_interface_at(c.s, c.y, c.e, c.side);
             view[p] = total_view_at(c.x, c.u);
+            if (cached) return;
             fresh[p] = std::min(estimate_view(where[p].alpha_x, where[p].alpha_y, where[p].eta_s, view[p], s.envelope, 3000017 + p)
                                     .albedo.x,
                                 1.0);
             bar.advance();
         });
+        cache_io(fresh);
+        // Only the check points with z below s.envelope_below_z or alpha_rms above
+        // s.envelope_rough_above raise nodes (a fresh value below every read drops the others):
+        // raising for the rest, where the lifted point values already read high enough but at
+        // a few kinks, lowered the reads of whole cells.
+        for (std::size_t p = 0; p < checks.size(); ++p)
+            if (!(checks[p].s < s.envelope_below_z ||
+                  d::dielectric_anisotropic_rms_alpha(where[p].alpha_x, where[p].alpha_y) > s.envelope_rough_above))
+                fresh[p] = -1;
+            else ++out.envelope_checks;
         std::vector<double> raise;
         out.passes = raise_to_envelope(
-            node, raise, checks, fresh, 0.0, std::numeric_limits<double>::infinity(), s.verbose, "z",
+            node, raise, checks, fresh, s.envelope_margin, std::numeric_limits<double>::infinity(), s.verbose, "z",
             [&](std::size_t p) { return total_taps(where[p], view[p]); },
             [&](std::size_t p) { return total_base(where[p], view[p].z); });
         for (std::size_t n = 0; n < node.size(); ++n) {
@@ -1076,6 +1130,7 @@ anisotropic_table compute_anisotropic(const settings& s, ex::progress& bar, cons
     } else {
         for (std::size_t n = 0; n < node.size(); ++n) out.delta[n] = as_written(node[n], 4);
     }
+    if (cache_file != nullptr) std::fclose(cache_file);
     for (const float x : out.delta) out.max_delta = std::max(out.max_delta, double(std::abs(x)));
     for (std::size_t n = 0; n < d::dielectric_anisotropic_rows; ++n)
         out.average[n] = float(d::dielectric_anisotropic_row_average(out.delta.data() + n * tg::nx));
@@ -1091,25 +1146,44 @@ anisotropic_table compute_anisotropic(const settings& s, ex::progress& bar, cons
 
 void write_anisotropic(std::FILE* f, const anisotropic_table& t, const settings& s) {
     std::fprintf(f, "#pragma once\n");
+    std::string options = envelope_options(s);
+    if (s.envelope > 0 && s.envelope_below_z < 2) {
+        char text[64];
+        std::snprintf(text, sizeof text, " --envelope-below-z %g", s.envelope_below_z);
+        options += text;
+    }
+    if (s.envelope > 0 && s.envelope_rough_above < 2) {
+        char text[64];
+        std::snprintf(text, sizeof text, " --envelope-rough-above %g", s.envelope_rough_above);
+        options += text;
+    }
+    if (s.lift[0] > 0 || s.lift[1] > 0) {
+        char text[64];
+        std::snprintf(text, sizeof text, " --lift %g,%g", s.lift[0], s.lift[1]);
+        options += text;
+    }
     std::fprintf(f, "// Generated by examples/dielectric_albedo_tables.cpp (--anisotropic --strata %zu%s); do not edit by hand.\n",
-                 s.strata, s.envelope > 0 ? (" --envelope " + std::to_string(s.envelope)).c_str() : "");
+                 s.strata, options.c_str());
     std::fprintf(f, "// The anisotropic corrections of shade/bsdf/dielectric_anisotropic_albedo_table.hpp (meaning, grid,\n");
     std::fprintf(f, "// interpolation): 2 sides x %zu (e) x %zu (z) x %zu (y > 0) x %zu (u) rows of %zu (x) nodes, the %zu\n",
                  tg::ne, tg::nz, tg::ny - 1, tg::nu, tg::nx, tg::nu);
     std::fprintf(f, "// azimuth rows of one node per line; each node E(w), the mean importance-mode weight of %zu jittered\n",
                  s.strata * s.strata);
     std::fprintf(f, "// samples of the interface's own sampler, minus the isotropic table (dielectric_albedo_data.hpp) at\n");
-    std::fprintf(f, "// the root-mean-square roughness, written with 4 significant digits.\n\n");
+    std::fprintf(f, "// the base roughness (dielectric_anisotropic_base_alpha), plus the lift (%g entering, %g exiting; not on\n",
+                 s.lift[0], s.lift[1]);
+    std::fprintf(f, "// the isotropic rows up to alpha 1), written with 4 significant digits.\n\n");
     std::fprintf(f, "#include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>\n\n");
     std::fprintf(f, "namespace shade::detail {\n\n");
     std::fprintf(f, "/// Delta_s(w) of shade::rough_dielectric<ggx> with alpha_x != alpha_y.\n");
     std::fprintf(f, "/// Node standard error <= %.1e; |Delta| <= %.3f.", t.max_error, t.max_delta);
     if (t.checks > 0)
         std::fprintf(f,
-                     "\n/// An upper envelope of E, not point values: %zu nodes raised (by at most %.1e) so that no fresh\n"
-                     "/// %zu-sample estimate at %zu check points with mu >= 0.05 (cell centres and edge middles) is\n"
-                     "/// above the table by more than %.1e.",
-                     t.raised, t.max_raise, s.envelope * s.envelope, t.checks, std::max(t.envelope_left, 0.0));
+                     "\n/// An upper envelope of E where z < %g or alpha_rms > %g: %zu nodes raised (by at most %.1e) so\n"
+                     "/// that no fresh %zu-sample estimate (+ %g) at the %zu check points there with mu >= 0.05 (cell\n"
+                     "/// centres and edge middles) is above the table by more than %.1e.",
+                     std::min(s.envelope_below_z, 1.0), s.envelope_rough_above, t.raised, t.max_raise, s.envelope * s.envelope,
+                     s.envelope_margin, t.envelope_checks, std::max(t.envelope_left, 0.0));
     std::fprintf(f, "\n/// The table read minus a fresh estimate at %zu random points with mu >= 0.1 (interpolation\n"
                     "/// and both estimates' noise): entering side %.1e to %.1e, exiting side %.1e to %.1e.\n",
                  t.points, t.side_lowest[0], t.side_highest[0], t.side_lowest[1], t.side_highest[1]);
@@ -1168,6 +1242,15 @@ int main(int argc, char** argv) {
             else if (args.option("--envelope")) s.envelope = args.integer<std::size_t>(16, 2048);
             else if (args.option("--envelope-margin")) s.envelope_margin = args.real(0, 0.01);
             else if (args.option("--envelope-view-steps")) s.envelope_view_steps = args.integer<std::size_t>(2, 8);
+            else if (args.option("--cache")) s.cache = args.path();
+            else if (args.option("--lift")) {
+                const std::string text(args.text());
+                const std::size_t comma = text.find(',');
+                s.lift[0] = ex::parse_real("--lift", text.substr(0, comma), 0, 0.01);
+                s.lift[1] = comma == std::string::npos ? s.lift[0] : ex::parse_real("--lift", text.substr(comma + 1), 0, 0.01);
+            }
+            else if (args.option("--envelope-below-z")) s.envelope_below_z = args.real(0, 1, ex::lower_limit::exclusive);
+            else if (args.option("--envelope-rough-above")) s.envelope_rough_above = args.real(0, 2);
             else if (args.option("--envelope-random")) s.envelope_random = args.integer<std::size_t>(1, 10000000);
             else args.unknown();
         }
@@ -1181,7 +1264,12 @@ int main(int argc, char** argv) {
             throw ex::usage_error("--envelope applies to the total-albedo tables and to --anisotropic --reflection only");
         if (s.envelope_view_steps != 2 && (s.envelope == 0 || s.anisotropic))
             throw ex::usage_error("--envelope-view-steps needs --envelope on a total-albedo table");
-        if (s.envelope_margin > 0 && (s.envelope == 0 || (s.anisotropic && !s.reflection)))
+        const bool envelope_scope = s.envelope_below_z < 2 || s.envelope_rough_above < 2;
+        if ((!s.cache.empty() || s.lift[0] > 0 || s.lift[1] > 0 || envelope_scope) && (!s.anisotropic || s.reflection))
+            throw ex::usage_error("--cache, --lift, --envelope-below-z and --envelope-rough-above apply to --anisotropic (total albedo) only");
+        if (envelope_scope && s.envelope == 0)
+            throw ex::usage_error("--envelope-below-z and --envelope-rough-above need --envelope");
+        if (s.envelope_margin > 0 && s.envelope == 0)
             throw ex::usage_error("--envelope-margin needs --envelope on a total-albedo table or on --anisotropic --reflection");
         if (s.envelope_random > 0 && (s.envelope == 0 || !s.anisotropic || !s.reflection))
             throw ex::usage_error("--envelope-random needs --anisotropic --reflection --envelope S");

@@ -355,8 +355,9 @@ private:
         const T eta = single_.eta();
         const T alpha_x = tables::alpha_x(single_.distribution()), alpha_y = tables::alpha_y(single_.distribution());
         anisotropic_ = tables::anisotropic && alpha_x != alpha_y;
-        // The isotropic table's roughness: the root mean square under the anisotropic
-        // correction, else sqrt(alpha_x alpha_y) (alpha itself when isotropic).
+        // The isotropic table's roughness: the correction's base roughness (the root mean
+        // square, bent below 1) under the anisotropic correction, else sqrt(alpha_x alpha_y)
+        // (alpha itself when isotropic).
         const T alpha = anisotropic_ ? detail::dielectric_anisotropic_base_alpha(alpha_x, alpha_y) : std::sqrt(alpha_x * alpha_y);
         if constexpr (tables::anisotropic)
             if (anisotropic_) anisotropic_cell_ = detail::dielectric_anisotropic_locate(alpha_x, alpha_y, eta);

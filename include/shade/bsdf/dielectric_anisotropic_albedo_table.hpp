@@ -4,20 +4,24 @@
 // shade::compensated_rough_dielectric reads for anisotropic GGX. The numbers are generated
 // into shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp by
 //
-//   examples/dielectric_albedo_tables --anisotropic --envelope 40 --out include/shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp
+//   examples/dielectric_albedo_tables --anisotropic --envelope 40 --envelope-margin 0.001 --envelope-below-z 0.5
+//       --envelope-rough-above 1.1 --lift 0.0025,0.0045 --out include/shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp
 //
 // An anisotropic interface (roughness alpha_x along t, alpha_y along b) has a total albedo
 // R + T (importance mode) that depends on the azimuth of the view as well as on its cosine:
 // the masking of the view and of the reflected and refracted directions follows the
 // roughness projected on their azimuths (Heitz 2014, "Understanding the Masking-Shadowing
 // Function in Microfacet-Based BRDFs", JCGT 3(2), eq. 80). The difference from the isotropic
-// table read at the root-mean-square roughness is tabulated,
+// table read at a base roughness is tabulated,
 //
-//     Delta_s(w) = E_s(w) - E_s,iso(mu, alpha_rms),   alpha_rms = sqrt((alpha_x^2 + alpha_y^2) / 2),
+//     Delta_s(w) = E_s(w) - E_s,iso(mu, alpha_base),
 //
-// for each side s of the view (entering, eta_s > 1; exiting, eta_s < 1). alpha_rms stays
-// finite as the smaller roughness goes to 0 (a 1-D rough surface, OpenPBR's anisotropy 1),
-// where the geometric mean would read a nearly smooth interface. Delta depends on six
+// for each side s of the view (entering, eta_s > 1; exiting, eta_s < 1). alpha_base is the
+// root mean square alpha_rms = sqrt((alpha_x^2 + alpha_y^2) / 2) up to 0.7, bent smoothly
+// toward 1 above (dielectric_anisotropic_base_alpha): alpha_rms stays finite as the smaller
+// roughness goes to 0 (a 1-D rough surface, OpenPBR's anisotropy 1), where the geometric
+// mean would read a nearly smooth interface, and the bend keeps alpha_base below the
+// isotropic table's clamp at alpha 1, which would put a kink into Delta. Delta depends on six
 // numbers, each mapped to [0, 1] with uniform nodes:
 //
 //     x = sqrt(mu)                         dense toward grazing
@@ -36,15 +40,19 @@
 // Delta is Catmull-Rom cubic (Catmull, Rom 1974) along x, y, z and e, with a neighbour
 // beyond either end of an axis extrapolated linearly, and linear along u. Nodes with y = 0
 // (a smooth interface) are 0 by construction and not stored; nodes with z = 1 (isotropic)
-// are 0 where alpha_max <= 1 and hold the isotropic table's shortfall above (that table
-// stops at alpha = 1), so that an anisotropic interface rougher than 1 is compensated. For the
+// hold E_iso(mu, alpha) - E_iso(mu, alpha_base) where alpha_max <= 1 (0 up to 0.7) and the
+// isotropic table's shortfall above (that table stops at alpha = 1), so that an anisotropic
+// interface rougher than 1 is compensated. For the
 // average, each stored row (the x nodes of one (side, e, z, y, u) node) has its exact cosine
 // average; Delta_avg of an interface blends those with the weights of its nodes and
 // integrates over the azimuth exactly (linear in u), so it is the average of the Delta the
 // interface reads and the compensation stays normalised. alpha_max above sqrt 2 reads y = 1
 // and eta_hat outside [1.05, 3] the nearest end: there the correction is approximate. Stored
-// as float, as an upper envelope of E (the generated header states how much above): the
-// compensated albedo 1 + E_true - E_read then errs below 1 rather than above. Layout: index
+// as float, each node a little above its estimate of Delta (the lift: 0.0025 entering,
+// 0.0045 exiting) and, where z < 0.5 (the exiting side's total-reflection kinks) or
+// alpha_rms > 1.1, raised further as an upper envelope of E (the generated header states by
+// how much): the compensated albedo 1 + E_true - E_read then errs below 1 rather than above.
+// Layout: index
 // ((((side * e_nodes + m) * z_nodes + k) * (y_nodes - 1) + j - 1) * u_nodes + i_u) * x_nodes
 // + i_x for y node j >= 1.
 
@@ -91,11 +99,25 @@ inline constexpr std::size_t dielectric_anisotropic_size = dielectric_anisotropi
            i_u;
 }
 
-/// The roughness the isotropic table is read at under the correction: the root mean square
-/// sqrt((alpha_x^2 + alpha_y^2) / 2) of the two roughnesses.
+/// The root mean square sqrt((alpha_x^2 + alpha_y^2) / 2) of the two roughnesses.
+template <std::floating_point T>
+[[nodiscard]] inline T dielectric_anisotropic_rms_alpha(T alpha_x, T alpha_y) noexcept {
+    return std::sqrt(T(0.5) * (alpha_x * alpha_x + alpha_y * alpha_y));
+}
+
+/// Where the base roughness starts to bend away from the root mean square.
+inline constexpr double dielectric_anisotropic_base_knee = 0.7;
+
+/// The roughness the isotropic table is read at under the correction: the root mean square r
+/// (dielectric_anisotropic_rms_alpha) up to the knee a = dielectric_anisotropic_base_knee,
+/// above it 1 - (1 - a) exp(-(r - a) / (1 - a)), which meets r with its slope at a and stays
+/// below 1 (the isotropic table's largest alpha) for every r. The isotropic table clamps alpha
+/// at 1, so read at r itself Delta would have a kink where r crosses 1, which the spline
+/// between the y and z nodes cannot follow.
 template <std::floating_point T>
 [[nodiscard]] inline T dielectric_anisotropic_base_alpha(T alpha_x, T alpha_y) noexcept {
-    return std::sqrt(T(0.5) * (alpha_x * alpha_x + alpha_y * alpha_y));
+    const T r = dielectric_anisotropic_rms_alpha(alpha_x, alpha_y), a = T(dielectric_anisotropic_base_knee);
+    return r <= a ? r : T(1) - (T(1) - a) * std::exp(-(r - a) / (T(1) - a));
 }
 
 /// The four nodes and weights with which a Catmull-Rom spline (Catmull, Rom 1974, "A Class
