@@ -1277,6 +1277,7 @@ int main(int argc, char** argv) {
             if (s.out == "dielectric_albedo_data.hpp") s.out = "dielectric_reflection_albedo_data.hpp";
             s.grid = d::dielectric_reflection_albedo_grid;
         }
+        if (s.beckmann) s.grid = d::dielectric_beckmann_albedo_grid;
         if (mu_nodes != 0) s.grid.mu_nodes = mu_nodes;
         if (alpha_nodes != 0) s.grid.alpha_nodes = alpha_nodes;
         if (eta_nodes != 0) s.grid.eta_nodes = eta_nodes;

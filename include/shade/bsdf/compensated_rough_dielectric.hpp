@@ -50,6 +50,7 @@ struct dielectric_albedo_tables_of;
 template <std::floating_point T>
 struct dielectric_albedo_tables_of<ggx<T>> {
     static constexpr const float* e = ggx_rough_dielectric_albedo;
+    static constexpr dielectric_albedo_grid grid{}; ///< the grid of e
     static constexpr bool anisotropic = true;
     static constexpr const float* delta = ggx_dielectric_anisotropic_delta;
     static constexpr const float* delta_average = ggx_dielectric_anisotropic_delta_average;
@@ -60,6 +61,7 @@ struct dielectric_albedo_tables_of<ggx<T>> {
 template <std::floating_point T>
 struct dielectric_albedo_tables_of<beckmann<T>> {
     static constexpr const float* e = beckmann_rough_dielectric_albedo;
+    static constexpr dielectric_albedo_grid grid = dielectric_beckmann_albedo_grid; ///< the grid of e
     static constexpr bool anisotropic = false;
     static constexpr const float* delta = nullptr;
     static constexpr const float* delta_average = nullptr;
@@ -351,7 +353,7 @@ private:
     };
 
     void prepare() noexcept {
-        const detail::dielectric_albedo_grid grid{};
+        constexpr const detail::dielectric_albedo_grid& grid = tables::grid;
         const T eta = single_.eta();
         const T alpha_x = tables::alpha_x(single_.distribution()), alpha_y = tables::alpha_y(single_.distribution());
         anisotropic_ = tables::anisotropic && alpha_x != alpha_y;

@@ -114,6 +114,13 @@ inline constexpr dielectric_albedo_grid dielectric_reflection_albedo_grid{
     0.6931471805599453, // log(2)
     true, true};
 
+/// The grid of the Beckmann total-albedo table (beckmann_dielectric_albedo_data.hpp), which
+/// compensated_rough_dielectric over Beckmann and the generator's --beckmann read: the
+/// default grid, a name of its own so that its nodes can differ from the GGX table's.
+inline constexpr dielectric_albedo_grid dielectric_beckmann_albedo_grid{
+    dielectric_albedo_mu_nodes, dielectric_albedo_alpha_nodes, dielectric_albedo_eta_nodes, dielectric_albedo_eta_min,
+    dielectric_albedo_eta_max, dielectric_albedo_x_min, dielectric_albedo_x_max, false, false};
+
 /// eta_hat at node k of grid g: 1 + exp(x_k), x uniform from g.x_min to g.x_max.
 [[nodiscard]] inline double dielectric_albedo_eta(const dielectric_albedo_grid& g, std::size_t k) noexcept {
     return 1.0 + std::exp(g.x_min + double(k) / double(g.eta_nodes - 1) * (g.x_max - g.x_min));
