@@ -45,7 +45,7 @@
 // row's cosine average; and, as the stated accuracy, the largest node standard error and the
 // range of the table minus a fresh estimate at random points of the domain with mu >= 0.1.
 //
-//   dielectric_albedo_tables --anisotropic --reflection --envelope 48 --envelope-margin 0.0002 --envelope-random 100000 --out include/shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp
+//   dielectric_albedo_tables --anisotropic --reflection --envelope 48 --envelope-margin 0.0002 --envelope-random 300000 --envelope-sigma 2 --out include/shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp
 //
 // writes instead the correction of the anisotropic shade::dielectric_reflection_albedo on its
 // own grid (shade/bsdf/dielectric_anisotropic_reflection_table.hpp: anisotropy
@@ -139,6 +139,10 @@ writes the header of constants.
   --envelope-margin M  with --envelope (total-albedo tables, --anisotropic): raise until the table is at least
                     the estimate + M (M in [0, 0.01], default 0; never above 1) at every check
                     point, so that it errs high between the check points too
+  --envelope-sigma K  with --anisotropic --reflection --envelope S: raise until the table is at
+                    least the estimate + K of its standard errors (+ M) at every check point
+                    (K in [0, 4], default 0), so that a check estimate's own noise does not
+                    leave the table below the truth
   --envelope-view-steps S  with --envelope (total-albedo tables): check places per cell along
                     the view coordinate, 2 to 8 (default 2: the middle; 4 adds the quarters,
                     where E falls steeply)
@@ -176,6 +180,7 @@ struct settings {
     double lift[2] = {0, 0}; // --anisotropic: added to every estimated node before the envelope, per side
     double envelope_below_z = 2; // --anisotropic: only check points with z below this raise nodes ...
     double envelope_rough_above = 2; // ... or with alpha_rms above this
+    double envelope_sigma = 0; // the envelope's height above the check points' estimates in their standard errors (--anisotropic --reflection)
 };
 
 // E of a model of index eta_s at view cosine mu: the importance-mode weight of its sampler.
@@ -472,6 +477,11 @@ std::string envelope_options(const settings& s) {
     }
     if (s.envelope_view_steps != 2) text += " --envelope-view-steps " + std::to_string(s.envelope_view_steps);
     if (s.envelope_random > 0) text += " --envelope-random " + std::to_string(s.envelope_random);
+    if (s.envelope_sigma > 0) {
+        char sigma[32];
+        std::snprintf(sigma, sizeof sigma, "%g", s.envelope_sigma);
+        text += std::string(" --envelope-sigma ") + sigma;
+    }
     return text;
 }
 
@@ -842,10 +852,11 @@ reflection_table compute_reflection(const settings& s, ex::progress& bar, const 
             const auto& c = checks[p];
             where[p] = reflection_interface_at(c.s, c.y, c.e, c.side);
             view[p] = reflection_view_at(c.x, c.u, where[p], c.side).v;
-            fresh[p] = std::min(estimate_view_reflection(where[p].alpha_x, where[p].alpha_y, where[p].eta_s, view[p],
-                                                         s.envelope, 3000017 + p)
-                                    .albedo.x,
-                                1.0);
+            // With --envelope-sigma K the estimate counts K standard errors higher: the
+            // table then stands above the truth at the check point but for K-sigma noise.
+            const auto a = estimate_view_reflection(where[p].alpha_x, where[p].alpha_y, where[p].eta_s, view[p], s.envelope,
+                                                    3000017 + p);
+            fresh[p] = std::min(a.albedo.x + s.envelope_sigma * a.standard_error.x, 1.0);
             bar.advance();
         });
         // No node raised by more than reflection_raise_cap in all: where the spline cannot
@@ -897,9 +908,9 @@ void write_reflection(std::FILE* f, const reflection_table& t, const settings& s
     if (t.checks > 0)
         std::fprintf(f,
                      "\n/// An upper envelope, not point values: %zu nodes raised (by at most %.1e) so that no fresh\n"
-                     "/// %zu-sample estimate (+ %g) at %zu check points with mu >= 0.05 (cell centres and edge middles,\n"
-                     "/// %zu of them random) is above the table by more than %.1e.",
-                     t.raised, t.max_raise, s.envelope * s.envelope, s.envelope_margin, t.checks, t.random_checks,
+                     "/// %zu-sample estimate (+ %g standard errors + %g) at %zu check points with mu >= 0.05 (cell centres\n"
+                     "/// and edge middles, %zu of them random) is above the table by more than %.1e.",
+                     t.raised, t.max_raise, s.envelope * s.envelope, s.envelope_sigma, s.envelope_margin, t.checks, t.random_checks,
                      std::max(t.envelope_left, 0.0));
     std::fprintf(f, "\n/// The table read minus a fresh estimate at %zu random points with mu >= 0.1 (interpolation\n"
                     "/// and both estimates' noise): entering side %.1e to %.1e, exiting side %.1e to %.1e.\n",
@@ -1252,6 +1263,7 @@ int main(int argc, char** argv) {
             else if (args.option("--envelope-below-z")) s.envelope_below_z = args.real(0, 1, ex::lower_limit::exclusive);
             else if (args.option("--envelope-rough-above")) s.envelope_rough_above = args.real(0, 2);
             else if (args.option("--envelope-random")) s.envelope_random = args.integer<std::size_t>(1, 10000000);
+            else if (args.option("--envelope-sigma")) s.envelope_sigma = args.real(0, 4);
             else args.unknown();
         }
         (void)ex::output_format("--out", s.out, {".hpp", ".h"});
@@ -1273,6 +1285,8 @@ int main(int argc, char** argv) {
             throw ex::usage_error("--envelope-margin needs --envelope on a total-albedo table or on --anisotropic --reflection");
         if (s.envelope_random > 0 && (s.envelope == 0 || !s.anisotropic || !s.reflection))
             throw ex::usage_error("--envelope-random needs --anisotropic --reflection --envelope S");
+        if (s.envelope_sigma > 0 && (s.envelope == 0 || !s.anisotropic || !s.reflection))
+            throw ex::usage_error("--envelope-sigma needs --anisotropic --reflection --envelope S");
         if (s.reflection && !s.anisotropic) {
             if (s.out == "dielectric_albedo_data.hpp") s.out = "dielectric_reflection_albedo_data.hpp";
             s.grid = d::dielectric_reflection_albedo_grid;

@@ -215,7 +215,7 @@ constexpr double anisotropic_raise = 0.15;
 // The generated header states the range of (table - fresh estimate) at its random points
 // (mu >= 0.1, y 0.1 to 1: entering alpha_max 0.014 to sqrt 2, exiting alpha_rms 0.01 to 1;
 // alpha_min / alpha_max 0 to 1, eta_hat 1.05 to 3), per side; these enclose them.
-constexpr double anisotropic_low[2] = {-2e-4, -0.0046}, anisotropic_high[2] = {0.0235, 0.1015};
+constexpr double anisotropic_low[2] = {-1e-4, -0.0022}, anisotropic_high[2] = {0.0245, 0.1055};
 
 // The interface and view of a node of the correction (as the generator builds them: alpha_max
 // of the node's y and z, the smoother alpha z^2 alpha_max along t, at least 1e-4; the view at the node's x and u), and
