@@ -469,11 +469,15 @@ private:
     // alpha_y) plus the anisotropic correction, as kulla_conty_anisotropic reads it), plus
     // the margin at (alpha_v, mu).
     [[nodiscard]] rgb<T> anisotropic_film_share(const vec3<T>& w) const noexcept {
+        // cos^2(phi) is 1/2 where the azimuth is undefined or not a number (w along the
+        // pole, or a w that is not finite), so alpha_v and mu are never NaN and the node
+        // indices below are always in range.
         const T sin2 = w.x * w.x + w.y * w.y;
-        const T cos2_phi = sin2 > T(0) ? w.x * w.x / sin2 : T(0.5);
+        const T ratio = sin2 > T(0) ? w.x * w.x / sin2 : T(0.5);
+        const T cos2_phi = ratio >= T(0) && ratio <= T(1) ? ratio : T(0.5);
         const T alpha_v = std::sqrt(film_alpha_x_ * film_alpha_x_ * cos2_phi +
                                     film_alpha_y_ * film_alpha_y_ * (T(1) - cos2_phi));
-        const T mu = glm::clamp(w.z, T(0), T(1));
+        const T mu = w.z > T(0) ? glm::min(w.z, T(1)) : T(0);
         const detail::fresnel_albedo_sum<T> sum = detail::fresnel_albedo_at(alpha_v, mu, film_nodes_);
         const T e_one = glm::clamp(
             detail::albedo_lookup(detail::ggx_albedo, detail::albedo_grid_nodes, mu, specular_alpha_) +

@@ -164,15 +164,16 @@ struct fresnel_albedo_sum {
 };
 
 /// fresnel_albedo_sum for F given at the nodes (f_nodes[k] = F(c_k)), at roughness alpha
-/// (clamped to [0, 1]) and view cosine mu (clamped to [0, 1]).
+/// (clamped to [0, 1]) and view cosine mu (clamped to [0, 1]); a NaN alpha or mu is read
+/// as 0.
 template <std::floating_point T>
 [[nodiscard]] fresnel_albedo_sum<T> fresnel_albedo_at(T alpha, T mu,
                                                       const std::array<rgb<T>, cosine_weight_nodes>& f_nodes) noexcept {
     constexpr std::size_t n = cosine_weight_nodes, m = cosine_weight_alpha_nodes;
-    const double s = std::sqrt(glm::clamp(double(alpha), 0.0, 1.0)) * double(m - 1);
+    const double s = std::sqrt(alpha > T(0) ? glm::min(double(alpha), 1.0) : 0.0) * double(m - 1);
     const std::size_t j = glm::min(std::size_t(s), m - 2);
     const double t = s - double(j);
-    const double c = glm::clamp(double(mu), 0.0, 1.0);
+    const double c = mu > T(0) ? glm::min(double(mu), 1.0) : 0.0;
     const double x = std::cbrt(c * c) * double(n - 1);
     const std::size_t i = glm::min(std::size_t(x), n - 2);
     const double u = x - double(i);
