@@ -133,6 +133,56 @@ TEST_CASE_TEMPLATE("dielectric reflection albedo: agrees with fresh estimates be
     MESSAGE("reflection albedo against fresh estimates at 24 random points: worst " << worst);
 }
 
+TEST_CASE_TEMPLATE("dielectric reflection albedo: beyond eta_hat 3, the table's end plus the change of F", T, float, double) {
+    // Above the grid (eta_hat > 3: dense dielectrics, OpenPBR's specular_weight > 1) the read
+    // is R_ss at eta_hat = 3 plus the lobe's measure of v·h summed against F(eta_s) -
+    // F(eta_3) (detail::reflection_albedo_change). Against fresh estimates of the model's own
+    // sampler: entering, within the table's stated accuracy plus the node sum's 1.5e-3
+    // (measured read - fresh at 384^2: -5e-4 to +2.7e-3 for eta 3.2-100, alpha 1e-4-1, mu
+    // 0.05-1); exiting, within the table's stated exiting accuracy for mu <= 0.8 (measured
+    // -5.5e-3 to +5.8e-3 at mu <= 0.7) and 5e-2 above (measured -3.8e-2 to +4.5e-2 at mu 1,
+    // -1.4e-2 at eta 3.2: the node sum's linear
+    // pieces in v·h cross the total-reflection edge, which moves to v·h -> 1 as eta_hat
+    // grows). The read before this continuation (the difference R_ss - F at eta_hat 3 plus
+    // the exact F of the true eta_s) erred by up to 0.38 entering (alpha 0.5, mu 0.1, eta 10).
+    shade::rng random(0x3b7e0d);
+    double worst[2] = {0, 0};
+    for (int p = 0; p < 24; ++p) {
+        const std::size_t side = std::size_t(p % 2);
+        const double mu = side == 1 && p % 4 == 1 ? 0.8 + 0.2 * random.uniform<double>()
+                                                  : 0.05 + 0.75 * random.uniform<double>();
+        const double y = random.uniform<double>(), alpha = std::max(y * y, 1e-4); // the model's smallest
+        const double eta_hat = 3 * std::exp(3 * random.uniform<double>());       // 3 to 60
+        const double eta_s = eta_of_side(side, eta_hat);
+        const auto fresh = fresh_reflection(alpha, alpha, eta_hat, view(mu, side), 64, 900 + std::uint64_t(p));
+        const double r = double(shade::dielectric_reflection_albedo(T(mu), T(alpha), T(eta_s)));
+        CAPTURE(mu);
+        CAPTURE(alpha);
+        CAPTURE(eta_s);
+        const double bound = side == 0 ? stated_accuracy_side[0] + 1.5e-3 : mu <= 0.8 ? stated_accuracy_side[1] : 5e-2;
+        CHECK(std::abs(r - fresh.albedo.x) <= bound + 4 * fresh.standard_error.x);
+        if (mu <= 0.8) worst[side] = std::max(worst[side], std::abs(r - fresh.albedo.x));
+    }
+    // Continuous at eta_hat = 3 on both sides, and an interface that reflects all but
+    // 4e-4 at normal incidence (eta 1e4) reads the lobe's albedo with F = 1 within 1e-3.
+    for (const double mu : {0.1, 0.5, 1.0}) {
+        for (const double alpha : {0.0, 0.2, 1.0}) {
+            for (const std::size_t side : {std::size_t(0), std::size_t(1)}) {
+                const T at_end = shade::dielectric_reflection_albedo(T(mu), T(alpha), T(eta_of_side(side, 3)));
+                const T above = shade::dielectric_reflection_albedo(T(mu), T(alpha), T(eta_of_side(side, 3.0001)));
+                CHECK(std::abs(double(above - at_end)) <= 1e-4);
+            }
+            const double a = std::max(alpha, 1e-4); // the model's smallest; the table's row 0
+            const auto fresh = fresh_reflection(a, a, 1e4, view(mu, 0), 48, 77);
+            CHECK(std::abs(double(shade::dielectric_reflection_albedo(T(mu), T(alpha), T(1e4))) - fresh.albedo.x) <=
+                  1e-3 + stated_accuracy_side[0] + 4 * fresh.standard_error.x);
+        }
+    }
+    MESSAGE("reflection albedo beyond eta_hat 3 against fresh estimates (mu <= 0.8): worst entering " << worst[0]
+                                                                                                     << ", exiting "
+                                                                                                     << worst[1]);
+}
+
 TEST_CASE_TEMPLATE("dielectric reflection albedo: a smooth interface reflects the exact Fresnel reflectance", T, float,
                    double) {
     // As alpha -> 0, f_R tends to a mirror weighted by F(mu, eta_s), so R_ss -> F(mu, eta_s)

@@ -3,6 +3,7 @@
 // and index for many view cosines: the interpolation along sqrt(alpha) and the index is done
 // once, into one row over the view coordinate, so that each lookup is one spline in mu.
 
+#include <array>
 #include <cmath>
 #include <concepts>
 #include <cstddef>
@@ -10,6 +11,7 @@
 #include <glm/common.hpp>
 
 #include <shade/brdf/fresnel.hpp>
+#include <shade/brdf/microfacet/cosine_weights.hpp>
 #include <shade/bsdf/detail/dielectric_albedo_data.hpp>
 #include <shade/bsdf/detail/dielectric_reflection_albedo_data.hpp>
 #include <shade/bsdf/dielectric_albedo_table.hpp>
@@ -19,7 +21,7 @@ namespace shade::detail {
 /// Four interpolation weights, one per node i - 1 .. i + 2 (catmull_rom_axis_weights).
 template <std::floating_point T>
 struct axis_weights {
-    T w[4]; ///< a plain array: this header stays free of <array>, which costs its includers ~400 lines
+    T w[4]; ///< the weights of nodes i - 1 .. i + 2
     [[nodiscard]] constexpr T& operator[](std::size_t i) noexcept { return w[i]; }
     [[nodiscard]] constexpr T operator[](std::size_t i) const noexcept { return w[i]; }
 };
@@ -116,10 +118,31 @@ private:
     bool near_critical_ = false;
 };
 
+/// The change of the GGX reflection lobe's albedo when its Fresnel factor goes from the
+/// exact dielectric F(c, eta_end) to F(c, eta_s), c = v·h, for the view cosine mu and
+/// roughness alpha (clamped to [0, 1]):
+///
+///     sum_k w_k(mu, alpha) (F(c_k, eta_s) - F(c_k, eta_end)),
+///
+/// w_k the lobe's measure of c at the nodes c_k (shade/brdf/microfacet/cosine_weights.hpp:
+/// the lobe and the height-correlated masking of the reflection table). The reflection
+/// albedo beyond the table's largest eta_hat is the table's at eta_end (its end on the same
+/// side) plus this. 128 Fresnel evaluations.
+template <std::floating_point T>
+[[nodiscard]] inline T reflection_albedo_change(T mu, T alpha, T eta_end, T eta_s) noexcept {
+    std::array<rgb<T>, cosine_weight_nodes> change;
+    for (std::size_t k = 0; k < cosine_weight_nodes; ++k) {
+        const T c = T(cosine_weight_node(k));
+        change[k] = rgb<T>(F_dielectric(c, eta_s) - F_dielectric(c, eta_end));
+    }
+    return fresnel_albedo_at(glm::clamp(alpha, T(0), T(1)), mu, change).e.x;
+}
+
 /// shade::dielectric_reflection_albedo(unchecked, mu, alpha, eta_s) at a fixed alpha and
 /// eta_s for many mu: the same reading of the same table (its row 0 standing for alpha -> 0,
 /// F(mu, eta_s) added back, the difference scaled toward 0 below the grid's smallest
-/// eta_hat), with the interpolation along alpha and the index done once.
+/// eta_hat, reflection_albedo_change beyond its largest), with the interpolation along
+/// alpha and the index done once.
 template <std::floating_point T>
 class reflection_albedo_row {
 public:
@@ -135,6 +158,8 @@ public:
             ggx_rough_dielectric_reflection_albedo, grid, cell);
         if (eta_hat < T(grid.eta_min)) scale_ = (eta_hat - T(1)) / T(grid.eta_min - 1);
         view_reads_fresnel_ = row_.view_eta() == eta_s;
+        beyond_ = eta_hat > T(grid.eta_max);
+        alpha_ = alpha;
     }
 
     /// R_ss(mu), dimensionless, in [0, 1].
@@ -149,14 +174,21 @@ public:
     [[nodiscard]] T at(T mu, T fresnel) const noexcept {
         const T m = glm::clamp(mu, T(0), T(1));
         const T e = view_reads_fresnel_ ? row_.at(m, fresnel) : row_.at(m);
-        return glm::clamp(fresnel + scale_ * e, T(0), T(1));
+        if (!beyond_) return glm::clamp(fresnel + scale_ * e, T(0), T(1));
+        // Beyond the grid: the table's R_ss at its end eta_end on this side, which the row
+        // holds, plus the change of the lobe's albedo from F(eta_end) to F(eta_s).
+        const T eta_end = row_.view_eta();
+        return glm::clamp(F_dielectric(m, eta_end) + e + reflection_albedo_change(m, alpha_, eta_end, eta_s_), T(0),
+                          T(1));
     }
 
 private:
     dielectric_albedo_row<T, dielectric_reflection_albedo_grid.mu_nodes> row_{};
     T eta_s_ = T(1);
     T scale_ = T(1);
+    T alpha_ = T(0);
     bool view_reads_fresnel_ = false; // the view coordinate's F is F_dielectric(m, eta_s_)
+    bool beyond_ = false;             // eta_hat above the grid: reflection_albedo_change added
 };
 
 } // namespace shade::detail
