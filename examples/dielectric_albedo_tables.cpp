@@ -44,6 +44,9 @@
 // above --envelope-rough-above; each
 // row's cosine average; and, as the stated accuracy, the largest node standard error and the
 // range of the table minus a fresh estimate at random points of the domain with mu >= 0.1.
+// With --views FILE it also prints R + T = 1 + E_true - E_read of the compensated interface at
+// fixed views (report_views; the sweep's pairs among them), E_true kept in FILE: with --cache, a
+// variant of the table is measured in seconds.
 //
 //   dielectric_albedo_tables --anisotropic --reflection --envelope 48 --envelope-margin 0.0002 --envelope-random 300000 --envelope-sigma 2 --out include/shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp
 //
@@ -157,6 +160,10 @@ writes the header of constants.
                     or read from it if it exists (for the same --strata and --envelope), so that
                     --lift, --envelope-margin and --envelope-below-z can be tried without
                     estimating again
+  --views FILE      with --anisotropic: after the table, print R + T = 1 + E_true - E_read per class
+                    (the sweep's 2:1, 10:1 and anisotropy-1 pairs, others, 10:1 with z on a node)
+                    and side at 34,080 fixed views, E_true estimated (128^2 samples) into FILE or
+                    read from it if it exists
   --threads K       worker threads, 1 to 64 (default 2)
   --quiet           no progress bar
 )";
@@ -177,6 +184,7 @@ struct settings {
     std::size_t envelope_view_steps = 2; // check places per view cell (2: its middle)
     std::size_t envelope_random = 0; // random check points besides the fixed ones (--anisotropic --reflection)
     std::filesystem::path cache; // --anisotropic: node and check-point estimates kept here (read back if present)
+    std::filesystem::path views; // --anisotropic: R + T reported at fixed views, their E estimates kept here
     double lift[2] = {0, 0}; // --anisotropic: added to every estimated node before the envelope, per side
     double envelope_below_z = 2; // --anisotropic: only check points with z below this raise nodes ...
     double envelope_rough_above = 2; // ... or with alpha_rms above this
@@ -1155,6 +1163,91 @@ anisotropic_table compute_anisotropic(const settings& s, ex::progress& bar, cons
     return out;
 }
 
+// --views FILE: R + T = 1 + E_true(v) - E_read(v) of the compensated interface (the noise-free
+// split of tests/bsdf/anisotropic_furnace.hpp, table_furnace), E_read the table in memory read as
+// shade::compensated_rough_dielectric reads it (clamped to [0, 1]) and E_true a 128^2-sample
+// estimate (as the sweep's), at a fixed set of views: the pairs of
+// tests/sweep/test_dielectric_anisotropic_sweep.cpp (2:1, 10:1, anisotropy 1), other 2:1 and
+// 10:1 pairs, and the sweep's 10:1 pairs with alpha_min moved onto the z nodes 0.2 and 0.4 (an
+// error there that is absent on the nodes is the z interpolation's); eta 1.05 to 3, mu 0.1 to 1,
+// azimuths 0 to 90 degrees every 10, both sides. E_true is written to FILE, or read from it if
+// it exists, so that table variants are compared on the same estimates.
+void report_views(const anisotropic_table& t, const std::filesystem::path& file, unsigned threads) {
+    struct pair_class {
+        double alpha_x, alpha_y;
+        int c;
+    };
+    constexpr int classes = 7;
+    const char* const name[classes] = {"2:1 (sweep)", "10:1 (sweep)", "anisotropy 1 (sweep)", "2:1 (others)",
+                                       "10:1 (others)", "10:1 on z 0.2", "10:1 on z 0.4"};
+    constexpr pair_class pairs[] = {
+        {0.2, 0.4, 0},   {0.6, 0.3, 0},   {0.5, 1.0, 0},   {0.05, 0.5, 1},   {0.8, 0.08, 1},  {0.1, 1.0, 1},
+        {0.3, 1e-4, 2},  {0.7, 1e-4, 2},  {1e-4, 0.127, 2}, {1e-4, 0.509, 2}, {1e-4, 1.414, 2}, {0.05, 0.1, 3},
+        {0.1, 0.05, 3},  {0.3, 0.15, 3},  {0.4, 0.8, 3},   {0.7, 1.4, 3},    {1.3, 0.65, 3},  {0.6, 1.2, 3},
+        {0.02, 0.2, 4},  {0.3, 0.03, 4},  {0.06, 0.6, 4},  {1.2, 0.12, 4},   {0.4, 0.04, 4},  {0.15, 1.5, 4},
+        {0.02, 0.5, 5},  {0.8, 0.032, 5}, {0.04, 1.0, 5},  {0.08, 0.5, 6},   {0.8, 0.128, 6}, {0.16, 1.0, 6}};
+    struct view_point {
+        total_interface at;
+        shade::vec3<T> v;
+        std::size_t pair;
+        int side;
+        double eta, mu, phi;
+    };
+    std::vector<view_point> views;
+    for (std::size_t q = 0; q < std::size(pairs); ++q)
+        for (const double eta : {1.05, 1.2, 1.33, 1.5, 1.7, 2.2, 2.5, 3.0})
+            for (const int side : {0, 1})
+                for (const double mu : {0.1, 0.15, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0})
+                    for (int degrees = 0; degrees <= 90; degrees += 10) {
+                        if (mu == 1.0 && degrees > 0) continue;
+                        const double phi = double(degrees) * 0.017453292519943295, sin_theta = std::sqrt((1 - mu) * (1 + mu));
+                        views.push_back({{pairs[q].alpha_x, pairs[q].alpha_y, side == 0 ? eta : 1 / eta},
+                                         {sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu}, q, side, eta, mu, double(degrees)});
+                    }
+    std::vector<double> truth(views.size());
+    if (std::filesystem::exists(file)) {
+        std::FILE* f = std::fopen(file.string().c_str(), "rb");
+        const std::size_t n = f == nullptr ? 0 : std::fread(truth.data(), sizeof(double), truth.size(), f);
+        if (f != nullptr) std::fclose(f);
+        if (n != truth.size()) throw std::runtime_error("--views: cannot read " + std::to_string(truth.size()) + " estimates from " + file.string());
+    } else {
+        parallel_for(views.size(), threads, [&](std::size_t p) {
+            const view_point& w = views[p];
+            truth[p] = estimate_view(w.at.alpha_x, w.at.alpha_y, w.at.eta_s, w.v, 128, 777 + p).albedo.x;
+        });
+        std::FILE* f = std::fopen(file.string().c_str(), "wb");
+        const std::size_t n = f == nullptr ? 0 : std::fwrite(truth.data(), sizeof(double), truth.size(), f);
+        if (f != nullptr) std::fclose(f);
+        if (n != truth.size()) throw std::runtime_error("--views: cannot write " + file.string());
+    }
+    struct range {
+        double lowest = 2, highest = 0;
+        std::size_t at_lowest = 0, at_highest = 0, below = 0, above = 0;
+    } r[classes][2];
+    for (std::size_t p = 0; p < views.size(); ++p) {
+        const view_point& w = views[p];
+        const double total = 1 + truth[p] - std::clamp(total_read(t.delta, w.at, w.v), 0.0, 1.0);
+        range& m = r[pairs[w.pair].c][w.side];
+        if (total < m.lowest) m.lowest = total, m.at_lowest = p;
+        if (total > m.highest) m.highest = total, m.at_highest = p;
+        if (total < 0.99) ++m.below;
+        if (total > 1.001) ++m.above;
+    }
+    const auto where = [&](std::size_t p) {
+        const view_point& w = views[p];
+        char text[96];
+        std::snprintf(text, sizeof text, "%g x %g, eta %g, mu %g, phi %g", pairs[w.pair].alpha_x, pairs[w.pair].alpha_y, w.eta, w.mu, w.phi);
+        return std::string(text);
+    };
+    for (int c = 0; c < classes; ++c)
+        for (int side = 0; side < 2; ++side) {
+            const range& m = r[c][side];
+            std::fprintf(stderr, "dielectric_albedo_tables: views: %s, v %s: R + T %.4f (%s) to %.4f (%s); %zu below 0.99, %zu above 1.001\n",
+                         name[c], side == 0 ? "outside" : "inside", m.lowest, where(m.at_lowest).c_str(), m.highest,
+                         where(m.at_highest).c_str(), m.below, m.above);
+        }
+}
+
 void write_anisotropic(std::FILE* f, const anisotropic_table& t, const settings& s) {
     std::fprintf(f, "#pragma once\n");
     std::string options = envelope_options(s);
@@ -1254,6 +1347,7 @@ int main(int argc, char** argv) {
             else if (args.option("--envelope-margin")) s.envelope_margin = args.real(0, 0.01);
             else if (args.option("--envelope-view-steps")) s.envelope_view_steps = args.integer<std::size_t>(2, 8);
             else if (args.option("--cache")) s.cache = args.path();
+            else if (args.option("--views")) s.views = args.path();
             else if (args.option("--lift")) {
                 const std::string text(args.text());
                 const std::size_t comma = text.find(',');
@@ -1277,8 +1371,10 @@ int main(int argc, char** argv) {
         if (s.envelope_view_steps != 2 && (s.envelope == 0 || s.anisotropic))
             throw ex::usage_error("--envelope-view-steps needs --envelope on a total-albedo table");
         const bool envelope_scope = s.envelope_below_z < 2 || s.envelope_rough_above < 2;
-        if ((!s.cache.empty() || s.lift[0] > 0 || s.lift[1] > 0 || envelope_scope) && (!s.anisotropic || s.reflection))
-            throw ex::usage_error("--cache, --lift, --envelope-below-z and --envelope-rough-above apply to --anisotropic (total albedo) only");
+        if ((!s.cache.empty() || !s.views.empty() || s.lift[0] > 0 || s.lift[1] > 0 || envelope_scope) &&
+            (!s.anisotropic || s.reflection))
+            throw ex::usage_error(
+                "--cache, --views, --lift, --envelope-below-z and --envelope-rough-above apply to --anisotropic (total albedo) only");
         if (envelope_scope && s.envelope == 0)
             throw ex::usage_error("--envelope-below-z and --envelope-rough-above need --envelope");
         if (s.envelope_margin > 0 && s.envelope == 0)
@@ -1336,6 +1432,7 @@ int main(int argc, char** argv) {
                          "estimate at %zu points with mu >= 0.1: entering %.2e to %.2e, exiting %.2e to %.2e\n",
                          t.max_error, t.max_delta, t.checks, t.raised, t.max_raise, t.passes, t.envelope_left, t.points,
                          t.side_lowest[0], t.side_highest[0], t.side_lowest[1], t.side_highest[1]);
+            if (!s.views.empty()) report_views(t, s.views, s.threads);
             header.write_stream([&](std::FILE* f) {
                 write_anisotropic(f, t, s);
             });
