@@ -1143,9 +1143,8 @@ TEST_CASE_TEMPLATE("openpbr_surface: white furnace with a thin film at specular_
     // that index's Fresnel) and anisotropy 0.5 and 0.9 (the film's share read at the view's
     // azimuth, anisotropic_film_share; the dielectric part from the anisotropic table), over
     // a white diffuse base, end to end through sample(). Allowed: the issue's band widened by
-    // 4 standard errors of the stratified estimate (48^2 draws), at specular_weight 0.5; on
-    // the anisotropic lobes the range the next test measures without noise (read - true
-    // in [-1.24e-2, +2.84e-2]: furnace 0.9716-1.0124, rounded outward).
+    // 4 standard errors of the stratified estimate (48^2 draws); on the anisotropic lobes its
+    // low end is the next test's high bound (read - true <= 5e-2: furnace >= 0.95).
     const auto at = check_test::model_point<T>();
     const auto films = film_points<T>();
     for (std::size_t i = 0; i < films.size(); i += 4) {
@@ -1166,43 +1165,44 @@ TEST_CASE_TEMPLATE("openpbr_surface: white furnace with a thin film at specular_
                     INFO("film ", i, " roughness ", double(r), " anisotropy ", double(a), " mu ", mu, ": ",
                          reading.first, " +- ", reading.second);
                     const bool anisotropic = a > T(0);
-                    CHECK(reading.first >= (anisotropic ? 0.9715 : 0.99) - 4 * reading.second);
-                    CHECK(reading.first <= (anisotropic ? 1.0125 : 1.001) + 4 * reading.second);
+                    CHECK(reading.first >= (anisotropic ? 0.95 : 0.99) - 4 * reading.second);
+                    CHECK(reading.first <= 1.001 + 4 * reading.second);
                 }
             }
         }
     }
 }
 
-TEST_CASE_TEMPLATE("openpbr_surface: a thin film's share on anisotropic lobes, without sampling noise (measured band)", T,
+TEST_CASE_TEMPLATE("openpbr_surface: a thin film's share on anisotropic lobes never reads low (without sampling noise)", T,
                    float, double) {
-    // anisotropic_film_albedo_error (the read against the anisotropic lobe's own quadrature of
-    // v·h, 96^2 cells): the isotropic node sum at the view's projected roughness, normalised
-    // to the anisotropic lobe's albedo with F = 1, plus the margin. Measured over eight films
-    // (index 1.05-3, 0.1-3 um, base 1.33-2.2), roughness 0.1-1, anisotropy 0.5 and 0.9, mu
-    // 0.1-1 and five azimuths: read - true in [-1.24e-2, +2.84e-2] (reading the row at
-    // sqrt(alpha_x alpha_y) as before: [-1.39e-1, +1.49e-1]); read low by more than the
-    // band's 1e-3 at roughness >= 0.3 with anisotropy 0.9 (down to -2.6e-3 at 0.3, -7.8e-3 at
-    // 0.7, -1.24e-2 at 1, where alpha_t reaches 1.41 and the weights' rows stop at 1): the
-    // projected roughness misses the spread across the view's plane, which no margin yet
-    // covers. This test holds that measured range, rounded outward to three digits, at the
-    // worst films and views found.
+    // film_albedo_error (the read against the anisotropic lobe's own quadrature of v·h, 96^2
+    // cells, F_film read at each cell's cosine): never above the white furnace's 1.001 is
+    // E_R read - true >= -1e-3, at every azimuth, anisotropy 0.5 to 1 (alpha_y / alpha_x
+    // from 3 to 1e4, beyond the anisotropic albedo tables' 20) and roughness 0.3 to 1. The
+    // films and views are where the read fell shortest, before the anisotropic lobe's own
+    // grid (the isotropic node sum at the view's projected roughness: -4.3e-2 at index 3,
+    // 0.25 um over 1.33, roughness 1, anisotropy 0.9, mu 0.1 along the tangent; -1.6e-1 at
+    // anisotropy 1, index 1.05, 3 um, across it) and after it, before its margin (index
+    // 1.05 at 1-3 um, mu 0.1-0.3, phi 1.2-pi/2). The high side (the furnace's low end) is
+    // asserted at 5e-2: the largest measured (+3.3e-2 at anisotropy 1, +2.4e-2 at 0.94,
+    // before the 1.4e-2 of the grid's margin), rounded up. float: f's rounding adds 2e-5.
     const double tol = std::is_same_v<T, float> ? 2e-5 : 0.0;
-    const std::vector<film_point<T>> films = {
-        {1, T(1), T(3), T(1.5)}, {1, T(2), T(1.05), T(1.5)}, {1, T(1.5), T(1.3), T(1.8)}, {1, T(3), T(1.2), T(1.33)}};
+    const std::vector<film_point<T>> films = {{1, T(0.25), T(3), T(1.33)}, {1, T(3), T(1.05), T(1.5)},
+                                              {1, T(1), T(1.05), T(1.5)},   {1, T(0.5), T(1.2), T(1.5)},
+                                              {1, T(1), T(1.3), T(2.2)}};
     double lowest = 1, highest = -1;
     for (const auto& fl : films) {
-        for (const T r : {T(0.3), T(0.7), T(1)}) {
-            for (const T a : {T(0.5), T(0.9)}) {
-                for (const double mu : {0.1, 0.4, 1.0}) {
-                    for (const double phi : {0.0, 1.0, 1.5708}) {
-                        const rgb<double> error = film_test::anisotropic_film_albedo_error(fl, r, a, mu, phi, 96);
+        for (const T r : {T(0.3), T(0.6), T(1)}) {
+            for (const T a : {T(0.5), T(0.9), T(1)}) {
+                for (const double mu : {0.1, 0.3, 1.0}) {
+                    for (const double phi : {0.0, 1.2, 1.5708}) {
+                        const rgb<double> error = film_test::film_albedo_error(fl, r, a, mu, phi, 96);
                         for (int k = 0; k < 3; ++k) {
-                            INFO("thickness ", double(fl.thickness_um), " film ior ", double(fl.ior), " roughness ",
-                                 double(r), " anisotropy ", double(a), " mu ", mu, " phi ", phi, " channel ", k,
-                                 ": E_R read - true ", error[k]);
-                            CHECK(error[k] >= -1.25e-2 - tol);
-                            CHECK(error[k] <= 2.85e-2 + tol);
+                            INFO("thickness ", double(fl.thickness_um), " film ior ", double(fl.ior), " base ior ",
+                                 double(fl.base_ior), " roughness ", double(r), " anisotropy ", double(a), " mu ", mu,
+                                 " phi ", phi, " channel ", k, ": E_R read - true ", error[k]);
+                            CHECK(error[k] >= -1e-3 - tol);
+                            CHECK(error[k] <= 5e-2 + tol);
                             lowest = std::min(lowest, error[k]);
                             highest = std::max(highest, error[k]);
                         }

@@ -34,19 +34,16 @@ namespace shade::detail {
     return s * s;
 }
 
-/// The quadrature of ggx_cosine_weights: calls visit(c, weight) for each of the strata^2
-/// midpoints of the visible-normal sampler's square whose reflected direction lies above the
+/// The quadrature of the GGX reflection lobe's measure of c = v·h at the local view v (unit,
+/// v.z > 0) for roughnesses alpha_x, alpha_y (> 0): calls visit(c, weight) for each of the
+/// strata^2 midpoints of the visible-normal sampler's square (Heitz 2018, "Sampling the GGX
+/// Distribution of Visible Normals", JCGT 7(4)) whose reflected direction lies above the
 /// surface, weight = G2(v, l) / G1(v) / strata^2, so that sum weight F(c) is the lobe's
-/// albedo with the Fresnel F; alpha <= 0 visits (mu, 1) once. mu is clamped to [1e-4, 1].
+/// albedo with the Fresnel F.
 template <class Visit>
-void visit_ggx_cosine_measure(double mu, double alpha, std::size_t strata, Visit&& visit) {
-    mu = glm::clamp(mu, 1e-4, 1.0);
-    if (!(alpha > 0)) {
-        visit(mu, 1.0);
-        return;
-    }
-    const ggx<double> d(unchecked, alpha, alpha);
-    const vec3<double> v(std::sqrt((1 - mu) * (1 + mu)), 0, mu);
+void visit_ggx_cosine_measure(const vec3<double>& v, double alpha_x, double alpha_y, std::size_t strata,
+                              Visit&& visit) {
+    const ggx<double> d(unchecked, alpha_x, alpha_y);
     const double lambda_v = d.Lambda(v);
     const double cell = 1 / (double(strata) * double(strata));
     for (std::size_t i = 0; i < strata; ++i) {
@@ -61,6 +58,19 @@ void visit_ggx_cosine_measure(double mu, double alpha, std::size_t strata, Visit
             visit(c, cell * (1 + lambda_v) / (1 + lambda_v + d.Lambda(l)));
         }
     }
+}
+
+/// The quadrature of ggx_cosine_weights: visit_ggx_cosine_measure of the isotropic lobe at
+/// the view of cosine mu; alpha <= 0 visits (mu, 1) once. mu is clamped to [1e-4, 1].
+template <class Visit>
+void visit_ggx_cosine_measure(double mu, double alpha, std::size_t strata, Visit&& visit) {
+    mu = glm::clamp(mu, 1e-4, 1.0);
+    if (!(alpha > 0)) {
+        visit(mu, 1.0);
+        return;
+    }
+    visit_ggx_cosine_measure(vec3<double>(std::sqrt((1 - mu) * (1 + mu)), 0, mu), alpha, alpha, strata,
+                             static_cast<Visit&&>(visit));
 }
 
 /// The weights w_k(mu, alpha) of the table's definition, computed: for the single-scattering
@@ -190,5 +200,105 @@ template <std::floating_point T>
     }
     return out;
 }
+
+/// The mean of a Fresnel factor F(c), c = v·h, against an anisotropic GGX reflection lobe's
+/// measure of c (F = 1 at every node gives 1), less a reference mean, on a grid of views,
+/// computed at construction: F is given at the nodes c_k of cosine_weight_node and read
+/// linearly between them in x = c^(2/3), as fresnel_albedo_row reads it; the measure is
+/// integrated by visit_ggx_cosine_measure on strata^2 cells at each view node, and
+/// reference(mu, cos2_phi) (a callable returning rgb<T>) is subtracted there, so that a
+/// reference which carries the fine structure in mu (an isotropic lobe's sum, read from the
+/// 64 view nodes of the cosine weights) leaves a difference smooth enough for the coarse
+/// grid. The lobe is symmetric under mirroring either tangent axis, so the mean depends on
+/// the view's cosine mu and on cos^2(phi) of its azimuth phi from the tangent alone: nodes
+/// uniform in x = mu^(2/3) (mu clamped to [1e-4, 1], where the sampler needs v above the
+/// horizon) and in the azimuth coordinate of anisotropic_albedo_table.hpp, u = ln(1 + (q^2 -
+/// 1) s) / ln(q^2), s the squared cosine of the azimuth from the rougher axis and q the
+/// ratio of the roughnesses, at most anisotropy_max (the projected roughness on a log
+/// scale, which spreads the few degrees around the smoother axis where a strong anisotropy
+/// turns most of it); at() interpolates bilinearly. alpha_x, alpha_y > 0.
+template <std::floating_point T>
+class anisotropic_fresnel_mean_grid {
+public:
+    static constexpr std::size_t mu_nodes = 16;     ///< view cosine nodes, uniform in mu^(2/3)
+    static constexpr std::size_t azimuth_nodes = 7; ///< nodes uniform in u over [0, 1]
+    static constexpr std::size_t strata = 20;       ///< the quadrature's cells per side
+    /// The largest q of the azimuth coordinate: a stronger anisotropy reads u with q = 20
+    /// (as anisotropic_albedo_table.hpp's ratio_max), which keeps nodes away from the
+    /// smoother axis too (with q = 1e4, u = 5/6 would already be 78 degrees from the
+    /// rougher axis).
+    static constexpr double anisotropy_max = 20;
+
+    anisotropic_fresnel_mean_grid() = default;
+
+    template <class Reference>
+    anisotropic_fresnel_mean_grid(T alpha_x, T alpha_y, const std::array<rgb<T>, cosine_weight_nodes>& f_nodes,
+                                  const Reference& reference) {
+        constexpr std::size_t n = cosine_weight_nodes;
+        x_rougher_ = alpha_x > alpha_y;
+        const double q = x_rougher_ ? double(alpha_x) / double(alpha_y) : double(alpha_y) / double(alpha_x);
+        log_q2_ = T(2 * std::log(glm::min(q, anisotropy_max)));
+        for (std::size_t i = 0; i < mu_nodes; ++i) {
+            const double x = double(i) / double(mu_nodes - 1);
+            const double mu = glm::clamp(x * std::sqrt(x), 1e-4, 1.0);
+            const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
+            for (std::size_t j = 0; j < azimuth_nodes; ++j) {
+                // s at node j: the inverse of u, s = (q^(2 u) - 1) / (q^2 - 1).
+                const double u_j = double(j) / double(azimuth_nodes - 1);
+                const double s_j =
+                    log_q2_ > T(0) ? std::expm1(u_j * double(log_q2_)) / std::expm1(double(log_q2_)) : u_j;
+                const double cos2_phi = x_rougher_ ? s_j : 1 - s_j;
+                const vec3<double> v(sin_theta * std::sqrt(cos2_phi), sin_theta * std::sqrt(1 - cos2_phi), mu);
+                rgb<double> sum(0);
+                double mass = 0;
+                visit_ggx_cosine_measure(v, double(alpha_x), double(alpha_y), strata, [&](double c, double weight) {
+                    const double xc = glm::clamp(std::cbrt(c * c), 0.0, 1.0) * double(n - 1);
+                    const std::size_t k = glm::min(std::size_t(xc), n - 2);
+                    const double t = xc - double(k);
+                    sum += weight * ((1 - t) * rgb<double>(f_nodes[k]) + t * rgb<double>(f_nodes[k + 1]));
+                    mass += weight;
+                });
+                mean_[i * azimuth_nodes + j] =
+                    (mass > 0 ? rgb<T>(sum / mass) : rgb<T>(0)) - reference(T(mu), T(cos2_phi));
+                albedo_[i * azimuth_nodes + j] = T(mass);
+            }
+        }
+    }
+
+    /// The mean less the reference at view cosine mu and cos^2(phi) (each clamped to [0, 1];
+    /// NaN read as 0).
+    [[nodiscard]] rgb<T> at(T mu, T cos2_phi) const noexcept { return interpolate(mean_, mu, azimuth(cos2_phi)); }
+
+    /// The lobe's albedo with F = 1 (the quadrature's total weight), interpolated as at().
+    [[nodiscard]] T albedo(T mu, T cos2_phi) const noexcept { return interpolate(albedo_, mu, azimuth(cos2_phi)); }
+
+private:
+    // u of cos^2(phi) (clamped to [0, 1]; NaN read as 0).
+    [[nodiscard]] T azimuth(T cos2_phi) const noexcept {
+        const T c = cos2_phi > T(0) ? glm::min(cos2_phi, T(1)) : T(0);
+        const T s = x_rougher_ ? c : T(1) - c;
+        return log_q2_ > T(0) ? std::log1p(std::expm1(log_q2_) * s) / log_q2_ : s;
+    }
+
+    template <class V>
+    [[nodiscard]] static V interpolate(const std::array<V, mu_nodes * azimuth_nodes>& grid, T mu,
+                                       T u_azimuth) noexcept {
+        const T c = mu > T(0) ? glm::min(mu, T(1)) : T(0);
+        const T x = std::cbrt(c * c) * T(mu_nodes - 1);
+        const std::size_t i = glm::min(std::size_t(x), mu_nodes - 2);
+        const T u = x - T(i);
+        const T y = (u_azimuth > T(0) ? glm::min(u_azimuth, T(1)) : T(0)) * T(azimuth_nodes - 1);
+        const std::size_t j = glm::min(std::size_t(y), azimuth_nodes - 2);
+        const T t = y - T(j);
+        const V* row = grid.data() + i * azimuth_nodes + j;
+        return (T(1) - u) * ((T(1) - t) * row[0] + t * row[1]) +
+               u * ((T(1) - t) * row[azimuth_nodes] + t * row[azimuth_nodes + 1]);
+    }
+
+    std::array<rgb<T>, mu_nodes * azimuth_nodes> mean_{};
+    std::array<T, mu_nodes * azimuth_nodes> albedo_{};
+    bool x_rougher_ = true; // alpha_x > alpha_y
+    T log_q2_ = 1;          // ln(q^2)
+};
 
 } // namespace shade::detail
