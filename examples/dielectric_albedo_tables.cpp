@@ -596,7 +596,7 @@ reflection_view reflection_view_at(double x_coord, double u_coord, const reflect
     const double mu = std::min(std::max(d::reflection_anisotropic_mu(side, x_coord, mu_c), d::albedo_grid_mu_min), 1.0);
     const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
     const double phi_k = side == 1 ? d::reflection_anisotropic_kink(sin_theta, inv_eta_hat) : 0.0;
-    const double phi = d::reflection_anisotropic_phi(side, u_coord, phi_k);
+    const double phi = d::reflection_anisotropic_phi(side, u_coord, phi_k, at.alpha_x / at.alpha_y);
     return {{sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu}, phi};
 }
 
@@ -625,7 +625,7 @@ std::vector<tap> reflection_taps(const reflection_interface& at, const shade::ve
     const double phi = std::atan2(std::abs(v.y), std::abs(v.x));
     const double sin_theta = std::min(std::sqrt(v.x * v.x + v.y * v.y), 1.0);
     const double phi_k = cell.side == 1 ? d::reflection_anisotropic_kink(sin_theta, cell.inv_eta_hat) : 0.0;
-    const auto u = d::albedo_grid_locate(d::reflection_anisotropic_u(cell.side, phi, phi_k), rg::nu);
+    const auto u = d::albedo_grid_locate(d::reflection_anisotropic_u(cell.side, phi, phi_k, cell.ratio), rg::nu);
     const d::spline_taps<double> wx =
         d::reflection_anisotropic_x_taps(cell.side, d::reflection_anisotropic_x(cell.side, std::min(v.z, 1.0), cell.mu_c));
     std::vector<tap> out;
@@ -710,8 +710,9 @@ std::vector<reflection_check> reflection_checks() {
 
 // Random check points (count of them, seeded apart from the random test points of
 // compute_reflection): side, e, u and x uniform, those with mu >= 0.05 kept (as the fixed
-// ones); y and z uniform between the stored nodes' ends (y from its first node
-// above 0, z up to its last node below 1: beyond them the read leans on the unstored rows,
+// ones); y from half its first node above 0 (OpenPBR's roughness 0.1 is y = 0.1, 0.9 of
+// that node, where the spline along y reads the second node with a negative weight) and z
+// up to its last node below 1, uniform (nearer the unstored rows the read leans on them,
 // and a check there would raise the few stored nodes it reads without bound), z = 0
 // (anisotropy 1) for every fifth. They reach the places between the fixed check points, where
 // Catmull-Rom's negative weights can still leave the read below the truth.
@@ -723,8 +724,8 @@ std::vector<reflection_check> reflection_random_checks(std::size_t count) {
         const std::size_t side = p % 2;
         const double e = random.uniform<double>(), u = random.uniform<double>();
         const double x = random.uniform<double>();
-        const double y_first = 1.0 / double(rg::ny - 1), z_last = double(rg::ns - 2) / double(rg::ns - 1);
-        const double y = y_first + (1 - y_first) * random.uniform<double>();
+        const double y_low = 0.5 / double(rg::ny - 1), z_last = double(rg::ns - 2) / double(rg::ns - 1);
+        const double y = y_low + (1 - y_low) * random.uniform<double>();
         const double z = z_last * random.uniform<double>();
         const reflection_check c{x, u, y, p % 5 == 2 ? 0.0 : z, e, side};
         if (reflection_check_steep(c)) out.push_back(c);

@@ -265,7 +265,7 @@ constexpr double anisotropic_raise = 0.15;
 // The generated header states the range of (table - fresh estimate) at its random points
 // (mu >= 0.1, y 0.1 to 1: entering alpha_max 0.014 to sqrt 2, exiting alpha_rms 0.01 to 1;
 // alpha_min / alpha_max 0 to 1, eta_hat 1.05 to 3), per side; these enclose them.
-constexpr double anisotropic_low[2] = {-1e-4, -0.0022}, anisotropic_high[2] = {0.0245, 0.1055};
+constexpr double anisotropic_low[2] = {-5e-4, -0.0034}, anisotropic_high[2] = {0.0205, 0.1005};
 
 // The interface and view of a node of the correction (as the generator builds them: alpha_max
 // of the node's y and z, the smoother alpha z^2 alpha_max along t, at least 1e-4; the view at the node's x and u), and
@@ -283,7 +283,7 @@ anisotropic_node node_at(std::size_t side, std::size_t m, std::size_t k, std::si
         std::min(std::max(d::reflection_anisotropic_mu(side, double(i_x) / double(ax_nodes - 1), mu_c), d::albedo_grid_mu_min), 1.0);
     const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
     const double phi_k = side == 1 ? d::reflection_anisotropic_kink(sin_theta, 1 / eta_hat) : 0.0;
-    const double phi = d::reflection_anisotropic_phi(side, double(i_u) / double(au_nodes - 1), phi_k);
+    const double phi = d::reflection_anisotropic_phi(side, double(i_u) / double(au_nodes - 1), phi_k, alpha_min / alpha_max);
     const double projected = std::sqrt(alpha_min * alpha_min * std::cos(phi) * std::cos(phi) +
                                        alpha_max * alpha_max * std::sin(phi) * std::sin(phi));
     const double rms = std::sqrt(0.5 * (alpha_min * alpha_min + alpha_max * alpha_max));
@@ -317,7 +317,7 @@ int count_anisotropic_drifted(const Make& make) {
                                 ++drifted;
                             ++checked;
                         }
-    CHECK(checked == 2 * 3 * 3 * 2 * 3 * 3);
+    CHECK(checked == 2 * 3 * 3 * 2 * 4 * 3); // sides, e, z, y, u (1, 5, 9, 13), x
     return drifted;
 }
 
@@ -394,19 +394,21 @@ TEST_CASE("dielectric reflection albedo: the anisotropic grid's coordinates") {
             const double phi_k = d::reflection_anisotropic_kink(sin_theta, 1 / eta_hat);
             if (sin_theta > 1 / eta_hat) {
                 CHECK(sin_theta * std::cos(phi_k) == doctest::Approx(1 / eta_hat));
-                CHECK(d::reflection_anisotropic_u<double>(1, phi_k, phi_k) == doctest::Approx(0.5));
+                CHECK(d::reflection_anisotropic_u<double>(1, phi_k, phi_k, 0.5) == doctest::Approx(0.5));
             } else {
                 CHECK(phi_k == 0);
             }
             for (const std::size_t side : {std::size_t(0), std::size_t(1)}) {
-                double previous = -1;
-                for (int i = 0; i <= 90; ++i) {
-                    const double phi = i * shade::pi<double> / 180;
-                    const double u = d::reflection_anisotropic_u<double>(side, phi, phi_k);
-                    CHECK(u >= previous);
-                    previous = u;
-                    if (side == 0 || phi >= phi_k)
-                        CHECK(d::reflection_anisotropic_phi(side, u, phi_k) == doctest::Approx(phi).epsilon(1e-9));
+                for (const double ratio : {0.0, 1e-4, 0.04, 0.5, 0.999999}) {
+                    double previous = -1;
+                    for (int i = 0; i <= 90; ++i) {
+                        const double phi = i * shade::pi<double> / 180;
+                        const double u = d::reflection_anisotropic_u<double>(side, phi, phi_k, ratio);
+                        CHECK(u >= previous);
+                        previous = u;
+                        if (side == 0 || phi >= phi_k)
+                            CHECK(d::reflection_anisotropic_phi(side, u, phi_k, ratio) == doctest::Approx(phi).epsilon(1e-9));
+                    }
                 }
                 CHECK(d::reflection_anisotropic_x<double>(side, d::reflection_anisotropic_mu(side, 0.37, mu_c), mu_c) ==
                       doctest::Approx(0.37));
@@ -415,6 +417,26 @@ TEST_CASE("dielectric reflection albedo: the anisotropic grid's coordinates") {
             }
         }
     }
+}
+
+TEST_CASE("dielectric reflection albedo: the entering side's azimuth coordinate follows the projected roughness") {
+    // Side 0's u is defined by u^3 = (alpha_phi - alpha_min) / (alpha_max - alpha_min), alpha_phi
+    // = sqrt(alpha_min^2 cos^2 phi + alpha_max^2 sin^2 phi) (Heitz 2014, eq. 80), computed in
+    // the header in a form without cancellation; here straight from the definition. Its ends:
+    // 0 on the smoother axis and 1 on the rougher one at any ratio, and at ratio 0 u^3 = sin(phi).
+    for (const double ratio : {0.0, 1e-4, 0.04, 0.3, 0.9}) {
+        CHECK(d::reflection_anisotropic_u<double>(0, 0.0, 0.0, ratio) == 0);
+        CHECK(d::reflection_anisotropic_u<double>(0, shade::pi<double> / 2, 0.0, ratio) == doctest::Approx(1.0).epsilon(1e-12));
+        for (int i = 1; i < 90; ++i) {
+            const double phi = i * shade::pi<double> / 180, c = std::cos(phi), s = std::sin(phi);
+            const double projected = std::sqrt(ratio * ratio * c * c + s * s); // alpha_phi / alpha_max
+            const double expected = std::cbrt((projected - ratio) / (1 - ratio));
+            CHECK(d::reflection_anisotropic_u<double>(0, phi, 0.0, ratio) == doctest::Approx(expected).epsilon(1e-12));
+            if (ratio == 0) CHECK(std::pow(d::reflection_anisotropic_u<double>(0, phi, 0.0, ratio), 3) == doctest::Approx(s).epsilon(1e-12));
+        }
+    }
+    // A view at the pole (phi 0, both alphas 0 impossible here) reads u = 0 without NaN at ratio 0.
+    CHECK(d::reflection_anisotropic_u<float>(0, 0.0f, 0.0f, 0.0f) == 0.0f);
 }
 
 TEST_CASE("dielectric reflection albedo: the anisotropic grid's roughness coordinate") {

@@ -825,11 +825,10 @@ TEST_CASE_TEMPLATE("openpbr_surface: white furnace with anisotropic specular, co
     // band [0.99, 1.001] (each reading widened by 4 standard errors) over anisotropy 0.5, 0.9
     // and 1, roughness 0.1 to 1, mu 1 to 0.1 and four azimuths, for an anisotropic specular
     // over white diffuse, alone and under a smooth coat of higher index, and an anisotropic
-    // coat over white diffuse and over white metal (anisotropic glass: the next test). At
-    // anisotropy 1 the lower bound is the table's measured low end from outside, 0.9608
-    // (the noise-free test "the anisotropic reflection albedo's furnace error" below:
-    // roughness 1, mu 0.1, the view along the smoother axis, where this test's reading is
-    // 0.961 +- 0.007 and passed the issue's 0.99 only by its standard error).
+    // coat over white diffuse and over white metal (anisotropic glass: the next test). The
+    // table's furnace error alone, without sampling noise, is within the band from outside at
+    // every anisotropy here (the noise-free test "the anisotropic reflection albedo's furnace
+    // error" below: 0.9934 at its lowest, anisotropy 1, roughness 1, mu 0.1).
     const auto at = check_test::model_point<T>();
     double low = 2, high = 0;
     for (const T aniso : {T(0.5), T(0.9), T(1)}) {
@@ -860,8 +859,7 @@ TEST_CASE_TEMPLATE("openpbr_surface: white furnace with anisotropic specular, co
                         INFO("anisotropy ", double(aniso), " roughness ", double(r), " coat ", double(q.coat_weight),
                              " metal ", double(q.base_metalness), " glass ", double(q.transmission_weight), " mu ", mu,
                              " phi ", phi, ": ", reading.first, " +- ", reading.second);
-                        const double lower = aniso == T(1) ? 0.9608 : 0.99;
-                        CHECK(reading.first >= lower - 4 * reading.second);
+                        CHECK(reading.first >= 0.99 - 4 * reading.second);
                         CHECK(reading.first <= 1.001 + 4 * reading.second);
                         low = std::min(low, reading.first);
                         high = std::max(high, reading.first);
@@ -931,27 +929,26 @@ TEST_CASE("openpbr_surface: the anisotropic reflection albedo's furnace error, w
     // openpbr::specular_ior_ratio, reads n_c / n_b > 1 from outside). The issue's band is
     // [0.99, 1.001]; each reading is held to its band's bounds widened by 4 standard errors of
     // E_true: the issue's where met, else the measured value (docs/properties.md). From
-    // outside the whole band holds at anisotropy 0.5 and 0.9 (measured 0.9955 to 0.9998); at
-    // anisotropy 1 the upper bound holds (0.9997) and the lowest reading is 0.9608 (roughness
-    // 1, mu 0.1, the view along the smoother axis: the table reads high across the grazing x
-    // cells near z = 0). From inside the upper bound holds but at eta_s 1 / 1.5, anisotropy 1,
-    // roughness 0.1, mu 0.5, the view along the smoother axis (1.0012 here, 1.0013 with 256^2
-    // samples: y between the smooth row and the first node); the low ends are the measured
-    // ones (grazing views of 1-D rough surfaces, where the table reads high, and the
-    // envelope's two standard errors of its check estimates).
+    // outside the whole band holds at anisotropy 0.5, 0.9 and 1 (measured 0.9934 to 0.9997;
+    // the lowest at anisotropy 1, roughness 1, mu 0.1, the view along the smoother axis). From
+    // inside the upper bound holds but at eta_s 1 / 1.5, anisotropy 1, roughness 0.1, mu 0.5,
+    // the view along the smoother axis (1.0009 here, 1.00104 +- 4e-5 with 256^2 samples: y
+    // between the smooth row and the first node); the low ends are the measured ones
+    // (grazing views of 1-D rough surfaces, where the table reads high, and the envelope's two
+    // standard errors of its check estimates).
     struct band {
         double eta_s;
         double anisotropy;
         double low, high;
     };
-    const band bands[] = {{1.5, 0.5, 0.99, 1.001},           {1.5, 0.9, 0.99, 1.001},           {1.5, 1.0, 0.9608, 1.001},
-                          {1.6, 0.5, 0.99, 1.001},           {1.6, 0.9, 0.99, 1.001},           {1.6, 1.0, 0.9610, 1.001},
-                          {1 / 1.0666666666666667, 0.5, 0.9797, 1.001}, {1 / 1.0666666666666667, 0.9, 0.9549, 1.001},
-                          {1 / 1.0666666666666667, 1.0, 0.8618, 1.001},  {1 / 1.5, 0.5, 0.9695, 1.001},
-                          {1 / 1.5, 0.9, 0.9619, 1.001},     {1 / 1.5, 1.0, 0.9836, 1.0013},    {1 / 3.0, 0.5, 0.9706, 1.001},
-                          {1 / 3.0, 0.9, 0.9572, 1.001},     {1 / 3.0, 1.0, 0.9355, 1.001},
+    const band bands[] = {{1.5, 0.5, 0.99, 1.001},           {1.5, 0.9, 0.99, 1.001},           {1.5, 1.0, 0.99, 1.001},
+                          {1.6, 0.5, 0.99, 1.001},           {1.6, 0.9, 0.99, 1.001},           {1.6, 1.0, 0.99, 1.001},
+                          {1 / 1.0666666666666667, 0.5, 0.9797, 1.001}, {1 / 1.0666666666666667, 0.9, 0.9653, 1.001},
+                          {1 / 1.0666666666666667, 1.0, 0.9038, 1.001},  {1 / 1.5, 0.5, 0.9695, 1.001},
+                          {1 / 1.5, 0.9, 0.9619, 1.001},     {1 / 1.5, 1.0, 0.9835, 1.0011},    {1 / 3.0, 0.5, 0.9706, 1.001},
+                          {1 / 3.0, 0.9, 0.9586, 1.001},     {1 / 3.0, 1.0, 0.9355, 1.001},
                           {1 / 1.25, 0.5, 0.9667, 1.001},    {1 / 1.25, 1.0, 0.9710, 1.001},
-                          {1 / 2.5, 0.5, 0.9665, 1.001},     {1 / 2.5, 1.0, 0.9156, 1.001}};
+                          {1 / 2.5, 0.5, 0.9665, 1.001},     {1 / 2.5, 1.0, 0.9200, 1.001}};
     for (const band& b : bands) {
         double low = 2, high = 0;
         for (const double r : {0.1, 0.2, 0.3, 0.5, 0.7, 0.95, 1.0}) {

@@ -17,9 +17,10 @@
 //                                       and 1/2 + sqrt((mu - mu_c) / (1 - mu_c)) / 2 above, so
 //                                       that mu_c is a node
 //     u                                 w's azimuth phi in [0, pi/2] from the smoother axis:
-//                                       side 0 (entering, eta_s > 1) 2 phi / pi = g(u),
-//                                       g(u) = u (1 + u) / 2, denser near the smoother axis;
-//                                       side 1 (exiting, eta_s < 1) the same above the kink
+//                                       side 0 (entering, eta_s > 1) u^3 = (alpha_phi -
+//                                       alpha_min) / (alpha_max - alpha_min), alpha_phi the
+//                                       roughness projected on phi (below); side 1 (exiting,
+//                                       eta_s < 1) g(t), g(t) = t (1 + t) / 2, above the kink
 //                                       phi_k, which is on u = 1/2 (below)
 //     y                                 the roughness: side 0 y = sqrt(alpha_max / sqrt 2),
 //                                       alpha_max = max(alpha_x, alpha_y) up to sqrt 2, the
@@ -33,6 +34,20 @@
 //                                       the smaller alpha change fastest
 //     e = log(eta_hat - 1) on [log 0.05, log 2], eta_hat = max(eta_s, 1 / eta_s) in [1.05, 3]
 //     the side
+//
+// Entering, Delta_R is measured from the isotropic table at alpha_phi = sqrt(alpha_min^2
+// cos^2 phi + alpha_max^2 sin^2 phi), which near the smoother axis of a nearly 1-D rough
+// surface falls from alpha_min to alpha_max within a few degrees: R_ss,iso at grazing views
+// changes steeply there while R_ss itself does not, and so does Delta_R. The side-0 azimuth
+// coordinate follows alpha_phi instead of phi: u^3 is alpha_phi's fraction of the way from
+// alpha_min to alpha_max, so nodes crowd where alpha_phi turns (phi ~ alpha_min / alpha_max)
+// and are a cube-root step apart in alpha_phi beyond, as the roughness axis is in alpha
+// (sqrt). In terms of s = sin(phi) and r = alpha_min / alpha_max (alpha_phi / alpha_max =
+// sqrt(r^2 + (1 - r^2) s^2)), without cancellation as r nears 1,
+//
+//     u^3 = (1 + r) s^2 / (sqrt(r^2 + (1 - r^2) s^2) + r),    s^2 = u^3 (2 r + (1 - r) u^3) / (1 + r);
+//
+// r = 0 gives u^3 = s, r = 1 u^3 = s^2. Both even in phi about either axis, as Delta_R is.
 //
 // From the denser side (eta_s < 1) a surface that is smooth along one axis reflects totally
 // wherever the view's component along that axis, sin(theta) cos(phi), reaches eta_s: that
@@ -72,7 +87,7 @@ namespace shade::detail {
 /// 1/2 is a node).
 inline constexpr std::size_t reflection_anisotropic_mu_nodes = 17;
 /// Nodes along u, the azimuth coordinate (odd: u = 1/2 is a node).
-inline constexpr std::size_t reflection_anisotropic_azimuth_nodes = 11;
+inline constexpr std::size_t reflection_anisotropic_azimuth_nodes = 15;
 /// Nodes along y, the roughness coordinate (reflection_anisotropic_y; node 0, a smooth
 /// interface, is not stored).
 inline constexpr std::size_t reflection_anisotropic_roughness_nodes = 10;
@@ -138,10 +153,9 @@ template <std::floating_point T>
     return taps;
 }
 
-/// The node spacing g(t) = t (1 + t) / 2 of the azimuth coordinate on [0, 1] (half as wide
-/// at 0 as uniform, half again as wide at 1), and its inverse: where the azimuth starts (the
-/// smoother axis on the entering side, the kink on the exiting side) Delta_R changes
-/// fastest (on the exiting side as the square root of the distance past the kink).
+/// The node spacing g(t) = t (1 + t) / 2 of the exiting side's azimuth coordinate above the
+/// kink on [0, 1] (half as wide at 0 as uniform, half again as wide at 1), and its inverse:
+/// past the kink Delta_R changes fastest (as the square root of the distance past it).
 template <std::floating_point T>
 [[nodiscard]] constexpr T reflection_anisotropic_spacing(T t) noexcept {
     return T(0.5) * t * (T(1) + t);
@@ -152,22 +166,30 @@ template <std::floating_point T>
 }
 
 /// The azimuth coordinate u in [0, 1] of the azimuth phi in [0, pi/2] from the smoother axis
-/// on side `side` (phi_k: reflection_anisotropic_kink of the view; side 1 only): side 0
-/// g(u) = 2 phi / pi; side 1 u = phi / (2 phi_k) below the kink and 1/2 + t / 2 above it,
-/// g(t) = (phi - phi_k) / (pi/2 - phi_k).
+/// on side `side` (phi_k: reflection_anisotropic_kink of the view, side 1 only; ratio:
+/// alpha_min / alpha_max in [0, 1], side 0 only): side 0 u^3 = (alpha_phi - alpha_min) /
+/// (alpha_max - alpha_min), alpha_phi the roughness projected on phi; side 1 u = phi / (2
+/// phi_k) below the kink and 1/2 + t / 2 above it, g(t) = (phi - phi_k) / (pi/2 - phi_k).
 template <std::floating_point T>
-[[nodiscard]] inline T reflection_anisotropic_u(std::size_t side, T phi, T phi_k) noexcept {
+[[nodiscard]] inline T reflection_anisotropic_u(std::size_t side, T phi, T phi_k, T ratio) noexcept {
     constexpr T half_pi = T(1.5707963267948966);
-    if (side == 0) return reflection_anisotropic_spacing_inverse(glm::clamp(phi / half_pi, T(0), T(1)));
+    if (side == 0) {
+        const T s = std::sin(glm::clamp(phi, T(0), half_pi)), s2 = s * s, r = glm::clamp(ratio, T(0), T(1));
+        const T below = std::sqrt(r * r + (T(1) - r * r) * s2) + r; // 0 only at r = s = 0
+        return below > T(0) ? glm::min(std::cbrt((T(1) + r) * s2 / below), T(1)) : T(0);
+    }
     if (phi < phi_k) return T(0.5) * phi / phi_k;
     return T(0.5) + T(0.5) * reflection_anisotropic_spacing_inverse(glm::clamp((phi - phi_k) / (half_pi - phi_k), T(0), T(1)));
 }
 
 /// The azimuth phi of the coordinate u on side `side` (the inverse of
 /// reflection_anisotropic_u; on side 1 without a kink, u <= 1/2 reads phi = 0).
-[[nodiscard]] inline double reflection_anisotropic_phi(std::size_t side, double u, double phi_k) noexcept {
+[[nodiscard]] inline double reflection_anisotropic_phi(std::size_t side, double u, double phi_k, double ratio) noexcept {
     constexpr double half_pi = 1.5707963267948966;
-    if (side == 0) return reflection_anisotropic_spacing(u) * half_pi;
+    if (side == 0) {
+        const double q = u * u * u, r = glm::clamp(ratio, 0.0, 1.0);
+        return std::asin(std::sqrt(glm::clamp(q * (2 * r + (1 - r) * q) / (1 + r), 0.0, 1.0)));
+    }
     if (u <= 0.5) return 2 * u * phi_k;
     return phi_k + reflection_anisotropic_spacing(2 * u - 1) * (half_pi - phi_k);
 }
@@ -198,6 +220,7 @@ struct reflection_anisotropic_cell {
     std::size_t side = 0; ///< 0 entering (eta_s > 1), 1 exiting
     T inv_eta_hat = 1;    ///< 1 / eta_hat, eta_hat clamped to the e axis
     T mu_c = 0;           ///< sqrt(1 - 1 / eta_hat^2), the critical cosine of side 1
+    T ratio = 0;          ///< alpha_min / alpha_max, for side 0's azimuth coordinate
     spline_taps<T> y{};   ///< along the roughness coordinate y
     spline_taps<T> s{};   ///< along sqrt(alpha_min / alpha_max)
     spline_taps<T> e{};   ///< along log(eta_hat - 1)
@@ -210,13 +233,14 @@ template <std::floating_point T>
     reflection_anisotropic_cell<T> c;
     c.swapped = alpha_x > alpha_y;
     const T hi = glm::max(alpha_x, alpha_y), lo = glm::min(alpha_x, alpha_y);
+    c.ratio = lo / hi;
     c.side = eta_s > T(1) ? 0 : 1;
     const T eta_hat = glm::clamp(eta_s > T(1) ? eta_s : T(1) / eta_s, T(dielectric_albedo_eta_min),
                                  T(dielectric_albedo_eta_max));
     c.inv_eta_hat = T(1) / eta_hat;
     c.mu_c = std::sqrt((T(1) - c.inv_eta_hat) * (T(1) + c.inv_eta_hat));
     const auto y = albedo_grid_locate(reflection_anisotropic_y(c.side, lo, hi), reflection_anisotropic_roughness_nodes);
-    const auto s = albedo_grid_locate(std::sqrt(lo / hi), reflection_anisotropic_ratio_nodes);
+    const auto s = albedo_grid_locate(std::sqrt(c.ratio), reflection_anisotropic_ratio_nodes);
     const auto e = albedo_grid_locate(dielectric_albedo_eta_coordinate(eta_hat), reflection_anisotropic_eta_nodes);
     c.y = spline_taps<T>(y.i, y.t, reflection_anisotropic_roughness_nodes);
     c.s = spline_taps<T>(s.i, s.t, reflection_anisotropic_ratio_nodes);
@@ -237,7 +261,7 @@ template <std::floating_point T>
     const T phi = std::atan2(std::abs(across), std::abs(along));
     const T sin_theta = std::sqrt(along * along + across * across);
     const T phi_k = cell.side == 1 ? reflection_anisotropic_kink(glm::min(sin_theta, T(1)), cell.inv_eta_hat) : T(0);
-    const auto u = albedo_grid_locate(reflection_anisotropic_u(cell.side, phi, phi_k), nu);
+    const auto u = albedo_grid_locate(reflection_anisotropic_u(cell.side, phi, phi_k, cell.ratio), nu);
     const spline_taps<T> wx =
         reflection_anisotropic_x_taps(cell.side, reflection_anisotropic_x(cell.side, glm::clamp(std::abs(mu), T(0), T(1)), cell.mu_c));
     T sum = 0;
