@@ -1,5 +1,6 @@
 // The committed rough-dielectric albedo tables (shade/bsdf/detail/dielectric_albedo_data.hpp
-// and beckmann_dielectric_albedo_data.hpp, written by examples/dielectric_albedo_tables.cpp) against a coarse regeneration with
+// and beckmann_dielectric_albedo_data.hpp, and their continuations above eta_hat 3,
+// *_beyond_data.hpp, written by examples/dielectric_albedo_tables.cpp) against a coarse regeneration with
 // shade::rough_dielectric's own sampler, so they cannot drift from the model; their E_avg
 // against the rows they average; the grid and interpolation of
 // shade/bsdf/dielectric_albedo_table.hpp.
@@ -14,7 +15,9 @@
 
 #include <shade/brdf/microfacet/beckmann.hpp>
 #include <shade/brdf/microfacet/ggx.hpp>
+#include <shade/bsdf/detail/beckmann_dielectric_albedo_beyond_data.hpp>
 #include <shade/bsdf/detail/beckmann_dielectric_albedo_data.hpp>
+#include <shade/bsdf/detail/dielectric_albedo_beyond_data.hpp>
 #include <shade/bsdf/detail/dielectric_albedo_data.hpp>
 #include <shade/bsdf/dielectric_albedo_table.hpp>
 #include <shade/bsdf/rough_dielectric.hpp>
@@ -45,7 +48,7 @@ int count_drifted(const float* committed, const d::dielectric_albedo_grid& g, co
         for (const std::size_t k : {std::size_t(0), std::size_t(5), g.eta_nodes - 1})
             for (std::size_t j = 0; j < g.alpha_nodes; j = j + 5 < g.alpha_nodes || j == g.alpha_nodes - 1 ? j + 5 : g.alpha_nodes - 1) {
                 const double alpha = d::albedo_grid_alpha(j, g.alpha_nodes);
-                const double eta_hat = d::dielectric_albedo_eta(k, g.eta_nodes);
+                const double eta_hat = d::dielectric_albedo_eta(g, k);
                 const auto model = make(alpha, eta_of_side(side, eta_hat));
                 for (std::size_t i = 0; i < g.mu_nodes; i += 4) {
                     const double mu = std::max(
@@ -76,6 +79,23 @@ const auto make_beckmann = [](double alpha, double eta_s) {
 
 TEST_CASE("dielectric albedo tables: the committed GGX table agrees with a coarse regeneration by the model's sampler") {
     CHECK(count_drifted(d::ggx_rough_dielectric_albedo, grid, make_ggx) == 0);
+}
+
+TEST_CASE("dielectric albedo tables: the continuations above eta_hat 3 agree with a coarse regeneration") {
+    // Point values (no envelope), GGX and Beckmann, on their grids (eta_hat 3 to 1000).
+    CHECK(count_drifted(d::ggx_rough_dielectric_albedo_beyond, d::dielectric_albedo_beyond_grid, make_ggx) == 0);
+    CHECK(count_drifted(d::beckmann_rough_dielectric_albedo_beyond, d::dielectric_beckmann_albedo_beyond_grid,
+                        make_beckmann) == 0);
+    CHECK(std::size(d::ggx_rough_dielectric_albedo_beyond) == d::dielectric_albedo_beyond_grid.size());
+    CHECK(std::size(d::beckmann_rough_dielectric_albedo_beyond) == d::dielectric_beckmann_albedo_beyond_grid.size());
+    // Where the continuations meet the main tables (eta_hat 3), the two estimates of the
+    // same nodes agree within their noise.
+    for (std::size_t side = 0; side < 2; ++side)
+        for (std::size_t j = 0; j < grid.alpha_nodes; ++j)
+            for (std::size_t i = 0; i < grid.mu_nodes; ++i)
+                CHECK(std::abs(double(d::ggx_rough_dielectric_albedo_beyond[d::dielectric_albedo_beyond_grid.row(side, 0, j) + i]) -
+                               double(d::ggx_rough_dielectric_albedo[grid.row(side, grid.eta_nodes - 1, j) + i])) <=
+                      5 * 2 * committed_standard_error);
 }
 
 TEST_CASE("dielectric albedo tables: the committed Beckmann table agrees with a coarse regeneration by the model's sampler") {

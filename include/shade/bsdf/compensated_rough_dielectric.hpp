@@ -17,7 +17,9 @@
 #include <shade/brdf/microfacet/beckmann.hpp>
 #include <shade/brdf/microfacet/ggx.hpp>
 #include <shade/bsdf/bsdf.hpp>
+#include <shade/bsdf/detail/beckmann_dielectric_albedo_beyond_data.hpp>
 #include <shade/bsdf/detail/beckmann_dielectric_albedo_data.hpp>
+#include <shade/bsdf/detail/dielectric_albedo_beyond_data.hpp>
 #include <shade/bsdf/detail/dielectric_albedo_data.hpp>
 #include <shade/bsdf/detail/dielectric_albedo_row.hpp>
 #include <shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp>
@@ -42,7 +44,8 @@ inline constexpr double dielectric_compensation_min_loss = 1e-6;
 
 /// The albedo tables of the compensated rough dielectric over a distribution type, and its
 /// two roughnesses; defined for ggx and beckmann (Beckmann's m read as alpha, as its
-/// generator does). `anisotropic` says whether the anisotropic correction of
+/// generator does): e on grid for eta_hat up to 3, e_beyond on beyond_grid above (the
+/// continuation, dielectric_albedo_beyond_grid). `anisotropic` says whether the anisotropic correction of
 /// shade/bsdf/dielectric_anisotropic_albedo_table.hpp is tabulated for it.
 template <class Distribution>
 struct dielectric_albedo_tables_of;
@@ -51,6 +54,8 @@ template <std::floating_point T>
 struct dielectric_albedo_tables_of<ggx<T>> {
     static constexpr const float* e = ggx_rough_dielectric_albedo;
     static constexpr dielectric_albedo_grid grid{}; ///< the grid of e
+    static constexpr const float* e_beyond = ggx_rough_dielectric_albedo_beyond;
+    static constexpr dielectric_albedo_grid beyond_grid = dielectric_albedo_beyond_grid; ///< the grid of e_beyond
     static constexpr bool anisotropic = true;
     static constexpr const float* delta = ggx_dielectric_anisotropic_delta;
     static constexpr const float* delta_average = ggx_dielectric_anisotropic_delta_average;
@@ -62,6 +67,8 @@ template <std::floating_point T>
 struct dielectric_albedo_tables_of<beckmann<T>> {
     static constexpr const float* e = beckmann_rough_dielectric_albedo;
     static constexpr dielectric_albedo_grid grid = dielectric_beckmann_albedo_grid; ///< the grid of e
+    static constexpr const float* e_beyond = beckmann_rough_dielectric_albedo_beyond;
+    static constexpr dielectric_albedo_grid beyond_grid = dielectric_beckmann_albedo_beyond_grid; ///< the grid of e_beyond
     static constexpr bool anisotropic = false;
     static constexpr const float* delta = nullptr;
     static constexpr const float* delta_average = nullptr;
@@ -116,9 +123,11 @@ struct dielectric_albedo_tables_of<beckmann<T>> {
 /// holds point values; the Beckmann table an upper envelope of E_s (it errs high by design,
 /// shade/bsdf/dielectric_albedo_table.hpp), so that R + T = 1 + E_true - E_table errs below 1
 /// rather than above (measured ranges in docs/properties.md).
-/// The tables cover alpha in [1e-4, 1] and eta_hat = max(eta, 1 / eta) in [1.05, 3];
-/// outside that range the nearest end is read, so the compensation is approximate there
-/// (and partial for alpha > 1).
+/// The tables cover alpha in [1e-4, 1] and eta_hat = max(eta, 1 / eta) in [1.05, 3], and
+/// their continuations (point values, dielectric_albedo_beyond_data.hpp, read
+/// detail::dielectric_albedo_beyond_lift high) eta_hat from 3 to 1000; outside that range
+/// the nearest end is read, so the compensation is approximate there (and partial for
+/// alpha > 1).
 ///
 /// Anisotropic GGX (alpha_x != alpha_y): E_s(w) depends on the azimuth of w as well as on
 /// mu, and no isotropic roughness reproduces it at every azimuth, so E_s(w) is the
@@ -346,6 +355,7 @@ private:
         detail::dielectric_albedo_cell<T> cell{}; ///< where E_s is read
         detail::dielectric_albedo_row<T, detail::dielectric_albedo_mu_nodes> row{}; ///< E_s at the cell, along mu
         T eta_s = 1;       ///< n_far / n_s
+        T lift = 0;        ///< added to the row's E_s (detail::dielectric_albedo_beyond_lift above eta_hat 3)
         T e_avg = 1;       ///< E_s,avg
         T tau = 0;         ///< share of the lost energy transmitted from s
         T reflect = 0;     ///< (1 - tau_s) / (pi (1 - E_s,avg)), 1/sr
@@ -353,8 +363,11 @@ private:
     };
 
     void prepare() noexcept {
-        constexpr const detail::dielectric_albedo_grid& grid = tables::grid;
         const T eta = single_.eta();
+        // Above the main tables' eta_hat 3, their continuations.
+        const bool beyond = glm::max(eta, T(1) / eta) > T(tables::grid.eta_max);
+        const detail::dielectric_albedo_grid& grid = beyond ? tables::beyond_grid : tables::grid;
+        const float* table = beyond ? tables::e_beyond : tables::e;
         const T alpha_x = tables::alpha_x(single_.distribution()), alpha_y = tables::alpha_y(single_.distribution());
         anisotropic_ = tables::anisotropic && alpha_x != alpha_y;
         // The isotropic table's roughness: the correction's base roughness (the root mean
@@ -366,13 +379,15 @@ private:
         for (std::size_t s = 0; s < 2; ++s) {
             side_[s].eta_s = s == 0 ? eta : T(1) / eta;
             side_[s].cell = detail::dielectric_albedo_locate(grid, alpha, side_[s].eta_s);
-            side_[s].row = detail::dielectric_albedo_row<T, detail::dielectric_albedo_mu_nodes>(tables::e, grid,
-                                                                                                side_[s].cell);
+            side_[s].row = detail::dielectric_albedo_row<T, detail::dielectric_albedo_mu_nodes>(table, grid, side_[s].cell);
+            side_[s].lift = beyond ? T(detail::dielectric_albedo_beyond_lift) : T(0);
             // E_s,avg as detail::dielectric_albedo_average integrates it, read through the row.
             const auto& row = side_[s].row;
+            const T lift = side_[s].lift;
             side_[s].e_avg = glm::clamp(
                 T(gauss_legendre_integral(
-                    [&row](double mu) { return 2 * mu * double(glm::clamp(row.at(T(mu)), T(0), T(1))); }, 0, 1, 8)),
+                    [&row, lift](double mu) { return 2 * mu * double(glm::clamp(row.at(T(mu)) + lift, T(0), T(1))); }, 0,
+                    1, 8)),
                 T(0), T(1));
             // The average of the corrected E_s(w): the isotropic average plus Delta_s,avg.
             if constexpr (tables::anisotropic)
@@ -435,7 +450,7 @@ private:
     /// needs 1 - E_s >= 0).
     [[nodiscard]] T albedo(std::size_t s, const vec3<T>& w) const noexcept {
         const T mu = std::abs(w.z);
-        T e = side_[s].row.at(mu);
+        T e = side_[s].row.at(mu) + side_[s].lift;
         if constexpr (tables::anisotropic)
             if (anisotropic_) e += detail::dielectric_anisotropic_delta(tables::delta, anisotropic_cell_, side_[s].cell.side, w.x, w.y, mu);
         return glm::clamp(e, T(0), T(1));

@@ -9,6 +9,12 @@
 //
 //   examples/dielectric_albedo_tables --beckmann --strata 256 --envelope 64 --envelope-margin 0.0003 --envelope-view-steps 4 --out include/shade/bsdf/detail/beckmann_dielectric_albedo_data.hpp
 //
+// and their continuations above eta_hat 3 (dielectric_albedo_beyond_grid) into
+// dielectric_albedo_beyond_data.hpp and beckmann_dielectric_albedo_beyond_data.hpp by
+//
+//   examples/dielectric_albedo_tables --beyond --strata 256 --out include/shade/bsdf/detail/dielectric_albedo_beyond_data.hpp
+//   examples/dielectric_albedo_tables --beyond --beckmann --strata 256 --out include/shade/bsdf/detail/beckmann_dielectric_albedo_beyond_data.hpp
+//
 // The GGX table holds point values (each node an estimate of E there). The Beckmann table
 // holds an upper envelope of E: its nodes raised until the interpolated table is at least a
 // fresh estimate of E plus 3e-4 at the middle of every cell edge, face and interior, and at
@@ -43,7 +49,8 @@
 //     nodes crowd there.
 // E is interpolated by Catmull-Rom splines along the view coordinate and y and linearly
 // along x. Lookups clamp alpha to [1e-4, 1] and eta_hat to [1.05, 3]: outside,
-// the nearest end is read. The accuracy of each table is stated in the generated header.
+// the nearest end is read; above 3 compensated_rough_dielectric reads a continuation table
+// instead (dielectric_albedo_beyond_grid). The accuracy of each table is stated in the generated header.
 // Layout: index ((side * eta_nodes + k) * alpha_nodes + j) * mu_nodes + i; side 0 entering.
 //
 // The same code reads the reflection table of shade/bsdf/dielectric_reflection_albedo.hpp on
@@ -125,6 +132,32 @@ inline constexpr dielectric_albedo_grid dielectric_reflection_albedo_grid{
 inline constexpr dielectric_albedo_grid dielectric_beckmann_albedo_grid{
     dielectric_albedo_mu_nodes, 21, dielectric_albedo_eta_nodes, dielectric_albedo_eta_min,
     dielectric_albedo_eta_max, dielectric_albedo_x_min, dielectric_albedo_x_max, false, false};
+
+/// The grids of the dense-index continuations of the two total-albedo tables
+/// (dielectric_albedo_beyond_data.hpp), which compensated_rough_dielectric reads where
+/// eta_hat lies above 3, the main tables' end (specular_ior above 3 in OpenPBR): the same
+/// view and roughness nodes as the table continued (16 or 21 along sqrt(alpha)), and 12
+/// nodes along x = log(eta_hat - 1) from log 2 to log 999 (eta_hat from 3 to 1000) with a
+/// Catmull-Rom spline along x. E keeps changing up there (at normal incidence and alpha 1
+/// from 0.73 at eta_hat 3 to 0.49 at 10, toward the F = 1 lobe's 0.31), so reading the
+/// main table's end instead errs by tenths. Above 1000 the end is read (F0 > 0.996).
+inline constexpr dielectric_albedo_grid dielectric_albedo_beyond_grid{
+    dielectric_albedo_mu_nodes, dielectric_albedo_alpha_nodes, 12, 3.0, 1000.0,
+    0.6931471805599453, // log(2)
+    6.906754778648554,  // log(999)
+    true, false};
+
+/// The Beckmann table's continuation (see dielectric_albedo_beyond_grid): 21 nodes along
+/// sqrt(alpha), as dielectric_beckmann_albedo_grid.
+inline constexpr dielectric_albedo_grid dielectric_beckmann_albedo_beyond_grid{
+    dielectric_albedo_mu_nodes, 21, 12, 3.0, 1000.0, 0.6931471805599453, 6.906754778648554, true, false};
+
+/// What compensated_rough_dielectric adds to E read from the continuations: they hold point
+/// values, whose interpolation errs either way by up to about 2e-3 where mu >= 0.05 (their
+/// headers state it), and the compensation's R + T is 1 + E_true - E_read, so reading E this
+/// much high keeps R + T at or below 1 + 1e-3 there, at the price of reading up to 2e-3 low
+/// where the interpolation is exact.
+inline constexpr double dielectric_albedo_beyond_lift = 2e-3;
 
 /// eta_hat at node k of grid g: 1 + exp(x_k), x uniform from g.x_min to g.x_max.
 [[nodiscard]] inline double dielectric_albedo_eta(const dielectric_albedo_grid& g, std::size_t k) noexcept {
