@@ -104,7 +104,8 @@ public:
                                            });
         if (made.first_invalid < boxes.size())
             detail::require_finite_box("boxes", made.first_invalid, boxes[made.first_invalid]);
-        tree_ = detail::bvh_builder(8, 1).build(made.refs, detail::bvh_node_width(width == bvh_width::four ? 4 : 8), exec);
+        tree_ = detail::bvh_builder(8, 1).build(made.refs, detail::bvh_node_width(width == bvh_width::four ? 4 : 8), exec, made.box,
+                                                made.centroids);
     }
 
     /// The nearest hit of r: test(index, ray) is called for primitives whose boxes r

@@ -194,14 +194,15 @@ private:
         }
         constexpr auto leaves = static_cast<std::uint32_t>(leaf_width);
         tree_ = detail::bvh_builder(batched ? 8 : 4, leaves)
-                    .build(made.refs, detail::bvh_node_width(width == bvh_width::four ? 4 : 8), run);
+                    .build(made.refs, detail::bvh_node_width(width == bvh_width::four ? 4 : 8), run, made.box,
+                           made.centroids);
         size_ = triangles.size();
         ids_ = std::move(tree_.order);
         if constexpr (batched) {
             pack_batches(triangles, run);
         } else {
             triangles_.resize(ids_.size());
-            detail::bvh_for_ranges(run, ids_.size(), detail::bvh_builder::default_task_size, [&](std::size_t b, std::size_t e) {
+            detail::bvh_for_ranges(run, ids_.size(), detail::bvh_range_size(ids_.size(), 256, detail::bvh_builder::default_task_size), [&](std::size_t b, std::size_t e) {
                 for (std::size_t i = b; i < e; ++i) triangles_[i] = triangles[ids_[i]];
             });
         }
@@ -275,7 +276,7 @@ private:
             }
         });
         leaves_.resize(blocks);
-        detail::bvh_for_ranges(run, leaf.size(), 512, [&](std::size_t begin, std::size_t end) {
+        detail::bvh_for_ranges(run, leaf.size(), detail::bvh_range_size(leaf.size(), 32, 512), [&](std::size_t begin, std::size_t end) {
             for (std::size_t l = begin; l < end; ++l)
                 for (std::uint32_t i = leaf[l][0], k = leaf[l][2]; i < leaf[l][0] + leaf[l][1]; i += leaf_width, ++k) {
                     const std::uint32_t left = leaf[l][0] + leaf[l][1] - i;

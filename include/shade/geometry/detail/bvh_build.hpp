@@ -174,6 +174,20 @@ struct bvh_tree {
     }
 };
 
+/// The size of the ranges that a parallel pass over n items is cut into: n / 8, so that a
+/// small build is shared out too, but at least `least` items (each range has its cost to
+/// hand out) and at most `most`.
+[[nodiscard]] constexpr std::size_t bvh_range_size(std::size_t n, std::size_t least, std::size_t most) noexcept {
+    const std::size_t t = n / 8 > least ? n / 8 : least;
+    return t < most ? t : most;
+}
+
+/// Runs body(begin, end) through run on the ranges of `size` indices that [0, n) splits into.
+template <class F>
+void bvh_for_ranges(executor_ref run, std::size_t n, std::size_t size, const F& body) {
+    run((n + size - 1) / size, [&](std::size_t c) { body(c * size, n - c * size > size ? c * size + size : n); });
+}
+
 /// Binned SAH builder (Wald 2007, "On fast Construction of SAH-based Bounding Volume
 /// Hierarchies", IEEE Symposium on Interactive Ray Tracing, §3-4): at each node the
 /// primitives' centroids are sorted into equal bins along each axis of their bounds
@@ -191,9 +205,12 @@ struct bvh_tree {
 ///
 /// In parallel (through an executor, shade/core/parallel.hpp), as Wald 2007 proposes for
 /// few cores: nodes of more than t primitives (t = n / 8 for n primitives, at least 256,
-/// at most task_size: task_for) are split level by level, their binning shared out t
-/// primitives per task and the partitions of a level's nodes run side by side; each
-/// smaller node's subtree is then built by one task. Bins merge by min, max and integer
+/// at most task_size: task_for) are split level by level, the partitions of a level's
+/// nodes side by side and, for nodes of more than 4 t, their binning shared out t
+/// primitives per task first (a smaller node is binned by the task that partitions it:
+/// one synchronisation per level instead of two); each node of at most t primitives then
+/// has its subtree built, its primitives' indices written and its nodes planned for the
+/// collapse (plan_slots) by one task. Bins merge by min, max and integer
 /// sums, which no order changes, and each partition is the recursive build's, so the tree
 /// is the same whatever the executor and task_size; through shade::serial_executor the
 /// build is the recursive one.
@@ -212,29 +229,42 @@ public:
     /// Builds over refs (reordered in place), into nodes of `width` (4 or 8) children,
     /// running the parallel parts through `run`; the same tree whatever it is.
     [[nodiscard]] bvh_tree build(std::vector<bvh_prim_ref>& refs, std::size_t width, executor_ref run) {
+        const auto n = static_cast<std::uint32_t>(refs.size());
+        const std::size_t size = bvh_range_size(n, 256, default_task_size);
+        std::vector<std::array<bvh_box, 2>> part((n + size - 1) / size); // each range's box and centroid box
+        refs_ = refs.data();
+        bvh_for_ranges(run, n, size, [&](std::size_t begin, std::size_t end) {
+            bounds_of(static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(end), part[begin / size][0],
+                      part[begin / size][1]);
+        });
+        bvh_box box, centroids;
+        for (const auto& b : part) box.grow(b[0]), centroids.grow(b[1]);
+        return build(refs, width, run, box, centroids);
+    }
+    /// The same, given the box of refs and the box of their doubled centroids (lo + hi).
+    [[nodiscard]] bvh_tree build(std::vector<bvh_prim_ref>& refs, std::size_t width, executor_ref run,
+                                 const bvh_box& box, const bvh_box& centroids) {
         bvh_tree tree;
         tree.width = width == 8 ? 8 : 4;
         refs_ = refs.data();
         binary_.clear();
         subtrees_.clear();
+        plans_.clear();
         if (refs.empty()) return tree;
         const auto n = static_cast<std::uint32_t>(refs.size());
         binary_.reserve(2 * refs.size() / block_ + 2);
         task_ = task_for(n);
-        std::vector<std::array<bvh_box, 2>> part(tasks(n)); // each task's box and centroid box
-        run(part.size(), [&](std::size_t c) { bounds_of(task_begin(0, c), task_end(0, n, c), part[c][0], part[c][1]); });
-        bvh_box box, centroids;
-        for (const auto& b : part) box.grow(b[0]), centroids.grow(b[1]);
         // Through a serial executor, the recursive build (the same tree, without the level
         // phase's bins and merges).
-        if (n <= task_ || run.serial()) build_binary(0, n, 0, box, centroids); // the root is binary_[0]
-        else build_top(n, box, centroids, run);
         tree.order.resize(refs.size());
-        run(part.size(), [&](std::size_t c) {
-            for (std::uint32_t i = task_begin(0, c); i < task_end(0, n, c); ++i) tree.order[i] = refs[i].index();
-        });
-        if (tree.width == 8) collapse_root(tree.wide_nodes, 0, run);
-        else collapse_root(tree.nodes, 0, run);
+        if (n <= task_ || run.serial()) {
+            build_binary(0, n, 0, box, centroids); // the root is binary_[0]
+            for (std::uint32_t i = 0; i < n; ++i) tree.order[i] = refs[i].index();
+        } else {
+            build_top(n, box, centroids, tree.width, tree.order.data(), run);
+        }
+        if (tree.width == 8) collapse_root(tree.wide_nodes, 0);
+        else collapse_root(tree.nodes, 0);
         return tree;
     }
     /// The same, on the caller's thread.
@@ -255,8 +285,7 @@ private:
     /// small mesh is shared out too, but no fewer than 256 (each task's bins and merges
     /// have their cost) and no more than task_size.
     [[nodiscard]] std::uint32_t task_for(std::uint32_t n) const noexcept {
-        const std::uint32_t t = n / 8 > 256 ? n / 8 : 256;
-        return t < task_size_ ? t : task_size_;
+        return static_cast<std::uint32_t>(bvh_range_size(n, 256, task_size_));
     }
     /// The tasks of task_ primitives over n, and the range of task c from `first`.
     [[nodiscard]] std::size_t tasks(std::uint32_t n) const noexcept { return (n - 1) / task_ + 1; }
@@ -296,14 +325,14 @@ private:
     }
 
     template <std::size_t W>
-    void collapse_root(std::vector<bvh_node<W>>& nodes, std::uint32_t root, executor_ref run) {
+    void collapse_root(std::vector<bvh_node<W>>& nodes, std::uint32_t root) {
         if (binary_[root].count > 0) {
             // A single leaf: one root node with one child.
             nodes.emplace_back();
             set_empty(nodes[0]);
             set_child(nodes[0], 0, binary_[root].box, leaf_ref(binary_[root]));
         } else {
-            plan_slots(W, run);
+            plan_slots(W);
             nodes.reserve(count_nodes<W>(root)); // exactly: no unused capacity is kept
             nodes.emplace_back();
             collapse(nodes, 0, root);
@@ -395,14 +424,11 @@ private:
     /// two subtrees. Partly filled nodes then go where they cost least, which fills the
     /// many nodes next to the leaves.
     ///
-    /// Children come after their parent, so a walk down the indices meets them first; each
-    /// subtree task's nodes (subtrees_) are planned in a task of their own, then the rest.
-    void plan_slots(std::size_t width, executor_ref run) {
-        plans_.assign(binary_.size(), slot_plan{});
-        run(subtrees_.size(), [&](std::size_t i) {
-            for (std::uint32_t m = subtrees_[i][2]; m-- > subtrees_[i][1];) plan_node(m, width);
-            plan_node(subtrees_[i][0], width);
-        });
+    /// Children come after their parent, so a walk down the indices meets them first. The
+    /// nodes of the parallel build's subtree tasks (subtrees_) are planned by those tasks
+    /// (build_top); here the rest.
+    void plan_slots(std::size_t width) {
+        plans_.resize(binary_.size());
         for (std::size_t m = subtrees_.empty() ? binary_.size() : subtrees_[0][1]; m-- > 0;) plan_node(m, width);
     }
 
@@ -491,18 +517,23 @@ private:
     /// The parallel build of the binary tree over the n > task_size primitives (see the
     /// class comment), the root at binary_[0]: the nodes of more than task_size
     /// primitives level by level, then the smaller ones' subtrees, one task each, whose
-    /// nodes are appended (children after their parent, as plan_slots needs).
-    void build_top(std::uint32_t n, const bvh_box& box, const bvh_box& centroids, executor_ref run) {
+    /// nodes are appended (children after their parent, as plan_slots needs). Each subtree
+    /// task also writes its primitives' indices to order and plans its nodes for nodes of
+    /// `width` children (plan_slots). A node of at most 4 tasks' primitives is binned by
+    /// the task that splits it, so a level of such nodes takes one run, not two.
+    void build_top(std::uint32_t n, const bvh_box& box, const bvh_box& centroids, std::size_t width,
+                   std::uint32_t* order, executor_ref run) {
         binary_.push_back(binary_node{box, 0, 0, 0});
         std::vector<pending> level{pending{0, n, 0, box, centroids, 0}}, subtrees;
         subtrees_.clear();
         while (!level.empty()) {
-            // The bins of the level's nodes, task_size primitives per task (none below
+            // The bins of the level's larger nodes, task_size primitives per task (none below
             // median_depth, split at the median).
             std::vector<std::size_t> first(level.size() + 1, 0);
             std::vector<std::uint32_t> owner;
+            const auto shared = [&](const pending& p) { return p.depth < median_depth && p.end - p.begin > 4 * task_; };
             for (std::size_t i = 0; i < level.size(); ++i) {
-                first[i + 1] = first[i] + (level[i].depth < median_depth ? tasks(level[i].end - level[i].begin) : 0);
+                first[i + 1] = first[i] + (shared(level[i]) ? tasks(level[i].end - level[i].begin) : 0);
                 owner.resize(first[i + 1], static_cast<std::uint32_t>(i));
             }
             std::vector<bin_sets> binned(first.back());
@@ -515,10 +546,17 @@ private:
             std::vector<split_result> split_of(level.size());
             run(level.size(), [&](std::size_t i) {
                 const pending& p = level[i];
-                for (std::size_t c = first[i] + 1; c < first[i + 1]; ++c)
-                    merge_bins(binned[first[i]][0], binned[c][0], bins_for(p.end - p.begin));
-                split_of[i] = split(p.begin, p.end, p.depth, p.box, p.centroids,
-                                    first[i] < first[i + 1] ? &binned[first[i]][0] : nullptr);
+                const std::size_t nb = bins_for(p.end - p.begin);
+                for (std::size_t c = first[i] + 1; c < first[i + 1]; ++c) merge_bins(binned[first[i]][0], binned[c][0], nb);
+                if (first[i] < first[i + 1] || p.depth >= median_depth) {
+                    split_of[i] = split(p.begin, p.end, p.depth, p.box, p.centroids,
+                                        first[i] < first[i + 1] ? &binned[first[i]][0] : nullptr);
+                } else {
+                    // Binned here, into bins of this task's own (bins_ is not to be shared).
+                    bin_sets own;
+                    bin_into(p.begin, p.end, p.centroids.lo, bin_scale(p.centroids, nb), nb, own);
+                    split_of[i] = split(p.begin, p.end, p.depth, p.box, p.centroids, &own[0]);
+                }
             });
             std::vector<pending> next;
             for (std::size_t i = 0; i < level.size(); ++i) {
@@ -538,14 +576,23 @@ private:
             level = std::move(next);
         }
         std::vector<std::vector<binary_node>> part(subtrees.size());
+        std::vector<std::vector<slot_plan>> part_plans(subtrees.size());
         run(part.size(), [&](std::size_t i) {
             const pending& p = subtrees[i];
             bvh_builder b(max_leaf_, block_, task_size_);
             b.refs_ = refs_;
             b.binary_.reserve(2 * (p.end - p.begin) / block_ + 2);
             b.build_binary(p.begin, p.end, p.depth, p.box, p.centroids);
+            for (std::uint32_t j = p.begin; j < p.end; ++j) order[j] = refs_[j].index();
+            // Plans hold no node indices: made on the local numbering, they hold at the nodes' places.
+            b.plans_.resize(b.binary_.size());
+            for (std::size_t m = b.binary_.size(); m-- > 0;) b.plan_node(m, width);
             part[i] = std::move(b.binary_);
+            part_plans[i] = std::move(b.plans_);
         });
+        std::size_t total = binary_.size();
+        for (const auto& q : part) total += q.size() - 1;
+        plans_.resize(total);
         for (std::size_t i = 0; i < part.size(); ++i) {
             // Local node j: the task's root (0) at its place, the others appended.
             const auto offset = static_cast<std::uint32_t>(binary_.size()) - 1;
@@ -554,6 +601,7 @@ private:
             for (std::uint32_t j = 0; j < part[i].size(); ++j) {
                 binary_node b = part[i][j];
                 if (b.count == 0) b.first = place(b.first), b.right = place(b.right);
+                plans_[place(j)] = part_plans[i][j];
                 if (j == 0) binary_[subtrees[i].node] = b;
                 else binary_.push_back(b);
             }
@@ -793,32 +841,39 @@ private:
     bin_sets bins_; // the serial build's bins (bin_into's out)
 };
 
-/// Runs body(begin, end) through run on the ranges of `size` indices that [0, n) splits into.
-template <class F>
-void bvh_for_ranges(executor_ref run, std::size_t n, std::size_t size, const F& body) {
-    run((n + size - 1) / size, [&](std::size_t c) { body(c * size, n - c * size > size ? c * size + size : n); });
-}
 
 /// The references of primitives 0 .. n-1, whose boxes box_of(i) gives (an aabb), made
-/// through run, and the least i with !valid(i) (n if none: then every box was made).
+/// through run, and the least i with !valid(i) (n if none: then every box was made, and
+/// box and centroids bound the references and their doubled centroids, for
+/// bvh_builder::build).
 struct bvh_prim_refs {
     std::vector<bvh_prim_ref> refs;
     std::size_t first_invalid;
+    bvh_box box, centroids;
 };
 template <class Box, class Valid>
 [[nodiscard]] bvh_prim_refs make_prim_refs(executor_ref run, std::size_t n, const Box& box_of, const Valid& valid) {
-    bvh_prim_refs r{std::vector<bvh_prim_ref>(n), n};
-    std::vector<std::size_t> invalid((n + bvh_builder::default_task_size - 1) / bvh_builder::default_task_size, n);
-    bvh_for_ranges(run, n, bvh_builder::default_task_size, [&](std::size_t begin, std::size_t end) {
+    bvh_prim_refs r{std::vector<bvh_prim_ref>(n), n, {}, {}};
+    const std::size_t size = bvh_range_size(n, 256, bvh_builder::default_task_size);
+    std::vector<std::size_t> invalid((n + size - 1) / size, n);
+    std::vector<std::array<bvh_box, 2>> part(invalid.size()); // each range's box and centroid box
+    bvh_for_ranges(run, n, size, [&](std::size_t begin, std::size_t end) {
+        bvh_box box, centroids;
         for (std::size_t i = begin; i < end; ++i) {
             if (!valid(i)) {
-                invalid[begin / bvh_builder::default_task_size] = i;
+                invalid[begin / size] = i;
                 return;
             }
-            r.refs[i] = make_prim_ref(box_of(i), static_cast<std::uint32_t>(i));
+            const bvh_prim_ref ref = make_prim_ref(box_of(i), static_cast<std::uint32_t>(i));
+            r.refs[i] = ref;
+            box.grow(ref.lo, ref.hi);
+            const bvh_v4 c = ref.centroid2();
+            centroids.grow(c, c);
         }
+        part[begin / size] = {box, centroids};
     });
     for (const std::size_t i : invalid) r.first_invalid = i < r.first_invalid ? i : r.first_invalid;
+    for (const auto& b : part) r.box.grow(b[0]), r.centroids.grow(b[1]);
     return r;
 }
 
