@@ -19,6 +19,13 @@
 // way for the anisotropic lobe and E_iso read from the committed isotropic table, and per
 // (r, y) node the exact cosine-weighted average of the slice's interpolant.
 //
+//   albedo_tables --anisotropic-strong --out include/shade/brdf/microfacet/detail/anisotropic_strong_albedo_data.hpp
+//
+// writes the strong-anisotropy corrections of the same header (anisotropy beyond its
+// ratio_max, to a 1-D rough surface): Delta_strong = E(w) - E_iso(mu, alpha_base) on that
+// grid, the same estimates, plus its lift (strong_anisotropy_lift), and the rows' cosine
+// averages.
+//
 //   albedo_tables --cosine-weights --strata 384 --out include/shade/brdf/microfacet/detail/cosine_weight_data.hpp
 //
 // writes instead the weights of the c nodes of shade/brdf/microfacet/cosine_weights.hpp
@@ -70,6 +77,7 @@ using T = double;
 
 constexpr std::string_view usage = R"(usage: albedo_tables [--out FILE.hpp] [--nodes N] [--strata S] [--threads K] [--quiet]
        albedo_tables --anisotropic [--out FILE.hpp] [--strata S] [--threads K] [--quiet]
+       albedo_tables --anisotropic-strong [--out FILE.hpp] [--strata S] [--threads K] [--quiet]
        albedo_tables --cosine-weights [--out FILE.hpp] [--strata S] [--threads K] [--quiet]
        albedo_tables --film-margin [--out FILE.hpp] [--strata S] [--sub Q] [--fine G] [--coarse-films] [--threads K] [--quiet]
 
@@ -80,7 +88,9 @@ sampler, and writes the header of constants.
 
 With --anisotropic, computes instead the corrections Delta = E(w) - E_iso(mu, sqrt(alpha_x
 alpha_y)) of the anisotropic GGX and Beckmann lobes with F = 1 on the fixed grid of
-anisotropic_albedo_table.hpp (S^2 samples per node) and their averages.
+anisotropic_albedo_table.hpp (S^2 samples per node) and their averages. With
+--anisotropic-strong, the corrections Delta_strong = E(w) - E_iso(mu, alpha_base) of that
+header's strong-anisotropy grid (alpha_max / alpha_min from its ratio_max to infinity).
 
 With --cosine-weights, computes instead the weights w_k(mu, alpha) of the c nodes of the
 GGX reflection lobe (cosine_weights.hpp) on its fixed grid, by the midpoint rule on S^2
@@ -98,6 +108,9 @@ measure deposited on G cosines).
   --fine G        with --film-margin: fine cosines, 65 to 16385 (default 1025)
   --coarse-films  with --film-margin: a small set of films (a quick run, not for the header)
   --anisotropic   write the anisotropic corrections (default output anisotropic_albedo_data.hpp)
+  --anisotropic-strong
+                  write the strong-anisotropy corrections (default output
+                  anisotropic_strong_albedo_data.hpp)
   --out FILE.hpp  output, a C++ header (.hpp or .h; default albedo_data.hpp)
   --nodes N       nodes per axis, 4 to 512 (default 128)
   --strata S      S^2 samples per node, 16 to 2048 (default 256)
@@ -113,6 +126,7 @@ struct settings {
     unsigned threads = 2;
     bool quiet = false;
     bool anisotropic = false;
+    bool strong = false; // with anisotropic: the strong-anisotropy grid
     bool cosine_weights = false;
     bool film_margin = false;
 };
@@ -316,33 +330,95 @@ anisotropic_table compute_anisotropic(const std::string& name, const std::string
     return out;
 }
 
+// The strong-anisotropy correction of one distribution family (anisotropic_albedo_table.hpp's
+// second grid): Delta_strong = E(w) - E_iso(mu, alpha_base) at every node, the lobe's smoother
+// axis along t (alpha_x = alpha_min) and w's azimuth from it.
+anisotropic_table compute_strong(const std::string& name, const std::string& what, const float* iso,
+                                 const anisotropic_albedo& albedo, const settings& s, ex::progress& bar) {
+    namespace d = shade::detail;
+    constexpr std::size_t nx = d::strong_anisotropy_mu_nodes, nu = d::strong_anisotropy_azimuth_nodes;
+    constexpr std::size_t ny = d::strong_anisotropy_roughness_nodes;
+    anisotropic_table out{name, what, std::vector<float>(d::strong_anisotropy_size, 0.0f),
+                          std::vector<float>(d::strong_anisotropy_rows, 0.0f), 0, 0};
+    std::vector<double> errors(d::strong_anisotropy_size, 0.0);
+    parallel_for(d::strong_anisotropy_size, s.threads, [&](std::size_t index) {
+        const std::size_t i = index % nx, iu = (index / nx) % nu, j = (index / d::strong_anisotropy_slice) % ny,
+                          k = index / (d::strong_anisotropy_slice * ny);
+        // y = 0 (a mirror) holds 0.
+        if (j > 0) {
+            const double y = double(j) / double(ny - 1), z = double(k) / double(d::strong_anisotropy_ratio_nodes - 1);
+            const double alpha_max = y * y * d::strong_anisotropy_alpha_top;
+            // z = 0 is a 1-D rough surface; its lobe is estimated at alpha_min = 1e-7 alpha_max.
+            const double alpha_min = alpha_max * std::max(z * z / d::anisotropic_albedo_ratio_max, 1e-7);
+            const double x = double(i) / double(nx - 1);
+            const double mu = std::min(std::max(x * x, d::albedo_grid_mu_min), 1.0);
+            const double phi = d::strong_anisotropy_phi(double(iu) / double(nu - 1));
+            const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
+            const shade::vec3<T> v(sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu);
+            // The seed depends on (k, j, i) only: the pole column (mu = 1) is then the same
+            // estimate for every u, as Delta there is.
+            const auto a = albedo(v, alpha_min, alpha_max, 1 + (k * ny + j) * nx + i);
+            const double e = std::min(a.albedo.x, 1.0);
+            const double base = d::anisotropic_albedo_base_alpha(alpha_min, alpha_max);
+            const double lift = d::strong_anisotropy_lift * (1 - e);
+            out.delta[index] = as_written(e - d::albedo_lookup(iso, d::albedo_grid_nodes, mu, base) + lift, 5);
+            errors[index] = a.standard_error.x;
+        }
+        bar.advance();
+    });
+    out.max_error = *std::max_element(errors.begin(), errors.end());
+    for (const float x : out.delta) out.max_delta = std::max(out.max_delta, double(std::abs(x)));
+    for (std::size_t n = 0; n < d::strong_anisotropy_rows; ++n)
+        out.average[n] = float(d::anisotropic_albedo_row_average(out.delta.data() + n * nx));
+    return out;
+}
+
+// The header of --anisotropic (strong false: the first grid of anisotropic_albedo_table.hpp)
+// or --anisotropic-strong (its strong-anisotropy grid).
 void write_anisotropic(std::FILE* f, const std::vector<anisotropic_table>& tables, const settings& s) {
     namespace d = shade::detail;
+    const bool strong = s.strong;
+    const std::size_t nx = strong ? d::strong_anisotropy_mu_nodes : d::anisotropic_albedo_mu_nodes;
+    const std::size_t nu = strong ? d::strong_anisotropy_azimuth_nodes : d::anisotropic_albedo_azimuth_nodes;
+    const std::size_t rows = strong ? d::strong_anisotropy_rows : d::anisotropic_albedo_rows;
     std::fprintf(f, "#pragma once\n");
-    std::fprintf(f, "// Generated by examples/albedo_tables.cpp (--anisotropic --strata %zu); do not edit by hand.\n", s.strata);
-    std::fprintf(f, "// The anisotropic corrections of shade/brdf/microfacet/anisotropic_albedo_table.hpp (grid,\n");
-    std::fprintf(f, "// interpolation, meaning): %zu (r) x %zu (y) slices of %zu (s) x %zu (x) nodes, one s row per\n",
-                 d::anisotropic_albedo_ratio_nodes, d::anisotropic_albedo_roughness_nodes, d::anisotropic_albedo_azimuth_nodes,
-                 d::anisotropic_albedo_mu_nodes);
+    std::fprintf(f, "// Generated by examples/albedo_tables.cpp (%s --strata %zu); do not edit by hand.\n",
+                 strong ? "--anisotropic-strong" : "--anisotropic", s.strata);
+    std::fprintf(f, "// The %s of shade/brdf/microfacet/anisotropic_albedo_table.hpp (grid,\n",
+                 strong ? "strong-anisotropy corrections" : "anisotropic corrections");
+    std::fprintf(f, "// interpolation, meaning): %zu (%s) x %zu (y) slices of %zu (%s) x %zu (x) nodes, one %s row per\n",
+                 strong ? d::strong_anisotropy_ratio_nodes : d::anisotropic_albedo_ratio_nodes, strong ? "z" : "r",
+                 strong ? d::strong_anisotropy_roughness_nodes : d::anisotropic_albedo_roughness_nodes, nu,
+                 strong ? "u" : "s", nx, strong ? "u" : "s");
     std::fprintf(f, "// line; each node E(w), the mean weight of %zu jittered samples of the lobe's own sampler,\n",
                  s.strata * s.strata);
-    std::fprintf(f, "// minus the isotropic table (albedo_data.hpp) at the geometric-mean roughness, written with 5\n");
-    std::fprintf(f, "// significant digits (|Delta| < 1, so within 1e-5, far below the node noise).\n\n");
+    if (strong) {
+        std::fprintf(f, "// minus the isotropic table (albedo_data.hpp) at the base roughness alpha_base, plus the lift\n");
+        std::fprintf(f, "// strong_anisotropy_lift (1 - E), strong_anisotropy_lift = %g, written with 5 significant digits\n",
+                     d::strong_anisotropy_lift);
+        std::fprintf(f, "// (|Delta| < 1, so within 1e-5, far below the node noise).\n\n");
+    } else {
+        std::fprintf(f, "// minus the isotropic table (albedo_data.hpp) at the geometric-mean roughness, written with 5\n");
+        std::fprintf(f, "// significant digits (|Delta| < 1, so within 1e-5, far below the node noise).\n\n");
+    }
     std::fprintf(f, "#include <shade/brdf/microfacet/anisotropic_albedo_table.hpp>\n\n");
     std::fprintf(f, "namespace shade::detail {\n");
     for (const auto& t : tables) {
-        std::fprintf(f, "\n/// Delta(w) of %s.\n", t.what.c_str());
-        std::fprintf(f, "/// Node standard error <= %.1e; |Delta| <= %.3f.\n", t.max_error, t.max_delta);
-        std::fprintf(f, "inline constexpr float %s[anisotropic_albedo_size] = {\n", t.name.c_str());
-        for (std::size_t row = 0; row < t.delta.size() / d::anisotropic_albedo_mu_nodes; ++row) {
-            ex::write_float_literals(f, t.delta.data() + row * d::anisotropic_albedo_mu_nodes, d::anisotropic_albedo_mu_nodes, 5);
+        std::fprintf(f, "\n/// %s of %s.\n", strong ? "Delta_strong(w)" : "Delta(w)", t.what.c_str());
+        std::fprintf(f, "/// Node standard error <= %.1e; |%s| <= %.3f.\n", t.max_error, strong ? "Delta_strong" : "Delta",
+                     t.max_delta);
+        std::fprintf(f, "inline constexpr float %s[%s] = {\n", t.name.c_str(),
+                     strong ? "strong_anisotropy_size" : "anisotropic_albedo_size");
+        for (std::size_t row = 0; row < t.delta.size() / nx; ++row) {
+            ex::write_float_literals(f, t.delta.data() + row * nx, nx, 5);
             std::fprintf(f, ",\n");
         }
         std::fprintf(f, "};\n\n/// The cosine averages of the rows of %s (anisotropic_albedo_row_average), one slice per line.\n",
                      t.name.c_str());
-        std::fprintf(f, "inline constexpr float %s_average[anisotropic_albedo_rows] = {\n", t.name.c_str());
-        for (std::size_t k = 0; k < d::anisotropic_albedo_rows / d::anisotropic_albedo_azimuth_nodes; ++k) {
-            ex::write_float_literals(f, t.average.data() + k * d::anisotropic_albedo_azimuth_nodes, d::anisotropic_albedo_azimuth_nodes);
+        std::fprintf(f, "inline constexpr float %s_average[%s] = {\n", t.name.c_str(),
+                     strong ? "strong_anisotropy_rows" : "anisotropic_albedo_rows");
+        for (std::size_t k = 0; k < rows / nu; ++k) {
+            ex::write_float_literals(f, t.average.data() + k * nu, nu);
             std::fprintf(f, ",\n");
         }
         std::fprintf(f, "};\n");
@@ -730,18 +806,21 @@ int run_film_margin(const settings& s, const film_margin_settings& fm, ex::outpu
 int run_anisotropic(const settings& s, ex::output_file& header) {
     using namespace shade;
     const rgb<T> one(1);
-    std::optional<ex::progress> bar(std::in_place, "albedo_tables", 2 * detail::anisotropic_albedo_size, !s.quiet);
+    const std::size_t size = s.strong ? detail::strong_anisotropy_size : detail::anisotropic_albedo_size;
+    std::optional<ex::progress> bar(std::in_place, "albedo_tables", 2 * size, !s.quiet);
+    const auto compute_table = s.strong ? compute_strong : compute_anisotropic;
+    const std::string prefix = s.strong ? "_anisotropic_strong_albedo_delta" : "_anisotropic_albedo_delta";
     std::vector<anisotropic_table> tables;
-    tables.push_back(compute_anisotropic(
-        "ggx_anisotropic_albedo_delta", "the anisotropic GGX lobe with F = 1 (cook_torrance<ggx, schlick(1), smith_height_correlated>)",
+    tables.push_back(compute_table(
+        "ggx" + prefix, "the anisotropic GGX lobe with F = 1 (cook_torrance<ggx, schlick(1), smith_height_correlated>)",
         detail::ggx_albedo, anisotropic_family([one](double ax, double ay) {
-            return cook_torrance<ggx<T>, schlick<T>, smith_height_correlated<T>>(ggx<T>(ax, ay), schlick<T>(one));
+            return cook_torrance<ggx<T>, schlick<T>, smith_height_correlated<T>>(ggx<T>(unchecked, ax, ay), schlick<T>(one));
         }, s.strata), s, *bar));
-    tables.push_back(compute_anisotropic(
-        "beckmann_anisotropic_albedo_delta",
+    tables.push_back(compute_table(
+        "beckmann" + prefix,
         "the anisotropic Beckmann lobe with F = 1 (cook_torrance<beckmann, schlick(1), smith_height_correlated>)",
         detail::beckmann_albedo, anisotropic_family([one](double mx, double my) {
-            return cook_torrance<beckmann<T>, schlick<T>, smith_height_correlated<T>>(beckmann<T>(mx, my), schlick<T>(one));
+            return cook_torrance<beckmann<T>, schlick<T>, smith_height_correlated<T>>(beckmann<T>(unchecked, mx, my), schlick<T>(one));
         }, s.strata), s, *bar));
     bar.reset();
     for (const auto& t : tables)
@@ -773,6 +852,7 @@ int main(int argc, char** argv) {
             else if (args.option("--threads")) s.threads = args.integer<unsigned>(1, 64);
             else if (args.flag("--quiet")) s.quiet = true;
             else if (args.flag("--anisotropic")) s.anisotropic = true;
+            else if (args.flag("--anisotropic-strong")) s.anisotropic = s.strong = true;
             else if (args.flag("--cosine-weights")) s.cosine_weights = true;
             else if (args.flag("--film-margin")) s.film_margin = true;
             else if (args.option("--fine")) fm.fine = args.integer<std::size_t>(65, 16385);
@@ -788,7 +868,8 @@ int main(int argc, char** argv) {
             throw ex::usage_error("options --cosine-weights and --film-margin exclude each other");
         if (s.film_margin && (nodes_given || s.anisotropic))
             throw ex::usage_error("options --nodes and --anisotropic do not apply with --film-margin (its grid is cosine_weight_data.hpp's)");
-        if (s.anisotropic && s.out == "albedo_data.hpp") s.out = "anisotropic_albedo_data.hpp";
+        if (s.anisotropic && s.out == "albedo_data.hpp")
+            s.out = s.strong ? "anisotropic_strong_albedo_data.hpp" : "anisotropic_albedo_data.hpp";
         if (s.cosine_weights && s.out == "albedo_data.hpp") s.out = "cosine_weight_data.hpp";
         if (s.film_margin && s.out == "albedo_data.hpp") s.out = "thin_film_margin_data.hpp";
         (void)ex::output_format("--out", s.out, {".hpp", ".h"});

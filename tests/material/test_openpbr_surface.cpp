@@ -877,6 +877,37 @@ TEST_CASE_TEMPLATE("openpbr_surface: white furnace with anisotropic specular, co
     MESSAGE("anisotropic white furnace: " << band.low << " to " << band.high);
 }
 
+TEST_CASE_TEMPLATE("openpbr_surface: white furnace of a strongly anisotropic metal, to anisotropy 1", T, float, double) {
+    // A white metal (base_metalness 1, base and specular colour 1) at specular_roughness_
+    // anisotropy 0.95 (alpha_t / alpha_b = 20, the first anisotropic table's end), 0.98 (50:1)
+    // and 1 (a 1-D rough surface, alpha_b held at the smallest alpha): kulla_conty_anisotropic
+    // reads the strong-anisotropy tables above 20:1. The band within 4 standard errors (160^2
+    // draws) at roughness 0.3 to 1, mu 1 to 0.1, four azimuths. Before those tables the ratio was read
+    // as 20:1 and the furnace fell to 0.81 at anisotropy 0.98 and 0.38 at anisotropy 1
+    // (roughness 1, mu 1).
+    const auto at = check_test::model_point<T>();
+    furnace_band band;
+    for (const T aniso : {T(0.95), T(0.98), T(1)}) {
+        for (const T r : {T(0.3), T(0.6), T(1)}) {
+            params<T> p = white<T>();
+            p.base_metalness = T(1);
+            p.specular_roughness = r;
+            p.specular_roughness_anisotropy = aniso;
+            const surface<T> m(p);
+            for (const double mu : {1.0, 0.5, 0.2, 0.1}) {
+                for (const double phi : {0.0, 0.8, 1.5708, 2.4}) {
+                    if (mu == 1.0 && phi > 0) continue; // one view at normal incidence
+                    const auto reading = furnace(m, view_at_cosine(at, mu, phi), at, 160);
+                    INFO("anisotropy ", double(aniso), " roughness ", double(r), " mu ", mu, " phi ", phi, ": ",
+                         reading.first, " +- ", reading.second);
+                    band.check(reading);
+                }
+            }
+        }
+    }
+    MESSAGE("strongly anisotropic white metal, white furnace: " << band.low << " to " << band.high);
+}
+
 TEST_CASE("openpbr_surface: white furnace of anisotropic glass, stratified with the lobe choice integrated out") {
     // Anisotropic glass (transmission_weight 1, specular_ior 1.5) over a white base, seen
     // from outside, roughness 0.1, 0.2, 0.5, anisotropy 0.5, 0.9 and 1, mu 1, 0.5, 0.2, 0.1 at up

@@ -15,6 +15,7 @@
 #include <shade/brdf/microfacet/anisotropic_albedo_table.hpp>
 #include <shade/brdf/microfacet/beckmann.hpp>
 #include <shade/brdf/microfacet/detail/anisotropic_albedo_data.hpp>
+#include <shade/brdf/microfacet/detail/anisotropic_strong_albedo_data.hpp>
 #include <shade/brdf/microfacet/ggx.hpp>
 #include <shade/brdf/multiple_scattering.hpp>
 #include <shade/core/types.hpp>
@@ -34,9 +35,12 @@ namespace shade {
 /// the albedo of f_ms is then (1 - E(v)) (1 - E_avg) / (1 - E_avg) = 1 - E(v), so the total
 /// is 1 at every view and azimuth to the accuracy of the tables; f_ms stays a product of
 /// one factor per direction, so the model stays reciprocal. For alpha_x = alpha_y it is
-/// kulla_conty exactly (same values). Covers anisotropy up to
-/// detail::anisotropic_albedo_ratio_max (20:1); beyond, the 20:1 correction is read and the
-/// compensation is approximate. Applies to ggx and beckmann, as kulla_conty.
+/// kulla_conty exactly (same values). Up to detail::anisotropic_albedo_ratio_max (20:1) E(w)
+/// is read as above; beyond, up to a 1-D rough surface (alpha_min -> 0, OpenPBR's
+/// anisotropy 1), as the isotropic table at the base roughness alpha_base (the root mean
+/// square of the two, bent below 1) plus the strong-anisotropy correction of the same header,
+/// and E_avg as the isotropic average at alpha_base plus that correction's average.
+/// Applies to ggx and beckmann, as kulla_conty.
 struct kulla_conty_anisotropic : kulla_conty {};
 
 namespace detail {
@@ -50,6 +54,8 @@ template <std::floating_point T>
 struct anisotropic_albedo_tables_of<ggx<T>> {
     static constexpr const float* delta = ggx_anisotropic_albedo_delta;
     static constexpr const float* average = ggx_anisotropic_albedo_delta_average;
+    static constexpr const float* strong_delta = ggx_anisotropic_strong_albedo_delta;
+    static constexpr const float* strong_average = ggx_anisotropic_strong_albedo_delta_average;
     [[nodiscard]] static T alpha_x(const ggx<T>& d) noexcept { return d.alpha_x(); }
     [[nodiscard]] static T alpha_y(const ggx<T>& d) noexcept { return d.alpha_y(); }
 };
@@ -58,16 +64,21 @@ template <std::floating_point T>
 struct anisotropic_albedo_tables_of<beckmann<T>> {
     static constexpr const float* delta = beckmann_anisotropic_albedo_delta;
     static constexpr const float* average = beckmann_anisotropic_albedo_delta_average;
+    static constexpr const float* strong_delta = beckmann_anisotropic_strong_albedo_delta;
+    static constexpr const float* strong_average = beckmann_anisotropic_strong_albedo_delta_average;
     [[nodiscard]] static T alpha_x(const beckmann<T>& d) noexcept { return d.m_x(); }
     [[nodiscard]] static T alpha_y(const beckmann<T>& d) noexcept { return d.m_y(); }
 };
 
 /// The state of kulla_conty_anisotropic: kulla_conty's, with E_avg the average of the
-/// corrected E(w), and the lobe's cell in the correction tables.
+/// corrected E(w), and the lobe's cell in the correction tables (the strong-anisotropy
+/// tables beyond detail::anisotropic_albedo_ratio_max, where alpha is the base roughness).
 template <std::floating_point T>
 struct scattering_state<kulla_conty_anisotropic, T> : kulla_conty_state<T> {
     anisotropic_albedo_cell<T> cell{};
+    strong_anisotropy_cell<T> strong_cell{};
     bool anisotropic = false; ///< alpha_x != alpha_y; otherwise exactly kulla_conty's state
+    bool strong = false;      ///< max / min roughness above anisotropic_albedo_ratio_max
 
     scattering_state() = default;
 
@@ -78,6 +89,18 @@ struct scattering_state<kulla_conty_anisotropic, T> : kulla_conty_state<T> {
         const T alpha_x = tables::alpha_x(distribution), alpha_y = tables::alpha_y(distribution);
         if (alpha_x == alpha_y) return;
         anisotropic = true;
+        const T alpha_max = glm::max(alpha_x, alpha_y), alpha_min = glm::min(alpha_x, alpha_y);
+        if (alpha_max > T(anisotropic_albedo_ratio_max) * alpha_min) {
+            strong = true;
+            strong_cell = strong_anisotropy_locate(alpha_x, alpha_y);
+            const T base = strong_cell.alpha_base;
+            const T average =
+                glm::clamp(albedo_average_lookup(albedo_tables_of<Distribution>::e_avg, albedo_grid_nodes, base) +
+                               strong_anisotropy_delta_average(tables::strong_average, strong_cell),
+                           T(0), T(1));
+            static_cast<kulla_conty_state<T>&>(*this) = make_kulla_conty_state(base, average, fresnel);
+            return;
+        }
         cell = anisotropic_albedo_locate(alpha_x, alpha_y);
         const T average = glm::clamp(this->e_avg + anisotropic_albedo_delta_average(tables::average, cell), T(0), T(1));
         static_cast<kulla_conty_state<T>&>(*this) = make_kulla_conty_state(this->alpha, average, fresnel);
@@ -88,7 +111,9 @@ struct scattering_state<kulla_conty_anisotropic, T> : kulla_conty_state<T> {
     [[nodiscard]] T albedo(const vec3<T>& w) const noexcept {
         const T e = albedo_lookup(albedo_tables_of<Distribution>::e, albedo_grid_nodes, w.z, this->alpha);
         if (!anisotropic) return e;
-        const T delta = anisotropic_albedo_delta(anisotropic_albedo_tables_of<Distribution>::delta, cell, w.x, w.y, w.z);
+        const T delta =
+            strong ? strong_anisotropy_delta(anisotropic_albedo_tables_of<Distribution>::strong_delta, strong_cell, w.x, w.y, w.z)
+                   : anisotropic_albedo_delta(anisotropic_albedo_tables_of<Distribution>::delta, cell, w.x, w.y, w.z);
         // Clamped to [0, 1]: near a mirror the tables' noise can carry E + Delta just past 1,
         // and f_ms >= 0 needs 1 - E >= 0.
         return glm::clamp(e + delta, T(0), T(1));
