@@ -450,8 +450,9 @@ template <std::floating_point T>
     constexpr double g = 0.28867513459481287; // 1 / (2 sqrt 3): the 2-point Gauss nodes at 1/2 -+ g
     const double h = 1.0 / double(nu - 1);
     double sum = 0;
+    const double fractions[2] = {0.5 - g, 0.5 + g};
     for (std::size_t i = 0; i + 1 < nu; ++i)
-        for (const double t : {0.5 - g, 0.5 + g}) {
+        for (const double t : fractions) {
             const double u = (double(i) + t) * h;
             sum += 0.5 * h * (r[i] + t * (r[i + 1] - r[i])) * 0.5 * (1 + 2 * u);
         }
