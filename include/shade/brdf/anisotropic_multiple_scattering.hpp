@@ -82,28 +82,31 @@ struct scattering_state<kulla_conty_anisotropic, T> : kulla_conty_state<T> {
 
     scattering_state() = default;
 
+    // The table roughness and E_avg are settled first and the state is made once (its
+    // Fresnel average is 40 evaluations of F).
     template <class Distribution, class Fresnel>
-    scattering_state(const Distribution& distribution, const Fresnel& fresnel) noexcept
-        : kulla_conty_state<T>(make_kulla_conty_state(distribution, fresnel)) {
+    scattering_state(const Distribution& distribution, const Fresnel& fresnel) noexcept {
         using tables = anisotropic_albedo_tables_of<Distribution>;
+        using iso = albedo_tables_of<Distribution>;
         const T alpha_x = tables::alpha_x(distribution), alpha_y = tables::alpha_y(distribution);
-        if (alpha_x == alpha_y) return;
-        anisotropic = true;
-        const T alpha_max = glm::max(alpha_x, alpha_y), alpha_min = glm::min(alpha_x, alpha_y);
-        if (alpha_max > T(anisotropic_albedo_ratio_max) * alpha_min) {
-            strong = true;
-            strong_cell = strong_anisotropy_locate(alpha_x, alpha_y);
-            const T base = strong_cell.alpha_base;
-            const T average =
-                glm::clamp(albedo_average_lookup(albedo_tables_of<Distribution>::e_avg, albedo_grid_nodes, base) +
-                               strong_anisotropy_delta_average(tables::strong_average, strong_cell),
-                           T(0), T(1));
-            static_cast<kulla_conty_state<T>&>(*this) = make_kulla_conty_state(base, average, fresnel);
-            return;
+        T alpha = iso::roughness(distribution);
+        T average = albedo_average_lookup(iso::e_avg, albedo_grid_nodes, alpha);
+        if (alpha_x != alpha_y) {
+            anisotropic = true;
+            const T alpha_max = glm::max(alpha_x, alpha_y), alpha_min = glm::min(alpha_x, alpha_y);
+            if (alpha_max > T(anisotropic_albedo_ratio_max) * alpha_min) {
+                strong = true;
+                strong_cell = strong_anisotropy_locate(alpha_x, alpha_y);
+                alpha = strong_cell.alpha_base;
+                average = albedo_average_lookup(iso::e_avg, albedo_grid_nodes, alpha) +
+                          strong_anisotropy_delta_average(tables::strong_average, strong_cell);
+            } else {
+                cell = anisotropic_albedo_locate(alpha_x, alpha_y);
+                average += anisotropic_albedo_delta_average(tables::average, cell);
+            }
+            average = glm::clamp(average, T(0), T(1));
         }
-        cell = anisotropic_albedo_locate(alpha_x, alpha_y);
-        const T average = glm::clamp(this->e_avg + anisotropic_albedo_delta_average(tables::average, cell), T(0), T(1));
-        static_cast<kulla_conty_state<T>&>(*this) = make_kulla_conty_state(this->alpha, average, fresnel);
+        static_cast<kulla_conty_state<T>&>(*this) = make_kulla_conty_state(alpha, average, fresnel);
     }
 
     /// E(w) for the unit local direction w (n = +z), in [0, 1].

@@ -120,39 +120,6 @@ template <std::floating_point T>
     return r <= a ? r : T(1) - (T(1) - a) * std::exp(-(r - a) / (T(1) - a));
 }
 
-/// The four nodes and weights with which a Catmull-Rom spline (Catmull, Rom 1974, "A Class
-/// of Local Interpolating Splines"; tangents (p_i+1 - p_i-1) / 2) reads the fraction t of
-/// cell i of an n-node axis (n >= 3): nodes i - 1 .. i + 2, a neighbour beyond an end
-/// replaced by its linear extrapolation (2 p_0 - p_1, 2 p_n-1 - p_n-2), so the tangent at an
-/// end node is the secant of its cell and no value from beyond the axis is needed. Exact for
-/// quadratics inside; the weights sum to 1.
-template <std::floating_point T>
-struct spline_taps {
-    std::size_t node[4]{};
-    T weight[4]{};
-
-    spline_taps() = default;
-    spline_taps(std::size_t i, T t, std::size_t n) noexcept {
-        const T w[4] = {T(0.5) * t * ((T(2) - t) * t - T(1)), T(0.5) * (t * t * (T(3) * t - T(5)) + T(2)),
-                        T(0.5) * t * ((T(4) - T(3) * t) * t + T(1)), T(0.5) * t * t * (t - T(1))};
-        for (int a = 0; a < 4; ++a) weight[a] = w[a];
-        node[0] = i > 0 ? i - 1 : 0;
-        node[1] = i;
-        node[2] = i + 1;
-        node[3] = i + 2 < n ? i + 2 : n - 1;
-        if (i == 0) { // ghost 2 p_0 - p_1 for node -1
-            weight[1] += T(2) * w[0];
-            weight[2] -= w[0];
-            weight[0] = 0;
-        }
-        if (i + 2 >= n) { // ghost 2 p_n-1 - p_n-2 for node n
-            weight[2] += T(2) * w[3];
-            weight[1] -= w[3];
-            weight[3] = 0;
-        }
-    }
-};
-
 /// Where an interface with roughnesses alpha_x != alpha_y and relative index eta reads the
 /// correction tables. Computed once per interface.
 template <std::floating_point T>

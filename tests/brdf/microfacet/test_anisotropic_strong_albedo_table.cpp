@@ -122,7 +122,7 @@ TEST_CASE("strong anisotropy tables: mirror slices hold 0, row averages are the 
           0);
 }
 
-TEST_CASE_TEMPLATE("strong anisotropy tables: the end taps extrapolate linearly and keep linear functions", T, float,
+TEST_CASE_TEMPLATE("spline_taps: the end taps extrapolate linearly and keep linear functions", T, float,
                    double) {
     // Weights sum to 1 and p(n) = 3 n - 2 is reproduced exactly in every cell, the first and
     // last included (Catmull-Rom reproduces quadratics inside; the extrapolated neighbour
@@ -130,7 +130,7 @@ TEST_CASE_TEMPLATE("strong anisotropy tables: the end taps extrapolate linearly 
     constexpr std::size_t n = 6;
     for (std::size_t i = 0; i + 1 < n; ++i)
         for (const double t : {0.0, 0.2, 0.5, 0.85}) {
-            const d::strong_anisotropy_taps<T> taps(i, T(t), n);
+            const d::spline_taps<T> taps(i, T(t), n);
             double sum = 0, line = 0;
             for (int a = 0; a < 4; ++a) {
                 sum += double(taps.weight[a]);

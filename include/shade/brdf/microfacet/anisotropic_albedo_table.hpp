@@ -72,7 +72,8 @@
 //                                                 of OpenPBR's roughness_to_alpha
 //     z = sqrt(ratio_max alpha_min / alpha_max)   1 at ratio_max, 0 for a 1-D rough surface
 //
-// Catmull-Rom in x, y and z (along y and z a neighbour beyond an end extrapolated linearly),
+// Catmull-Rom in x, y and z (along y and z a neighbour beyond an end extrapolated linearly:
+// spline_taps of shade/brdf/microfacet/albedo_table.hpp),
 // linear in u; Delta_strong_avg from the rows' cosine averages integrated over the azimuth exactly (linear in u, dphi = (pi / 4) (1 + 2 u)
 // du). Each node holds its estimate plus strong_anisotropy_lift times 1 - E (E read slightly
 // high: the compensation then errs below 1 rather than above). At q = ratio_max the two grids
@@ -332,36 +333,6 @@ template <std::floating_point T>
     return 1.5707963267948966 * u * (1 + u) / 2;
 }
 
-/// The Catmull-Rom taps of the strong-anisotropy grid along y and z: the weights of
-/// catmull_rom_weights at the fraction t of cell i of an n-node axis, on nodes i - 1 .. i + 2,
-/// a neighbour beyond either end replaced by its linear extrapolation (2 p_0 - p_1,
-/// 2 p_n-1 - p_n-2), so that the tangent at an end node is the secant of its cell rather than
-/// half of it (which repeating the end node would give). The weights sum to 1.
-template <std::floating_point T>
-struct strong_anisotropy_taps {
-    std::size_t node[4]{};
-    T weight[4]{};
-
-    strong_anisotropy_taps() = default;
-    strong_anisotropy_taps(std::size_t i, T t, std::size_t n) noexcept {
-        const catmull_rom_weights<T> w(t);
-        for (int a = 0; a < 4; ++a) {
-            node[a] = anisotropic_albedo_node(i, a, n);
-            weight[a] = w.w[a];
-        }
-        if (i == 0) { // p_-1 = 2 p_0 - p_1
-            weight[1] += T(2) * weight[0];
-            weight[2] -= weight[0];
-            weight[0] = 0;
-        }
-        if (i + 2 >= n) { // p_n = 2 p_n-1 - p_n-2
-            weight[2] += T(2) * weight[3];
-            weight[1] -= weight[3];
-            weight[3] = 0;
-        }
-    }
-};
-
 /// Where a lobe with roughnesses alpha_x, alpha_y (alpha_max > ratio_max alpha_min) reads
 /// the strong-anisotropy tables: its base roughness, which axis is the smoother, and its
 /// cells along y and z. Computed once per lobe.
@@ -394,7 +365,7 @@ template <std::floating_point T>
 }
 
 /// Delta_strong(w) for the unit local direction w (w.z = mu in [0, 1]) of a lobe located by
-/// `cell`: Catmull-Rom in x (the first grid's) and in y and z (strong_anisotropy_taps), linear in
+/// `cell`: Catmull-Rom in x (the first grid's) and in y and z (spline_taps), linear in
 /// u, in the table `delta`
 /// (strong_anisotropy_size values). Returns the albedo difference, dimensionless.
 template <std::floating_point T>
@@ -409,7 +380,7 @@ template <std::floating_point T>
     const auto x = albedo_grid_locate(std::sqrt(glm::clamp(mu, T(0), T(1))), nx);
     const auto u = albedo_grid_locate(u_coordinate, nu);
     const catmull_rom_weights<T> wx(x.t);
-    const strong_anisotropy_taps<T> wy(cell.j, cell.ty, ny), wz(cell.k, cell.tz, nz);
+    const spline_taps<T> wy(cell.j, cell.ty, ny), wz(cell.k, cell.tz, nz);
     std::size_t column[4];
     for (int c = 0; c < 4; ++c) column[c] = anisotropic_albedo_node(x.i, c, nx);
     T sum = 0;
@@ -440,7 +411,7 @@ template <std::floating_point T>
                                                        const strong_anisotropy_cell<T>& cell) noexcept {
     constexpr std::size_t ny = strong_anisotropy_roughness_nodes, nz = strong_anisotropy_ratio_nodes;
     constexpr std::size_t nu = strong_anisotropy_azimuth_nodes;
-    const strong_anisotropy_taps<T> wy(cell.j, cell.ty, ny), wz(cell.k, cell.tz, nz);
+    const spline_taps<T> wy(cell.j, cell.ty, ny), wz(cell.k, cell.tz, nz);
     double r[nu] = {};
     for (int a = 0; a < 4; ++a)
         for (int b = 0; b < 4; ++b) {
