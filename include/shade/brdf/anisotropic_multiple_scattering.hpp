@@ -89,16 +89,16 @@ struct scattering_state<kulla_conty_anisotropic, T> : kulla_conty_state<T> {
         using tables = anisotropic_albedo_tables_of<Distribution>;
         using iso = albedo_tables_of<Distribution>;
         const T alpha_x = tables::alpha_x(distribution), alpha_y = tables::alpha_y(distribution);
-        T alpha = iso::roughness(distribution);
-        T average = albedo_average_lookup(iso::e_avg, albedo_grid_nodes, alpha);
+        T table_alpha = iso::roughness(distribution);
+        T average = albedo_average_lookup(iso::e_avg, albedo_grid_nodes, table_alpha);
         if (alpha_x != alpha_y) {
             anisotropic = true;
             const T alpha_max = glm::max(alpha_x, alpha_y), alpha_min = glm::min(alpha_x, alpha_y);
             if (alpha_max > T(anisotropic_albedo_ratio_max) * alpha_min) {
                 strong = true;
                 strong_cell = strong_anisotropy_locate(alpha_x, alpha_y);
-                alpha = strong_cell.alpha_base;
-                average = albedo_average_lookup(iso::e_avg, albedo_grid_nodes, alpha) +
+                table_alpha = strong_cell.alpha_base;
+                average = albedo_average_lookup(iso::e_avg, albedo_grid_nodes, table_alpha) +
                           strong_anisotropy_delta_average(tables::strong_average, strong_cell);
             } else {
                 cell = anisotropic_albedo_locate(alpha_x, alpha_y);
@@ -106,7 +106,7 @@ struct scattering_state<kulla_conty_anisotropic, T> : kulla_conty_state<T> {
             }
             average = glm::clamp(average, T(0), T(1));
         }
-        static_cast<kulla_conty_state<T>&>(*this) = make_kulla_conty_state(alpha, average, fresnel);
+        static_cast<kulla_conty_state<T>&>(*this) = make_kulla_conty_state(table_alpha, average, fresnel);
     }
 
     /// E(w) for the unit local direction w (n = +z), in [0, 1].
