@@ -1244,14 +1244,16 @@ TEST_CASE_TEMPLATE("openpbr_surface: a thin film's share on anisotropic lobes ne
     // grid (the isotropic node sum at the view's projected roughness: -4.3e-2 at index 3,
     // 0.25 um over 1.33, roughness 1, anisotropy 0.9, mu 0.1 along the tangent; -1.6e-1 at
     // anisotropy 1, index 1.05, 3 um, across it) and after it, before its margin (index
-    // 1.05 at 1-3 um, mu 0.1-0.3, phi 1.2-pi/2). The high side (the furnace's low end) is
-    // asserted at 5e-2: the largest measured (+3.3e-2 at anisotropy 1, +2.4e-2 at 0.94,
-    // before the 1.4e-2 of the grid's margin), rounded up. float: f's rounding adds 2e-5.
+    // 1.05 at 1-3 um, mu 0.1-0.3, phi 1.2-pi/2, where the grid's margin stays 1.4e-2). The
+    // high side (the furnace's low end) is asserted at 3e-2 (the largest here, 2.4e-2, is a
+    // film of index 1.05, whose isotropic margin is large) and, for the films of index 1.2
+    // and above, at 1.5e-2 (measured 1.3e-2: the grid's margin of 5e-3 and the isotropic
+    // film margin). float: f's rounding adds 2e-5.
     const double tol = std::is_same_v<T, float> ? 2e-5 : 0.0;
     const std::vector<film_point<T>> films = {{1, T(0.25), T(3), T(1.33)}, {1, T(3), T(1.05), T(1.5)},
                                               {1, T(1), T(1.05), T(1.5)},   {1, T(0.5), T(1.2), T(1.5)},
                                               {1, T(1), T(1.3), T(2.2)}};
-    double lowest = 1, highest = -1;
+    double lowest = 1, highest = -1, highest_from_1_2 = -1;
     for (const auto& fl : films) {
         for (const T r : {T(0.3), T(0.6), T(1)}) {
             for (const T a : {T(0.5), T(0.9), T(1)}) {
@@ -1263,7 +1265,11 @@ TEST_CASE_TEMPLATE("openpbr_surface: a thin film's share on anisotropic lobes ne
                                  double(fl.base_ior), " roughness ", double(r), " anisotropy ", double(a), " mu ", mu,
                                  " phi ", phi, " channel ", k, ": E_R read - true ", error[k]);
                             CHECK(error[k] >= -1e-3 - tol);
-                            CHECK(error[k] <= 5e-2 + tol);
+                            CHECK(error[k] <= 3e-2 + tol);
+                            if (fl.ior >= T(1.2)) {
+                                CHECK(error[k] <= 1.5e-2 + tol);
+                                highest_from_1_2 = std::max(highest_from_1_2, error[k]);
+                            }
                             lowest = std::min(lowest, error[k]);
                             highest = std::max(highest, error[k]);
                         }
@@ -1272,5 +1278,6 @@ TEST_CASE_TEMPLATE("openpbr_surface: a thin film's share on anisotropic lobes ne
             }
         }
     }
-    MESSAGE("thin film, anisotropic: E_R read - true in [", lowest, ", ", highest, "]");
+    MESSAGE("thin film, anisotropic: E_R read - true in [", lowest, ", ", highest, "] (film index >= 1.2: up to ",
+            highest_from_1_2, ")");
 }

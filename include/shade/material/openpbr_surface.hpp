@@ -509,10 +509,15 @@ private:
                 : film_mean_.albedo(mu, cos2_phi);
         const rgb<T> share = (film_reference_mean(alpha_v, mu) + film_mean_.at(mu, cos2_phi)) * e_one;
         // The margin: the isotropic lobes' (the larger of its reads at alpha_v and at the
-        // lobe's smaller roughness) plus film_anisotropic_margin_ for the grid's own error.
+        // lobe's smaller roughness) plus the grid's own (film_anisotropic_margin, raised near
+        // the smoother axis for a film of low index).
         const T alpha_min = glm::min(film_alpha_x_, film_alpha_y_);
+        const T alpha_max = glm::max(film_alpha_x_, film_alpha_y_);
+        const T toward_rougher = alpha_max > alpha_min ? (alpha_v - alpha_min) / (alpha_max - alpha_min) : T(1);
+        const T near_smooth_axis = glm::clamp((T(0.4) - toward_rougher) / T(0.1), T(0), T(1));
         const double margin = glm::max(film_margin_at(alpha_v, mu), film_margin_at(alpha_min, mu)) +
-                              film_anisotropic_margin_;
+                              film_anisotropic_margin + film_anisotropic_margin_near_smooth_axis *
+                                                            double(film_low_index_weight_ * near_smooth_axis);
         return share + rgb<T>(T(margin));
     }
 
@@ -999,10 +1004,25 @@ private:
     bool film_alone_ = false;                      // film_albedo_ integrates F_film alone (eta'_s < 1)
     std::array<rgb<T>, detail::cosine_weight_nodes> film_nodes_{}; // what film_albedo_ sums, at the nodes (anisotropic)
     detail::anisotropic_fresnel_mean_grid<T> film_mean_{};         // its mean over the lobe less film_reference_mean
+    // What anisotropic_film_share adds for the grid's own error (its 20^2-cell quadrature of
+    // F_film - F read between the nodes, its 16 x 13 views, with the margin read at an
+    // isotropic roughness): the largest shortfall against the anisotropic lobe's own
+    // quadrature with F_film read per cell, rounded up (docs/conventions.md;
+    // tests/sweep/test_openpbr_film_sweep.cpp holds it). It is film_anisotropic_margin
+    // everywhere but for films of index below 1.15 (whose F_film - F the grid's view nodes
+    // follow worst) seen near the lobe's smoother axis, where the difference from the
+    // reference at the nearly smooth alpha_v changes fastest with mu: there it rises to
+    // film_anisotropic_margin + film_anisotropic_margin_near_smooth_axis, in proportion to
+    // film_low_index_weight_ (1 below index 1.10, 0 from 1.15, linear between) and to
+    // the view's nearness to that axis (1 where alpha_v is within 30 % of the way from the
+    // smaller roughness to the larger, 0 from 40 %, linear between), so that E_spec stays
+    // continuous in the view and in the film's index.
+    static constexpr double film_anisotropic_margin = 5e-3;
+    static constexpr double film_anisotropic_margin_near_smooth_axis = 9e-3;
+    T film_low_index_weight_ = 0;
     T film_alpha_x_ = 0, film_alpha_y_ = 0;                         // the specular lobe's roughnesses (anisotropic)
     detail::anisotropic_albedo_cell<T> film_cell_{};                // its cell in the anisotropic tables
     bool film_cell_in_range_ = true;                                // its anisotropy within those tables' range
-    double film_anisotropic_margin_ = 0;                            // added to anisotropic_film_share
     std::size_t film_margin_first_ = 0, film_margin_last_ = 0;      // the margin's film indices
     std::size_t film_margin_table_ = 0;                             // the margin's table (0: eta'_s = specular_ior)
     rgb<T> transmission_tint_{1};
@@ -1132,19 +1152,10 @@ void openpbr_surface<T>::build() {
                                                              film_alpha_y_ * film_alpha_y_ * (T(1) - cos2_phi)),
                                                    mu);
                     });
+                film_low_index_weight_ = glm::clamp((T(1.15) - film_ior) / T(0.05), T(0), T(1));
                 film_cell_ = detail::anisotropic_albedo_locate(film_alpha_x_, film_alpha_y_);
                 film_cell_in_range_ = glm::max(film_alpha_x_, film_alpha_y_) <=
                                       T(detail::anisotropic_albedo_ratio_max) * glm::min(film_alpha_x_, film_alpha_y_);
-                // What the grid (its 20^2-cell quadrature of F_film - F read between the nodes,
-                // its 16 x 7 views) and the margin read at an isotropic roughness leave short of
-                // the anisotropic lobe's own integral: at most 3.6e-3 for alpha_t / alpha_b <= 4
-                // (anisotropy <= 0.75) and 1.33e-2 above (up to 1e4, anisotropy 1), measured
-                // against the lobe's 64^2-cell quadrature with F_film read per cell over films
-                // of index 1.01-3, 0.03-6 um over 1.33 and 2.2, roughness 0.3-1, mu 0.1-1 and
-                // five azimuths (tests/sweep/test_openpbr_film_sweep.cpp holds it), rounded up.
-                film_anisotropic_margin_ =
-                    glm::max(film_alpha_x_, film_alpha_y_) <= T(4) * glm::min(film_alpha_x_, film_alpha_y_) ? 6e-3
-                                                                                                           : 1.4e-2;
             }
             // The margin's film indices around thin_film_ior (the larger margin of the two,
             // or the one it equals); outside the grid's range, the largest of all.

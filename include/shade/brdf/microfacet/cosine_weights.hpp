@@ -46,10 +46,15 @@ void visit_ggx_cosine_measure(const vec3<double>& v, double alpha_x, double alph
     const ggx<double> d(unchecked, alpha_x, alpha_y);
     const double lambda_v = d.Lambda(v);
     const double cell = 1 / (double(strata) * double(strata));
+    const vec3<double> v_h = d.stretch(v);
     for (std::size_t i = 0; i < strata; ++i) {
+        // u = ((i + 1/2) / strata, (j + 1/2) / strata): ggx::sample_visible_normal with the
+        // column's angle 2 pi u_x computed once.
+        const double phi = 2 * pi<double> * ((double(i) + 0.5) / double(strata));
+        const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
         for (std::size_t j = 0; j < strata; ++j) {
-            const vec2<double> u((double(i) + 0.5) / double(strata), (double(j) + 0.5) / double(strata));
-            const vec3<double> h = d.sample_visible_normal(v, u);
+            const vec3<double> h =
+                d.sample_visible_normal_stretched(v_h, cos_phi, sin_phi, (double(j) + 0.5) / double(strata));
             const double c = glm::dot(v, h);
             const vec3<double> l = 2 * c * h - v;
             if (!(l.z > 0) || !(c > 0)) continue;
@@ -212,21 +217,23 @@ template <std::floating_point T>
 /// grid. The lobe is symmetric under mirroring either tangent axis, so the mean depends on
 /// the view's cosine mu and on cos^2(phi) of its azimuth phi from the tangent alone: nodes
 /// uniform in x = mu^(2/3) (mu clamped to [1e-4, 1], where the sampler needs v above the
-/// horizon) and in the azimuth coordinate of anisotropic_albedo_table.hpp, u = ln(1 + (q^2 -
-/// 1) s) / ln(q^2), s the squared cosine of the azimuth from the rougher axis and q the
-/// ratio of the roughnesses, at most anisotropy_max (the projected roughness on a log
-/// scale, which spreads the few degrees around the smoother axis where a strong anisotropy
-/// turns most of it); at() interpolates bilinearly. alpha_x, alpha_y > 0.
+/// horizon) and in the azimuth coordinate u = (s + ln(1 + (q^2 - 1) s) / ln(q^2)) / 2, s the
+/// squared cosine of the azimuth from the rougher axis and q the ratio of the roughnesses,
+/// at most anisotropy_max. The logarithmic half is the projected roughness on a log scale
+/// (the coordinate of anisotropic_albedo_table.hpp), which spreads the few degrees around
+/// the smoother axis where a strong anisotropy turns most of it; alone it leaves one or two
+/// nodes for the 40 degrees next to the rougher axis, where the mean still changes, and the
+/// linear half keeps nodes there. at() interpolates bilinearly. alpha_x, alpha_y > 0.
 template <std::floating_point T>
 class anisotropic_fresnel_mean_grid {
 public:
     static constexpr std::size_t mu_nodes = 16;     ///< view cosine nodes, uniform in mu^(2/3)
-    static constexpr std::size_t azimuth_nodes = 7; ///< nodes uniform in u over [0, 1]
+    static constexpr std::size_t azimuth_nodes = 13; ///< nodes uniform in u over [0, 1]
     static constexpr std::size_t strata = 20;       ///< the quadrature's cells per side
     /// The largest q of the azimuth coordinate: a stronger anisotropy reads u with q = 20
     /// (as anisotropic_albedo_table.hpp's ratio_max), which keeps nodes away from the
-    /// smoother axis too (with q = 1e4, u = 5/6 would already be 78 degrees from the
-    /// rougher axis).
+    /// smoother axis too (with q = 1e4 the logarithmic half would crowd all but the last
+    /// nodes within a few degrees of it).
     static constexpr double anisotropy_max = 20;
 
     anisotropic_fresnel_mean_grid() = default;
@@ -243,10 +250,7 @@ public:
             const double mu = glm::clamp(x * std::sqrt(x), 1e-4, 1.0);
             const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
             for (std::size_t j = 0; j < azimuth_nodes; ++j) {
-                // s at node j: the inverse of u, s = (q^(2 u) - 1) / (q^2 - 1).
-                const double u_j = double(j) / double(azimuth_nodes - 1);
-                const double s_j =
-                    log_q2_ > T(0) ? std::expm1(u_j * double(log_q2_)) / std::expm1(double(log_q2_)) : u_j;
+                const double s_j = node_s(double(j) / double(azimuth_nodes - 1));
                 const double cos2_phi = x_rougher_ ? s_j : 1 - s_j;
                 const vec3<double> v(sin_theta * std::sqrt(cos2_phi), sin_theta * std::sqrt(1 - cos2_phi), mu);
                 rgb<double> sum(0);
@@ -276,8 +280,26 @@ private:
     // u of cos^2(phi) (clamped to [0, 1]; NaN read as 0).
     [[nodiscard]] T azimuth(T cos2_phi) const noexcept {
         const T c = cos2_phi > T(0) ? glm::min(cos2_phi, T(1)) : T(0);
-        const T s = x_rougher_ ? c : T(1) - c;
-        return log_q2_ > T(0) ? std::log1p(std::expm1(log_q2_) * s) / log_q2_ : s;
+        return azimuth_of_s(x_rougher_ ? c : T(1) - c);
+    }
+
+    // u of s, the squared cosine of the azimuth from the rougher axis (s in [0, 1]).
+    template <class U>
+    [[nodiscard]] U azimuth_of_s(U s) const noexcept {
+        const U log_q2 = U(log_q2_);
+        const U log_part = log_q2 > U(0) ? std::log1p(std::expm1(log_q2) * s) / log_q2 : s;
+        return U(0.5) * (s + log_part);
+    }
+
+    // s at the azimuth coordinate u in [0, 1]: the inverse of azimuth_of_s (increasing, from
+    // 0 to 1) by bisection to double precision.
+    [[nodiscard]] double node_s(double u) const noexcept {
+        double lo = 0, hi = 1;
+        for (int k = 0; k < 60; ++k) {
+            const double mid = 0.5 * (lo + hi);
+            (azimuth_of_s(mid) < u ? lo : hi) = mid;
+        }
+        return 0.5 * (lo + hi);
     }
 
     template <class V>

@@ -241,12 +241,25 @@ public:
     /// the half vector's z, z + w_hz = (1 - u_y)(1 + w_hz), are computed in these forms,
     /// which have no cancellation (the second is > 0 for u_y < 1).
     [[nodiscard]] vec3<T> sample_visible_normal(const vec3<T>& w, const vec2<T>& u) const noexcept {
-        const vec3<T> w_h = glm::normalize(vec3<T>(alpha_x_ * w.x, alpha_y_ * w.y, w.z));
         const T phi = T(2) * pi<T> * u.x;
-        const T one_minus_z = u.y * (T(1) + w_h.z);
-        const T h_z = (T(1) - u.y) * (T(1) + w_h.z);
+        return sample_visible_normal_stretched(stretch(w), std::cos(phi), std::sin(phi), u.y);
+    }
+
+    /// The view w stretched into the configuration of sample_visible_normal:
+    /// normalize(alpha_x w_x, alpha_y w_y, w_z). Precondition: w_z > 0.
+    [[nodiscard]] vec3<T> stretch(const vec3<T>& w) const noexcept {
+        return glm::normalize(vec3<T>(alpha_x_ * w.x, alpha_y_ * w.y, w.z));
+    }
+
+    /// sample_visible_normal(w, u) from w_h = stretch(w) and cos(2 pi u_x), sin(2 pi u_x):
+    /// the same unit normal, for quadratures that visit many u at one view (the stretch and
+    /// the cosine and sine of each column computed once).
+    [[nodiscard]] vec3<T> sample_visible_normal_stretched(const vec3<T>& w_h, T cos_phi, T sin_phi,
+                                                          T u_y) const noexcept {
+        const T one_minus_z = u_y * (T(1) + w_h.z);
+        const T h_z = (T(1) - u_y) * (T(1) + w_h.z);
         const T sin_theta = safe_sqrt(one_minus_z * (T(2) - one_minus_z));
-        const vec3<T> h(sin_theta * std::cos(phi) + w_h.x, sin_theta * std::sin(phi) + w_h.y, h_z);
+        const vec3<T> h(sin_theta * cos_phi + w_h.x, sin_theta * sin_phi + w_h.y, h_z);
         const vec3<T> m(alpha_x_ * h.x, alpha_y_ * h.y, h.z);
         const T length = glm::length(m);
         // Zero only for u_y = 1, outside the documented domain; n keeps the result a unit vector.
