@@ -121,10 +121,11 @@ public:
     fresnel_albedo_row() = default;
 
     template <class Fresnel>
-    fresnel_albedo_row(T alpha, const Fresnel& F) {
+    fresnel_albedo_row(T alpha, const Fresnel& F) : fresnel_albedo_row(alpha, nodes_of(F)) {}
+
+    /// The row of F given at the nodes: f_nodes[k] = F(c_k).
+    fresnel_albedo_row(T alpha, const std::array<rgb<T>, cosine_weight_nodes>& f_nodes) {
         constexpr std::size_t n = cosine_weight_nodes, m = cosine_weight_alpha_nodes;
-        std::array<rgb<T>, n> f_nodes;
-        for (std::size_t k = 0; k < n; ++k) f_nodes[k] = F(T(cosine_weight_node(k)));
         const double s = std::sqrt(glm::clamp(double(alpha), 0.0, 1.0)) * double(m - 1);
         const std::size_t j = glm::min(std::size_t(s), m - 2);
         const double t = s - double(j);
@@ -140,18 +141,10 @@ public:
         }
     }
 
-    /// Raises each view node's sum by margin(j, i) (a double for alpha row j and view node
-    /// i of the table), interpolated in sqrt(alpha) as the weights are: with an upper bound
-    /// of the sum's shortfall for a known family of F (the thin films of
-    /// detail/thin_film_margin_data.hpp) the row then reads high, never low. alpha as at
-    /// construction.
-    template <class Margin>
-    void raise(T alpha, const Margin& margin) {
-        constexpr std::size_t n = cosine_weight_nodes, m = cosine_weight_alpha_nodes;
-        const double s = std::sqrt(glm::clamp(double(alpha), 0.0, 1.0)) * double(m - 1);
-        const std::size_t j = glm::min(std::size_t(s), m - 2);
-        const double t = s - double(j);
-        for (std::size_t i = 0; i < n; ++i) row_[i] += rgb<T>(T((1 - t) * margin(j, i) + t * margin(j + 1, i)));
+    /// Raises view node i's sum by margin[i]: with an upper bound of the sum's shortfall
+    /// (openpbr_surface's thin-film margin) the row then reads high, never low.
+    void raise(const std::array<double, cosine_weight_nodes>& margin) {
+        for (std::size_t i = 0; i < cosine_weight_nodes; ++i) row_[i] += rgb<T>(T(margin[i]));
     }
 
     /// E_F at view cosine mu (clamped to [0, 1]), per channel.
@@ -165,6 +158,13 @@ public:
     }
 
 private:
+    template <class Fresnel>
+    [[nodiscard]] static std::array<rgb<T>, cosine_weight_nodes> nodes_of(const Fresnel& F) {
+        std::array<rgb<T>, cosine_weight_nodes> f_nodes;
+        for (std::size_t k = 0; k < cosine_weight_nodes; ++k) f_nodes[k] = F(T(cosine_weight_node(k)));
+        return f_nodes;
+    }
+
     std::array<rgb<T>, cosine_weight_nodes> row_{};
 };
 
