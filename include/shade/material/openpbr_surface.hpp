@@ -683,6 +683,13 @@ private:
         } else {
             w.p[std::size_t(lobe::transparent)] = alpha < T(1) ? T(1) : T(0);
         }
+        if (interface_draws_ && M < T(1) && Tw > T(0)) {
+            // Half the specular lobe's share goes to the transmission lobe, which then draws
+            // from the whole interface (interface_draws_).
+            const T moved = T(0.5) * w.p[std::size_t(lobe::specular)];
+            w.p[std::size_t(lobe::specular)] -= moved;
+            w.p[std::size_t(lobe::transmission)] += moved;
+        }
         if (w.p[std::size_t(lobe::diffuse)] > T(0)) w.diffuse_view = diffuse_->prepare_local(w.v_local);
         return w;
     }
@@ -792,6 +799,8 @@ private:
         }
         if (M < T(1)) {
             rgb<T> dielectric(0);
+            if (interface_draws_ && p(lobe::transmission) > T(0))
+                out.pdf += p(lobe::transmission) * transmission_->f_and_pdf(l, w.transmission_view, at).pdf;
             if (specular_) {
                 microfacet<with_f, with_pdf>(*specular_, l_local, v_local, half, T(1), p(lobe::specular), lobe_f,
                                              out.pdf);
@@ -951,9 +960,12 @@ private:
             const T eta = p_.specular_ior;
             if (transmission_) {
                 // The interface's direction only, kept when it crosses (its reflections
-                // belong to the specular lobe).
+                // belong to the specular lobe) or, with interface_draws_, either way.
                 const std::optional<vec3<T>> l = transmission_->draw(w.transmission_view, uc, u, at);
-                if (!l || !(glm::dot(at.n(), *l) < T(0))) return std::nullopt;
+                if (!l) return std::nullopt;
+                const T n_dot_l = glm::dot(at.n(), *l);
+                if (interface_draws_ && n_dot_l > T(0)) return finish(*l, v, o, bsdf_flags::glossy, T(1), mode, &w);
+                if (!(n_dot_l < T(0))) return std::nullopt;
                 return finish(*l, v, o, bsdf_flags::glossy, transmission_->eta(), mode, &w);
             }
             if (index_matched_) return delta(-v, carried * under_coat(w.mu, w), p_k, o, bsdf_flags::transmission, T(1));
@@ -1047,6 +1059,14 @@ private:
     std::optional<metal_lobe> metal_;
     std::optional<specular_lobe> specular_;
     std::optional<transmission_lobe> transmission_;
+    // Seen from outside an interface whose index ratio is below 1 (specular_ior < 1), most
+    // views lie in the cone of total internal reflection: the interface transmits a small
+    // T(v), and a transmission lobe chosen with a probability ~ T(v) whose draw crosses with
+    // a probability ~ T(v) again gives its crossings weights ~ 1 / T(v) (hundreds). There
+    // the transmission lobe also gets half the specular lobe's probability and keeps the
+    // interface's reflections as well (their density joins the mixture's for reflected
+    // directions), so that its crossings are drawn several times more often.
+    bool interface_draws_ = false;
     std::optional<sheet_lobe> sheet_;
     std::optional<diffuse_lobe> diffuse_;
     std::optional<diffuse_lobe> subsurface_;
@@ -1245,6 +1265,7 @@ void openpbr_surface<T>::build() {
                                   glm::clamp(p.specular_ior, dielectric_eta_min<T>, dielectric_eta_max<T>));
             transmission_alpha_ = iso(*base_distribution);
             const T eta = transmission_->eta();
+            interface_draws_ = eta < T(1);
             transmission_reflection_ = detail::reflection_albedo_row<T>(transmission_alpha_, eta);
             transmission_anisotropic_ = base_distribution->alpha_x() != base_distribution->alpha_y();
             if (transmission_anisotropic_)
