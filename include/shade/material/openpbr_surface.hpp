@@ -1091,14 +1091,14 @@ private:
     // smaller roughness to the larger, 0 from 40 %, linear between), so that E_spec stays
     // continuous in the view and in the film's index.
     static constexpr double film_anisotropic_margin = 5e-3;
+    static constexpr double film_anisotropic_margin_near_smooth_axis = 9e-3;
+    T film_low_index_weight_ = 0;
     // What film_row_margin adds to its own estimate of a film's shortfall for the weights' error
     // beyond that of a smooth Fresnel factor: the largest shortfall without it, over the
     // films of tests/sweep/test_openpbr_film_sweep.cpp and 900 random films (index 1.01-3,
     // 0.03-2.5 um over 1.05-3, specular_weight 0.2-1, roughness 0.01-1, mu 0.1-1), was
     // 6.6e-4 (index 3, 0.25 um over 1.33, roughness 0.2, mu 1), rounded up.
     static constexpr double film_weights_allowance = 8e-4;
-    static constexpr double film_anisotropic_margin_near_smooth_axis = 9e-3;
-    T film_low_index_weight_ = 0;
     T film_alpha_x_ = 0, film_alpha_y_ = 0;                         // the specular lobe's roughnesses (anisotropic)
     detail::anisotropic_albedo_cell<T> film_cell_{};                // its cell in the anisotropic tables
     bool film_cell_in_range_ = true;                                // its anisotropy within those tables' range
