@@ -648,8 +648,12 @@ private:
                                    ? transmission_reflection_anisotropic_.at(w.v_local)
                                : transmission_reflection_is_specular_ ? w.specular_albedo.x
                                                                       : transmission_reflection_.at(w.mu);
-                w.transmittance = glm::max(e_s - r_ss + transmission_->transmitted_share(false) * (T(1) - e_s),
-                                           T(1e-6));
+                // The single-scattering part e_s - R_ss cannot be negative; where the two tables
+                // read it so (near the total-reflection kink of an anisotropic interface below
+                // an index ratio of 1, where both are near 1), it counts as 0, and the
+                // transmission lobe is not scaled by the inverse of a vanishing difference.
+                w.transmittance = glm::max(
+                    glm::max(e_s - r_ss, T(0)) + transmission_->transmitted_share(false) * (T(1) - e_s), T(1e-6));
             }
         }
         if (!probabilities) return w;
