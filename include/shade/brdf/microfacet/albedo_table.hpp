@@ -146,12 +146,22 @@ template <std::floating_point T>
     return sum;
 }
 
-/// The four nodes and weights with which a Catmull-Rom spline (Catmull, Rom 1974, "A Class
-/// of Local Interpolating Splines"; tangents (p_i+1 - p_i-1) / 2) reads the fraction t of
-/// cell i of an n-node axis (n >= 3): nodes i - 1 .. i + 2, a neighbour beyond an end
-/// replaced by its linear extrapolation (2 p_0 - p_1, 2 p_n-1 - p_n-2), so the tangent at an
-/// end node is the secant of its cell and no value from beyond the axis is needed. Exact for
-/// quadratics inside; the weights sum to 1.
+/// Catmull-Rom weights of the nodes i - 1, i, i + 1, i + 2 at the fraction t in [0, 1] of
+/// cell i (Catmull, Rom 1974, "A Class of Local Interpolating Splines", the spline with
+/// tangents (p_i+1 - p_i-1) / 2): cubic, interpolating, weights summing to 1.
+template <std::floating_point T>
+struct catmull_rom_weights {
+    T w[4];
+    explicit catmull_rom_weights(T t) noexcept
+        : w{T(0.5) * t * ((T(2) - t) * t - T(1)), T(0.5) * (t * t * (T(3) * t - T(5)) + T(2)),
+            T(0.5) * t * ((T(4) - T(3) * t) * t + T(1)), T(0.5) * t * t * (t - T(1))} {}
+};
+
+/// The four nodes and weights with which the Catmull-Rom spline of catmull_rom_weights reads
+/// the fraction t of cell i of an n-node axis (n >= 3): nodes i - 1 .. i + 2, a neighbour
+/// beyond an end replaced by its linear extrapolation (2 p_0 - p_1, 2 p_n-1 - p_n-2), so the
+/// tangent at an end node is the secant of its cell and no value from beyond the axis is
+/// needed. Exact for quadratics inside; the weights sum to 1.
 template <std::floating_point T>
 struct spline_taps {
     std::size_t node[4]{};
@@ -159,8 +169,8 @@ struct spline_taps {
 
     spline_taps() = default;
     spline_taps(std::size_t i, T t, std::size_t n) noexcept {
-        const T w[4] = {T(0.5) * t * ((T(2) - t) * t - T(1)), T(0.5) * (t * t * (T(3) * t - T(5)) + T(2)),
-                        T(0.5) * t * ((T(4) - T(3) * t) * t + T(1)), T(0.5) * t * t * (t - T(1))};
+        const catmull_rom_weights<T> c(t);
+        const T* w = c.w;
         for (int a = 0; a < 4; ++a) weight[a] = w[a];
         node[0] = i > 0 ? i - 1 : 0;
         node[1] = i;

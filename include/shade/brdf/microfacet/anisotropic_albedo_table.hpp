@@ -149,17 +149,6 @@ template <std::floating_point T>
     return std::log1p(cell.q2_minus_1 * s) * cell.inv_log_q2;
 }
 
-/// Catmull-Rom weights of the nodes i - 1, i, i + 1, i + 2 at the fraction t in [0, 1] of
-/// cell i (Catmull, Rom 1974, "A Class of Local Interpolating Splines", the spline with
-/// tangents (p_i+1 - p_i-1) / 2): cubic, interpolating, weights summing to 1.
-template <std::floating_point T>
-struct catmull_rom_weights {
-    T w[4];
-    explicit catmull_rom_weights(T t) noexcept
-        : w{T(0.5) * t * ((T(2) - t) * t - T(1)), T(0.5) * (t * t * (T(3) * t - T(5)) + T(2)),
-            T(0.5) * t * ((T(4) - T(3) * t) * t + T(1)), T(0.5) * t * t * (t - T(1))} {}
-};
-
 /// Node index i + a - 1 of an n-node axis, clamped to [0, n - 1] (the edge node repeated).
 [[nodiscard]] constexpr std::size_t anisotropic_albedo_node(std::size_t i, int a, std::size_t n) noexcept {
     const std::ptrdiff_t m = std::ptrdiff_t(i) + a - 1;
