@@ -242,7 +242,7 @@ public:
     /// which have no cancellation (the second is > 0 for u_y < 1).
     [[nodiscard]] vec3<T> sample_visible_normal(const vec3<T>& w, const vec2<T>& u) const noexcept {
         const T phi = T(2) * pi<T> * u.x;
-        return sample_visible_normal_stretched(stretch(w), std::cos(phi), std::sin(phi), u.y);
+        return visible_normal(stretch(w), u.y, [phi] { return vec2<T>(std::cos(phi), std::sin(phi)); });
     }
 
     /// The view w stretched into the configuration of sample_visible_normal:
@@ -256,10 +256,20 @@ public:
     /// the cosine and sine of each column computed once).
     [[nodiscard]] vec3<T> sample_visible_normal_stretched(const vec3<T>& w_h, T cos_phi, T sin_phi,
                                                           T u_y) const noexcept {
+        return visible_normal(w_h, u_y, [cos_phi, sin_phi] { return vec2<T>(cos_phi, sin_phi); });
+    }
+
+private:
+    // The body of sample_visible_normal for the stretched view w_h: trig() returns (cos phi,
+    // sin phi), called where they are used (after the square root, as the per-sample path
+    // schedules best).
+    template <class Trig>
+    [[nodiscard]] vec3<T> visible_normal(const vec3<T>& w_h, T u_y, const Trig& trig) const noexcept {
         const T one_minus_z = u_y * (T(1) + w_h.z);
         const T h_z = (T(1) - u_y) * (T(1) + w_h.z);
         const T sin_theta = safe_sqrt(one_minus_z * (T(2) - one_minus_z));
-        const vec3<T> h(sin_theta * cos_phi + w_h.x, sin_theta * sin_phi + w_h.y, h_z);
+        const vec2<T> cs = trig();
+        const vec3<T> h(sin_theta * cs.x + w_h.x, sin_theta * cs.y + w_h.y, h_z);
         const vec3<T> m(alpha_x_ * h.x, alpha_y_ * h.y, h.z);
         const T length = glm::length(m);
         // Zero only for u_y = 1, outside the documented domain; n keeps the result a unit vector.
@@ -267,7 +277,6 @@ public:
         return m / length;
     }
 
-private:
     T alpha_x_;
     T alpha_y_;
     // Reciprocals used by D(m); set from the alphas by every constructor.
