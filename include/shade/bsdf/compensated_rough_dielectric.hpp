@@ -300,6 +300,25 @@ public:
         return evaluate(at.shading.to_local(l), view, transport_mode::radiance);
     }
 
+    /// The reflected part of the multiple-scattering lobe alone, for l on the side of the
+    /// prepared view (1/sr without the cosine; the same in both transport modes):
+    ///
+    ///     f_ms,R(l, v) = (1 - tau_s) (1 - E_s(l)) (1 - E_s(v)) / (pi (1 - E_s,avg)),
+    ///
+    /// whose integral against |n·l| over v's side is (1 - tau_s) (1 - E_s(v)) (class
+    /// comment). 0 for l on the far side or on the surface, for an invalid view, or when the
+    /// compensation is off. f_and_pdf(l, view, at).f for such an l is this plus the single-
+    /// scattering reflection.
+    [[nodiscard]] T multiple_scattering_reflection(const vec3<T>& l, const prepared_view& view,
+                                                   const surface_point<T>& at) const noexcept {
+        if (!view.valid || !enabled_) return T(0);
+        const vec3<T> l_local = at.shading.to_local(l);
+        if (!(l_local.z != T(0)) || !std::isfinite(l_local.z)) return T(0);
+        if ((l_local.z < T(0)) != (view.v_local.z < T(0))) return T(0);
+        const std::size_t s = view.side;
+        return side_[s].reflect * (T(1) - albedo(s, l_local)) * (T(1) - view.albedo);
+    }
+
     /// The direction l that sample(v, uc, u, at) draws, without f and pdf (for a mixture
     /// that evaluates itself at l); nullopt where sample()'s direction is.
     [[nodiscard]] std::optional<vec3<T>> draw(const vec3<T>& v, T uc, const vec2<T>& u,

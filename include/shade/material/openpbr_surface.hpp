@@ -199,7 +199,12 @@ private:
 ///     the energy the specular reflection leaves (the specification's "the transmission
 ///     Fresnel factor can be omitted"), tinted by transmission_color when
 ///     transmission_depth = 0 (otherwise the colour belongs to the interior medium,
-///     interior()).
+///     interior()). Below an index ratio of 1 (specular_ior < 1) the lobe also carries the
+///     interface's multiple-scattering reflection (compensated_rough_dielectric::
+///     multiple_scattering_reflection, untinted) and is divided by that part's albedo
+///     as well, 1 - R_ss(v) in all: there most views lie in the cone of total reflection,
+///     where the transmittance alone is a small difference of two tables whose inverse
+///     would amplify their error.
 ///   * f_diffuse: shade::eon (base_weight base_color, base_diffuse_roughness).
 ///   * f_subsurface: shade::eon (subsurface_color, base_diffuse_roughness): the surface
 ///     part of subsurface scattering as a diffuse lobe; the interior is reported by
@@ -397,7 +402,8 @@ private:
         T coat_albedo = 0;                 // E_coat(mu)
         rgb<T> darkening{1};               // D, per channel
         rgb<T> specular_albedo{0};         // E_spec(v), per channel
-        T transmittance = 1;               // of the transmission lobe's interface from v
+        T transmittance = 1;               // the albedo the transmission lobe is divided by
+        T interface_reflection = 0;        // share of the interface's R_ss in it (interface_draws_)
         typename transmission_lobe::prepared_view transmission_view{}; // when transmission_ and T > 0
         typename diffuse_lobe::prepared_view diffuse_view{}; // with the probabilities, when p[diffuse] > 0
         std::array<T, lobe_count> p{};     // lobe probabilities
@@ -652,8 +658,22 @@ private:
                 // read it so (near the total-reflection kink of an anisotropic interface below
                 // an index ratio of 1, where both are near 1), it counts as 0, and the
                 // transmission lobe is not scaled by the inverse of a vanishing difference.
-                w.transmittance = glm::max(
-                    glm::max(e_s - r_ss, T(0)) + transmission_->transmitted_share(false) * (T(1) - e_s), T(1e-6));
+                // With interface_draws_ the lobe carries the multiple scattering's reflected
+                // part too (all of 1 - e_s instead of tau (1 - e_s)), and where that leaves it
+                // less than 1 - E_spec (largest channel) to carry, the share of the interface's
+                // single-scattering reflection R_ss that makes up the difference (class
+                // comment), so that the lobe is never scaled up.
+                const T lost = T(1) - e_s;
+                const T carried = glm::max(e_s - r_ss, T(0)) +
+                                  (interface_draws_ ? lost : transmission_->transmitted_share(false) * lost);
+                w.transmittance = glm::max(carried, T(1e-6));
+                if (interface_draws_) {
+                    const T needed = max_channel(rgb<T>(1) - w.specular_albedo);
+                    if (needed > carried && r_ss > T(0)) {
+                        w.interface_reflection = glm::min((needed - carried) / r_ss, T(1));
+                        w.transmittance = glm::max(carried + w.interface_reflection * r_ss, T(1e-6));
+                    }
+                }
             }
         }
         if (!probabilities) return w;
@@ -803,8 +823,19 @@ private:
         }
         if (M < T(1)) {
             rgb<T> dielectric(0);
-            if (interface_draws_ && p(lobe::transmission) > T(0))
-                out.pdf += p(lobe::transmission) * transmission_->f_and_pdf(l, w.transmission_view, at).pdf;
+            if (interface_draws_ && Tw > T(0) && (with_f || p(lobe::transmission) > T(0))) {
+                // The transmission lobe's reflected part (interface_draws_): the interface's
+                // multiple-scattering reflection plus the share w.interface_reflection of its
+                // single-scattering reflection (f_and_pdf's f less the former).
+                const auto interface = transmission_->f_and_pdf(l, w.transmission_view, at);
+                out.pdf += p(lobe::transmission) * interface.pdf;
+                if constexpr (with_f) {
+                    const T multiple = transmission_->multiple_scattering_reflection(l, w.transmission_view, at);
+                    const T single = glm::max(interface.f.x - multiple, T(0));
+                    dielectric += (Tw / w.transmittance) * (rgb<T>(1) - w.specular_albedo) *
+                                  (multiple + w.interface_reflection * single);
+                }
+            }
             if (specular_) {
                 microfacet<with_f, with_pdf>(*specular_, l_local, v_local, half, T(1), p(lobe::specular), lobe_f,
                                              out.pdf);
@@ -974,7 +1005,10 @@ private:
             }
             if (index_matched_) return delta(-v, carried * under_coat(w.mu, w), p_k, o, bsdf_flags::transmission, T(1));
             const std::optional<vec3<T>> l = refract(v, at.n(), eta);
-            if (!l) return std::nullopt;
+            // Beyond the critical angle of specular_ior < 1 (under a coat, E_spec is read at
+            // a ratio above 1 and can leave this lobe energy there) the interface reflects
+            // totally: what the lobe carries leaves along the mirror direction.
+            if (!l) return delta(mirror, carried * under_coat(w.mu, w), p_k, o, bsdf_flags::reflection, T(1));
             const T mu_l = -glm::dot(at.n(), *l);
             const T radiance = mode == transport_mode::radiance ? T(1) / (eta * eta) : T(1);
             return delta(*l, carried * under_coat(mu_l, w) * radiance, p_k, o, bsdf_flags::transmission, eta);
@@ -1069,7 +1103,8 @@ private:
     // a probability ~ T(v) again gives its crossings weights ~ 1 / T(v) (hundreds). There
     // the transmission lobe also gets half the specular lobe's probability and keeps the
     // interface's reflections as well (their density joins the mixture's for reflected
-    // directions), so that its crossings are drawn several times more often.
+    // directions), so that its crossings are drawn several times more often; and its f
+    // includes the interface's multiple-scattering reflection (class comment).
     bool interface_draws_ = false;
     std::optional<sheet_lobe> sheet_;
     std::optional<diffuse_lobe> diffuse_;
