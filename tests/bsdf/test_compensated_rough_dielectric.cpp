@@ -270,12 +270,13 @@ TEST_CASE_TEMPLATE("compensated_rough_dielectric: the multiple-scattering reflec
                 const shade::frame<T> hemisphere = shade::frame<T>::from_normal(side);
                 constexpr int n = 256;
                 double integral = 0;
+                bool finite = true;
                 for (int i = 0; i < n; ++i)
                     for (int j = 0; j < n; ++j) {
                         const vec2<T> u(T((i + 0.5) / n), T((j + 0.5) / n));
                         const vec3<T> l = hemisphere.to_world(shade::square_to_cosine_hemisphere(u));
                         const T ms = model.multiple_scattering_reflection(l, view, at);
-                        CHECK(std::isfinite(ms));
+                        finite = finite && std::isfinite(ms);
                         integral += double(ms) * shade::pi<double>;
                         // f less single scattering, and nothing across.
                         if (i % 37 == 0 && j % 41 == 0) {
@@ -288,7 +289,8 @@ TEST_CASE_TEMPLATE("compensated_rough_dielectric: the multiple-scattering reflec
                 const double expected =
                     (1 - double(model.transmitted_share(inside))) * (1 - double(view.albedo));
                 INFO("integral ", integral, " expected ", expected);
-                CHECK(expected > 0.01);
+                CHECK(finite);
+                CHECK(expected > 1e-3);
                 CHECK(std::abs(integral - expected) <= 0.01 * expected);
             }
         }
