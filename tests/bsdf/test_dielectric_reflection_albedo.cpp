@@ -392,6 +392,62 @@ TEST_CASE("dielectric reflection albedo: the anisotropic form against direct est
                                                       << " to " << high[1] << " (inside)");
 }
 
+TEST_CASE_TEMPLATE("dielectric reflection albedo: beyond eta_hat 3 an anisotropic interface's grid reads at or above direct estimates",
+                   T, float, double) {
+    // detail::anisotropic_reflection_albedo_grid (what a material reads) above the correction
+    // table's eta 3 on the rarer side: eta 3.5, 6 and 20, at 5:1, 1.25:1 and 24:1 and with a
+    // rougher alpha above 1, both axes rougher in turn, mu 0.1-0.95 and six azimuths, against
+    // fresh 64^2 estimates of the model: read - fresh at least -4 standard errors (it reads at
+    // or above, so a material's white furnace does not exceed 1) and at most 1e-2 (its
+    // margin 2e-3 plus the quadrature's error, measured within +5e-3). The table alone, its
+    // correction read at 3, errs by several per cent here (asserted: its largest |error| is
+    // above 2e-2, so these points test the grid and not the table). At eta 2.4 and 1 / 1.5
+    // the grid is the table, value for value.
+    constexpr std::size_t strata = 64;
+    struct alphas {
+        double x, y;
+    };
+    double low = 1, high = -1, table_worst = 0;
+    for (const double eta : {3.5, 6.0, 20.0})
+        for (const alphas& a : {alphas{0.3, 0.06}, alphas{0.06, 0.3}, alphas{0.15, 0.12}, alphas{1.2, 0.05},
+                                alphas{0.4, 0.9}})
+        {
+            const d::anisotropic_reflection_albedo_grid<T> extended(T(a.x), T(a.y), T(eta));
+            const d::anisotropic_reflection_albedo<T> plain(T(a.x), T(a.y), T(eta));
+            for (const double mu : {0.1, 0.3, 0.6, 0.95})
+                for (const double degrees : {0.0, 25.0, 50.0, 75.0, 90.0, 140.0}) {
+                    const auto v = view(mu, 0, degrees * shade::pi<double> / 180);
+                    const auto fresh = fresh_reflection(a.x, a.y, eta, v, strata, 901);
+                    const vec3<T> w(v);
+                    const double r = double(extended.at(w));
+                    const double error = r - fresh.albedo.x;
+                    CAPTURE(eta);
+                    CAPTURE(a.x);
+                    CAPTURE(a.y);
+                    CAPTURE(mu);
+                    CAPTURE(degrees);
+                    CAPTURE(fresh.albedo.x);
+                    CHECK(error >= -4 * fresh.standard_error.x);
+                    CHECK(error <= 1e-2 + 4 * fresh.standard_error.x);
+                    low = std::min(low, error);
+                    high = std::max(high, error);
+                    table_worst = std::max(table_worst, std::abs(double(plain.at(w)) - fresh.albedo.x));
+                }
+        }
+    MESSAGE("anisotropic grid beyond eta 3 - fresh: " << low << " to " << high << "; the table alone: |error| up to "
+                                                      << table_worst);
+    CHECK(table_worst > 2e-2);
+    for (const double eta : {2.4, 1 / 1.5}) {
+        const d::anisotropic_reflection_albedo_grid<T> extended(T(0.3), T(0.06), T(eta));
+        const d::anisotropic_reflection_albedo<T> plain(T(0.3), T(0.06), T(eta));
+        for (const double mu : {0.1, 0.5, 1.0})
+            for (const double degrees : {0.0, 40.0, 90.0}) {
+                const vec3<T> w(view(mu, 0, degrees * shade::pi<double> / 180));
+                CHECK(extended.at(w) == plain.at(w));
+            }
+    }
+}
+
 TEST_CASE("dielectric reflection albedo: the anisotropic grid's coordinates") {
     // The exiting side's azimuth coordinate puts the kink phi_k (sin(theta) cos(phi_k) =
     // 1 / eta_hat) on u = 1/2 and its view coordinate the critical cosine on x = 1/2, both

@@ -186,7 +186,8 @@ private:
 ///     exact Fresnel of the modulated index eta'_s, openpbr::modulated_ior_ratio of
 ///     openpbr::specular_ior_ratio; with a thin film); E_spec its albedo:
 ///     specular_color times dielectric_reflection_albedo at eta'_s (anisotropic: at the
-///     view's azimuth) plus, with a film, thin_film_weight times the integral of
+///     view's azimuth, from detail::anisotropic_reflection_albedo_grid, whose correction
+///     above a ratio of 3 is integrated when the material is built) plus, with a film, thin_film_weight times the integral of
 ///     F_film - F (F the exact dielectric Fresnel at eta'_s) against the lobe's measure of
 ///     c = v·h (shade/brdf/microfacet/cosine_weights.hpp, summed once per material; an
 ///     anisotropic lobe per view at the roughness along the view's azimuth, normalised to
@@ -1155,9 +1156,9 @@ private:
     detail::reflection_albedo_row<T> coat_albedo_{};          // E_coat(mu)
     detail::reflection_albedo_row<T> specular_albedo_{};      // R_ss(mu) at eta'_s
     detail::reflection_albedo_row<T> transmission_reflection_{}; // R_ss(mu) at specular_ior
-    detail::anisotropic_reflection_albedo<T> coat_albedo_anisotropic_{};         // E_coat(v), anisotropic coat
-    detail::anisotropic_reflection_albedo<T> specular_albedo_anisotropic_{};     // R_ss(v) at eta'_s, anisotropic
-    detail::anisotropic_reflection_albedo<T> transmission_reflection_anisotropic_{}; // R_ss(v), anisotropic
+    detail::anisotropic_reflection_albedo_grid<T> coat_albedo_anisotropic_{};         // E_coat(v), anisotropic coat
+    detail::anisotropic_reflection_albedo_grid<T> specular_albedo_anisotropic_{};     // R_ss(v) at eta'_s, anisotropic
+    detail::anisotropic_reflection_albedo_grid<T> transmission_reflection_anisotropic_{}; // R_ss(v), anisotropic
     bool transmission_anisotropic_ = false;
     bool transmission_reflection_is_specular_ = false; // transmission_reflection_ = E_spec (build)
     bool coat_anisotropic_ = false;
@@ -1205,7 +1206,7 @@ void openpbr_surface<T>::build() {
             coat_anisotropic_ = d->alpha_x() != d->alpha_y();
             if (coat_anisotropic_)
                 coat_albedo_anisotropic_ =
-                    detail::anisotropic_reflection_albedo<T>(d->alpha_x(), d->alpha_y(), coat_eta_);
+                    detail::anisotropic_reflection_albedo_grid<T>(d->alpha_x(), d->alpha_y(), coat_eta_);
         }
     }
 
@@ -1243,7 +1244,7 @@ void openpbr_surface<T>::build() {
         specular_albedo_ = detail::reflection_albedo_row<T>(specular_alpha_, specular_eta_);
         specular_anisotropic_ = base_distribution->alpha_x() != base_distribution->alpha_y();
         if (specular_anisotropic_ && specular_eta_ != T(1))
-            specular_albedo_anisotropic_ = detail::anisotropic_reflection_albedo<T>(
+            specular_albedo_anisotropic_ = detail::anisotropic_reflection_albedo_grid<T>(
                 base_distribution->alpha_x(), base_distribution->alpha_y(), specular_eta_);
         if (film_dielectric_) {
             const T eta = specular_eta_;
@@ -1308,7 +1309,7 @@ void openpbr_surface<T>::build() {
             transmission_reflection_ = detail::reflection_albedo_row<T>(transmission_alpha_, eta);
             transmission_anisotropic_ = base_distribution->alpha_x() != base_distribution->alpha_y();
             if (transmission_anisotropic_)
-                transmission_reflection_anisotropic_ = detail::anisotropic_reflection_albedo<T>(
+                transmission_reflection_anisotropic_ = detail::anisotropic_reflection_albedo_grid<T>(
                     base_distribution->alpha_x(), base_distribution->alpha_y(), eta);
             // R_ss at the view is the specular lobe's E_spec itself when both read the same
             // row and E_spec has no tint or film: one lookup serves both. eta'_s is

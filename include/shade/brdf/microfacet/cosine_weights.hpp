@@ -206,45 +206,43 @@ template <std::floating_point T>
     return out;
 }
 
-/// The mean of a Fresnel factor F(c), c = v·h, against an anisotropic GGX reflection lobe's
-/// measure of c (F = 1 at every node gives 1), less a reference mean, on a grid of views,
-/// computed at construction: F is given at the nodes c_k of cosine_weight_node and read
-/// linearly between them in x = c^(2/3), as fresnel_albedo_row reads it; the measure is
-/// integrated by visit_ggx_cosine_measure on strata^2 cells at each view node, and
-/// reference(mu, cos2_phi) (a callable returning rgb<T>) is subtracted there, so that a
-/// reference which carries the fine structure in mu (an isotropic lobe's sum, read from the
-/// 64 view nodes of the cosine weights) leaves a difference smooth enough for the coarse
-/// grid. The lobe is symmetric under mirroring either tangent axis, so the mean depends on
-/// the view's cosine mu and on cos^2(phi) of its azimuth phi from the tangent alone: nodes
-/// uniform in x = mu^(2/3) (mu clamped to [1e-4, 1], where the sampler needs v above the
+/// The views of an anisotropic GGX lobe (roughnesses alpha_x, alpha_y > 0) on which a
+/// quantity of the view is computed once and then read anywhere by interpolation. The lobe is
+/// symmetric under mirroring either tangent axis, so such a quantity depends on the view's
+/// cosine mu and on cos^2(phi) of its azimuth phi from the tangent alone: nodes uniform in
+/// x = mu^(2/3) (mu clamped to [1e-4, 1], where the visible-normal sampler needs v above the
 /// horizon) and in the azimuth coordinate u = (s + ln(1 + (q^2 - 1) s) / ln(q^2)) / 2, s the
-/// squared cosine of the azimuth from the rougher axis and q the ratio of the roughnesses,
-/// at most anisotropy_max. The logarithmic half is the projected roughness on a log scale
-/// (the coordinate of anisotropic_albedo_table.hpp), which spreads the few degrees around
-/// the smoother axis where a strong anisotropy turns most of it; alone it leaves one or two
-/// nodes for the 40 degrees next to the rougher axis, where the mean still changes, and the
-/// linear half keeps nodes there. at() interpolates bilinearly. alpha_x, alpha_y > 0.
+/// squared cosine of the azimuth from the rougher axis and q the ratio of the roughnesses, at
+/// most anisotropy_max. The logarithmic half is the projected roughness on a log scale (the
+/// coordinate of anisotropic_albedo_table.hpp), which spreads the few degrees around the
+/// smoother axis where a strong anisotropy turns most of it; alone it leaves one or two nodes
+/// for the 40 degrees next to the rougher axis, where such quantities still change, and the
+/// linear half keeps nodes there. Values are read bilinearly in (x, u).
 template <std::floating_point T>
-class anisotropic_fresnel_mean_grid {
+class anisotropic_view_grid {
 public:
-    static constexpr std::size_t mu_nodes = 16;     ///< view cosine nodes, uniform in mu^(2/3)
+    static constexpr std::size_t mu_nodes = 16;      ///< view cosine nodes, uniform in mu^(2/3)
     static constexpr std::size_t azimuth_nodes = 13; ///< nodes uniform in u over [0, 1]
-    static constexpr std::size_t strata = 20;       ///< the quadrature's cells per side
+    static constexpr std::size_t size = mu_nodes * azimuth_nodes; ///< values per grid
     /// The largest q of the azimuth coordinate: a stronger anisotropy reads u with q = 20
     /// (as anisotropic_albedo_table.hpp's ratio_max), which keeps nodes away from the
     /// smoother axis too (with q = 1e4 the logarithmic half would crowd all but the last
     /// nodes within a few degrees of it).
     static constexpr double anisotropy_max = 20;
 
-    anisotropic_fresnel_mean_grid() = default;
+    anisotropic_view_grid() = default;
 
-    template <class Reference>
-    anisotropic_fresnel_mean_grid(T alpha_x, T alpha_y, const std::array<rgb<T>, cosine_weight_nodes>& f_nodes,
-                                  const Reference& reference) {
-        constexpr std::size_t n = cosine_weight_nodes;
+    anisotropic_view_grid(T alpha_x, T alpha_y) noexcept {
         x_rougher_ = alpha_x > alpha_y;
         const double q = x_rougher_ ? double(alpha_x) / double(alpha_y) : double(alpha_y) / double(alpha_x);
         log_q2_ = T(2 * std::log(glm::min(q, anisotropy_max)));
+    }
+
+    /// Calls node(k, v, mu, cos2_phi) for each node k in [0, size) (row-major: mu, then
+    /// azimuth) with its unit local view v (double; n = +z), v.z = mu and cos^2 of v's
+    /// azimuth from the tangent.
+    template <class Node>
+    void for_each_node(Node&& node) const {
         for (std::size_t i = 0; i < mu_nodes; ++i) {
             const double x = double(i) / double(mu_nodes - 1);
             const double mu = glm::clamp(x * std::sqrt(x), 1e-4, 1.0);
@@ -253,28 +251,26 @@ public:
                 const double s_j = node_s(double(j) / double(azimuth_nodes - 1));
                 const double cos2_phi = x_rougher_ ? s_j : 1 - s_j;
                 const vec3<double> v(sin_theta * std::sqrt(cos2_phi), sin_theta * std::sqrt(1 - cos2_phi), mu);
-                rgb<double> sum(0);
-                double mass = 0;
-                visit_ggx_cosine_measure(v, double(alpha_x), double(alpha_y), strata, [&](double c, double weight) {
-                    const double xc = glm::clamp(std::cbrt(c * c), 0.0, 1.0) * double(n - 1);
-                    const std::size_t k = glm::min(std::size_t(xc), n - 2);
-                    const double t = xc - double(k);
-                    sum += weight * ((1 - t) * rgb<double>(f_nodes[k]) + t * rgb<double>(f_nodes[k + 1]));
-                    mass += weight;
-                });
-                mean_[i * azimuth_nodes + j] =
-                    (mass > 0 ? rgb<T>(sum / mass) : rgb<T>(0)) - reference(T(mu), T(cos2_phi));
-                albedo_[i * azimuth_nodes + j] = T(mass);
+                node(i * azimuth_nodes + j, v, mu, cos2_phi);
             }
         }
     }
 
-    /// The mean less the reference at view cosine mu and cos^2(phi) (each clamped to [0, 1];
-    /// NaN read as 0).
-    [[nodiscard]] rgb<T> at(T mu, T cos2_phi) const noexcept { return interpolate(mean_, mu, azimuth(cos2_phi)); }
-
-    /// The lobe's albedo with F = 1 (the quadrature's total weight), interpolated as at().
-    [[nodiscard]] T albedo(T mu, T cos2_phi) const noexcept { return interpolate(albedo_, mu, azimuth(cos2_phi)); }
+    /// The values `grid` (one per node, for_each_node's order) at view cosine mu and
+    /// cos^2(phi) (each clamped to [0, 1]; NaN read as 0), bilinear in (x, u).
+    template <class V>
+    [[nodiscard]] V at(const std::array<V, size>& grid, T mu, T cos2_phi) const noexcept {
+        const T c = mu > T(0) ? glm::min(mu, T(1)) : T(0);
+        const T x = std::cbrt(c * c) * T(mu_nodes - 1);
+        const std::size_t i = glm::min(std::size_t(x), mu_nodes - 2);
+        const T u = x - T(i);
+        const T y = glm::min(azimuth(cos2_phi), T(1)) * T(azimuth_nodes - 1);
+        const std::size_t j = glm::min(std::size_t(y), azimuth_nodes - 2);
+        const T t = y - T(j);
+        const V* row = grid.data() + i * azimuth_nodes + j;
+        return (T(1) - u) * ((T(1) - t) * row[0] + t * row[1]) +
+               u * ((T(1) - t) * row[azimuth_nodes] + t * row[azimuth_nodes + 1]);
+    }
 
 private:
     // u of cos^2(phi) (clamped to [0, 1]; NaN read as 0).
@@ -302,25 +298,57 @@ private:
         return 0.5 * (lo + hi);
     }
 
-    template <class V>
-    [[nodiscard]] static V interpolate(const std::array<V, mu_nodes * azimuth_nodes>& grid, T mu,
-                                       T u_azimuth) noexcept {
-        const T c = mu > T(0) ? glm::min(mu, T(1)) : T(0);
-        const T x = std::cbrt(c * c) * T(mu_nodes - 1);
-        const std::size_t i = glm::min(std::size_t(x), mu_nodes - 2);
-        const T u = x - T(i);
-        const T y = (u_azimuth > T(0) ? glm::min(u_azimuth, T(1)) : T(0)) * T(azimuth_nodes - 1);
-        const std::size_t j = glm::min(std::size_t(y), azimuth_nodes - 2);
-        const T t = y - T(j);
-        const V* row = grid.data() + i * azimuth_nodes + j;
-        return (T(1) - u) * ((T(1) - t) * row[0] + t * row[1]) +
-               u * ((T(1) - t) * row[azimuth_nodes] + t * row[azimuth_nodes + 1]);
-    }
-
-    std::array<rgb<T>, mu_nodes * azimuth_nodes> mean_{};
-    std::array<T, mu_nodes * azimuth_nodes> albedo_{};
     bool x_rougher_ = true; // alpha_x > alpha_y
     T log_q2_ = 1;          // ln(q^2)
+};
+
+/// The mean of a Fresnel factor F(c), c = v·h, against an anisotropic GGX reflection lobe's
+/// measure of c (F = 1 at every node gives 1), less a reference mean, on the views of an
+/// anisotropic_view_grid, computed at construction: F is given at the nodes c_k of
+/// cosine_weight_node and read linearly between them in x = c^(2/3), as fresnel_albedo_row
+/// reads it; the measure is integrated by visit_ggx_cosine_measure on strata^2 cells at each
+/// view node, and reference(mu, cos2_phi) (a callable returning rgb<T>) is subtracted there,
+/// so that a reference which carries the fine structure in mu (an isotropic lobe's sum, read
+/// from the 64 view nodes of the cosine weights) leaves a difference smooth enough for the
+/// coarse grid. at() interpolates bilinearly. alpha_x, alpha_y > 0.
+template <std::floating_point T>
+class anisotropic_fresnel_mean_grid {
+public:
+    static constexpr std::size_t strata = 20; ///< the quadrature's cells per side
+
+    anisotropic_fresnel_mean_grid() = default;
+
+    template <class Reference>
+    anisotropic_fresnel_mean_grid(T alpha_x, T alpha_y, const std::array<rgb<T>, cosine_weight_nodes>& f_nodes,
+                                  const Reference& reference)
+        : views_(alpha_x, alpha_y) {
+        constexpr std::size_t n = cosine_weight_nodes;
+        views_.for_each_node([&](std::size_t k, const vec3<double>& v, double mu, double cos2_phi) {
+            rgb<double> sum(0);
+            double mass = 0;
+            visit_ggx_cosine_measure(v, double(alpha_x), double(alpha_y), strata, [&](double c, double weight) {
+                const double xc = glm::clamp(std::cbrt(c * c), 0.0, 1.0) * double(n - 1);
+                const std::size_t i = glm::min(std::size_t(xc), n - 2);
+                const double t = xc - double(i);
+                sum += weight * ((1 - t) * rgb<double>(f_nodes[i]) + t * rgb<double>(f_nodes[i + 1]));
+                mass += weight;
+            });
+            mean_[k] = (mass > 0 ? rgb<T>(sum / mass) : rgb<T>(0)) - reference(T(mu), T(cos2_phi));
+            albedo_[k] = T(mass);
+        });
+    }
+
+    /// The mean less the reference at view cosine mu and cos^2(phi) (each clamped to [0, 1];
+    /// NaN read as 0).
+    [[nodiscard]] rgb<T> at(T mu, T cos2_phi) const noexcept { return views_.at(mean_, mu, cos2_phi); }
+
+    /// The lobe's albedo with F = 1 (the quadrature's total weight), interpolated as at().
+    [[nodiscard]] T albedo(T mu, T cos2_phi) const noexcept { return views_.at(albedo_, mu, cos2_phi); }
+
+private:
+    anisotropic_view_grid<T> views_{};
+    std::array<rgb<T>, anisotropic_view_grid<T>::size> mean_{};
+    std::array<T, anisotropic_view_grid<T>::size> albedo_{};
 };
 
 } // namespace shade::detail
