@@ -5,10 +5,10 @@
 // shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp). A header of its own so
 // that the isotropic form stays cheap for the models that need only it.
 
+#include <array>
 #include <cmath>
 #include <concepts>
 #include <cstddef>
-#include <vector>
 
 #include <glm/common.hpp>
 
@@ -125,7 +125,6 @@ public:
         beyond_ = eta_s > T(dielectric_albedo_eta_max) && alpha_x != alpha_y && alpha_x > T(0) && alpha_y > T(0);
         if (!beyond_) return;
         views_ = anisotropic_view_grid<T>(alpha_x, alpha_y);
-        delta_.assign(anisotropic_view_grid<T>::size, T(0));
         const double eta = double(eta_s);
         views_.for_each_node([&](std::size_t k, const vec3<double>& v, double mu, double cos2_phi) {
             double anisotropic = 0;
@@ -156,9 +155,7 @@ private:
 
     anisotropic_reflection_albedo<T> table_{};
     anisotropic_view_grid<T> views_{};
-    // One per node of views_ when beyond_ (allocated only then: a material holds three of
-    // these, most of them never beyond).
-    std::vector<T> delta_;
+    std::array<T, anisotropic_view_grid<T>::size> delta_{};
     T alpha_x_ = 0, alpha_y_ = 0, eta_s_ = 1;
     bool beyond_ = false;
 };

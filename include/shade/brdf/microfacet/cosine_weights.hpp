@@ -256,12 +256,10 @@ public:
         }
     }
 
-    /// The values `grid` (a contiguous container of size values, one per node, for_each_node's
-    /// order) at view cosine mu and cos^2(phi) (each clamped to [0, 1]; NaN read as 0),
-    /// bilinear in (x, u).
-    template <class Grid>
-    [[nodiscard]] auto at(const Grid& grid, T mu, T cos2_phi) const noexcept {
-        using V = typename Grid::value_type;
+    /// The values `grid` (one per node, for_each_node's order) at view cosine mu and
+    /// cos^2(phi) (each clamped to [0, 1]; NaN read as 0), bilinear in (x, u).
+    template <class V>
+    [[nodiscard]] V at(const std::array<V, size>& grid, T mu, T cos2_phi) const noexcept {
         const T c = mu > T(0) ? glm::min(mu, T(1)) : T(0);
         const T x = std::cbrt(c * c) * T(mu_nodes - 1);
         const std::size_t i = glm::min(std::size_t(x), mu_nodes - 2);
@@ -270,8 +268,8 @@ public:
         const std::size_t j = glm::min(std::size_t(y), azimuth_nodes - 2);
         const T t = y - T(j);
         const V* row = grid.data() + i * azimuth_nodes + j;
-        return V((T(1) - u) * ((T(1) - t) * row[0] + t * row[1]) +
-                 u * ((T(1) - t) * row[azimuth_nodes] + t * row[azimuth_nodes + 1]));
+        return (T(1) - u) * ((T(1) - t) * row[0] + t * row[1]) +
+               u * ((T(1) - t) * row[azimuth_nodes] + t * row[azimuth_nodes + 1]);
     }
 
 private:
