@@ -187,10 +187,10 @@ private:
 ///     openpbr::specular_ior_ratio; with a thin film); E_spec its albedo:
 ///     specular_color times dielectric_reflection_albedo at eta'_s (anisotropic: at the
 ///     view's azimuth, from detail::anisotropic_reflection_albedo_grid, whose correction
-///     above a ratio of 3 is integrated when the material is built) plus, with a film, thin_film_weight times the integral of
-///     F_film - F (F the exact dielectric Fresnel at eta'_s) against the lobe's measure of
-///     c = v·h (shade/brdf/microfacet/cosine_weights.hpp, summed once per material; an
-///     anisotropic lobe per view at the roughness along the view's azimuth, normalised to
+///     above a ratio of 3 is integrated when the material is built) plus, with a film,
+///     thin_film_weight times the integral of F_film - F (F the exact dielectric Fresnel at
+///     eta'_s) against the lobe's measure of c = v·h (shade/brdf/microfacet/cosine_weights.hpp,
+///     summed once per material; an anisotropic lobe per view at the roughness along the view's azimuth, normalised to
 ///     its own albedo with F = 1), raised by the node sum's largest shortfall over the
 ///     specification's films (detail/thin_film_margin_data.hpp), so that it reads high,
 ///     never low; for eta'_s < 1, whose F has a total-reflection kink finer than the
