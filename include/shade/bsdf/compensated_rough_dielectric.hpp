@@ -23,6 +23,7 @@
 #include <shade/bsdf/detail/dielectric_albedo_data.hpp>
 #include <shade/bsdf/detail/dielectric_albedo_row.hpp>
 #include <shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp>
+#include <shade/bsdf/dielectric_albedo_grid.hpp>
 #include <shade/bsdf/dielectric_albedo_table.hpp>
 #include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>
 #include <shade/bsdf/dielectric_reflection_albedo.hpp>
@@ -144,6 +145,14 @@ struct dielectric_albedo_tables_of<beckmann<T>> {
 /// reads the isotropic table at sqrt(m_x m_y) whatever the azimuth, an approximation that
 /// departs from R + T = 1 both ways as anisotropic GGX did before its correction.
 ///
+/// Per-interface mode: built with a shade::dielectric_albedo_grid of its own distribution and
+/// eta, the model reads E_s(w) and E_s,avg from that grid (integrated for this interface when
+/// the grid was built) instead of the tables, with the formulas above unchanged. The grid
+/// needs no interpolation over the interface's parameters, so it holds R + T near 1 where the
+/// anisotropic correction cannot (strong anisotropy, seen from the denser side; measured
+/// ranges in docs/properties.md). The model keeps a pointer to the grid: the grid must
+/// outlive it and every copy of it.
+///
 /// Sampling: with probability E_s(mu_v) rough_dielectric's own sampler (uc rescaled), else
 /// the multiple-scattering lobe, a cosine-weighted direction on the far side with
 /// probability tau_s and on v's side otherwise; pdf and weight are those of the mixture.
@@ -170,6 +179,28 @@ public:
         prepare();
     }
 
+    /// A compensated GGX interface that reads E_s from `grid` (per-interface mode, class
+    /// comment) instead of the tables; the grid must outlive the model. Throws
+    /// shade::invalid_parameter naming "eta" as the constructor above, or naming "grid"
+    /// unless the grid was built for exactly this distribution and eta.
+    compensated_rough_dielectric(const Distribution& distribution, T eta, const dielectric_albedo_grid<T>& grid)
+        requires std::same_as<Distribution, ggx<T>>
+        : single_(distribution, eta), grid_(&grid) {
+        // (A discarded branch for another distribution, which this constructor excludes, so
+        // that the class stays explicitly instantiable for it.)
+        bool matches = false;
+        if constexpr (std::same_as<Distribution, ggx<T>>) matches = grid.built_for(distribution, eta);
+        if (!matches)
+            throw invalid_parameter("grid", "must be built for this model's distribution and eta",
+                                    "a grid of alpha " + detail::to_text(grid.distribution().alpha_x()) + " x " +
+                                        detail::to_text(grid.distribution().alpha_y()) + ", eta " +
+                                        detail::to_text(grid.eta()));
+        prepare();
+    }
+
+    /// The grid the model reads E_s from, or nullptr when it reads the tables.
+    [[nodiscard]] constexpr const dielectric_albedo_grid<T>* albedo_grid() const noexcept { return grid_; }
+
     /// The single-scattering model this compensates.
     [[nodiscard]] constexpr const single_scattering_type& single_scattering() const noexcept { return single_; }
     /// The distribution of microfacet normals.
@@ -177,17 +208,18 @@ public:
     /// The relative index of refraction n_inside / n_outside.
     [[nodiscard]] constexpr T eta() const noexcept { return single_.eta(); }
 
-    /// E_s of the tables for a view in medium `inside` (false: outside) at cosine mu and
-    /// azimuth 0 (in the plane of n and the tangent t): the single-scattering R + T the
-    /// compensation assumes, dimensionless, in [0, 1].
+    /// E_s of the tables (or of the grid, in per-interface mode) for a view in medium
+    /// `inside` (false: outside) at cosine mu and azimuth 0 (in the plane of n and the
+    /// tangent t): the single-scattering R + T the compensation assumes, dimensionless, in
+    /// [0, 1].
     [[nodiscard]] T single_scattering_albedo(bool inside, T mu) const noexcept {
         const T m = glm::clamp(mu, T(0), T(1));
         return albedo(inside ? 1 : 0, vec3<T>(std::sqrt((T(1) - m) * (T(1) + m)), T(0), m));
     }
 
-    /// E_s(w) of the tables for the unit direction w on its own side s of the surface (its
-    /// azimuth included): the single-scattering R + T the compensation assumes for a view
-    /// along w, dimensionless, in [0, 1]; 0 when w lies on the surface.
+    /// E_s(w) of the tables (or the grid) for the unit direction w on its own side s of the
+    /// surface (its azimuth included): the single-scattering R + T the compensation assumes
+    /// for a view along w, dimensionless, in [0, 1]; 0 when w lies on the surface.
     [[nodiscard]] T single_scattering_albedo(const vec3<T>& w, const surface_point<T>& at) const noexcept {
         const vec3<T> w_local = at.shading.to_local(w);
         if (!(w_local.z != T(0)) || !std::isfinite(w_local.z)) return T(0);
@@ -415,6 +447,7 @@ private:
                         detail::dielectric_anisotropic_delta_average(tables::delta_average, anisotropic_cell_, side_[s].cell.side);
                     side_[s].e_avg = glm::clamp(side_[s].e_avg + delta_average, T(0), T(1));
                 }
+            if (grid_ != nullptr) side_[s].e_avg = grid_->average(s == 1);
         }
         const T loss[2] = {T(1) - side_[0].e_avg, T(1) - side_[1].e_avg};
         if (!(loss[0] > T(detail::dielectric_compensation_min_loss)) ||
@@ -464,10 +497,12 @@ private:
     }
 
     /// E_s(w) for the local direction w in medium s (only |w.z| and the azimuth are read):
-    /// the isotropic table, plus Delta_s(w) when anisotropic; clamped to [0, 1] (near a
+    /// the grid's read in per-interface mode; else the isotropic table, plus Delta_s(w) when
+    /// anisotropic, clamped to [0, 1] (near a
     /// smooth interface the tables' noise can carry E_s + Delta_s just past 1, and f_ms >= 0
     /// needs 1 - E_s >= 0).
     [[nodiscard]] T albedo(std::size_t s, const vec3<T>& w) const noexcept {
+        if (grid_ != nullptr) return grid_->albedo(s == 1, w);
         const T mu = std::abs(w.z);
         T e = side_[s].row.at(mu) + side_[s].lift;
         if constexpr (tables::anisotropic)
@@ -500,6 +535,7 @@ private:
 
     single_scattering_type single_;
     side_state side_[2]{};
+    const dielectric_albedo_grid<T>* grid_ = nullptr; ///< E_s per interface, or nullptr: the tables
     detail::dielectric_anisotropic_cell<T> anisotropic_cell_{}; ///< where Delta is read (when anisotropic)
     bool anisotropic_ = false; ///< alpha_x != alpha_y
     bool enabled_ = false;

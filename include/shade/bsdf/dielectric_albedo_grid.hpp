@@ -1,0 +1,248 @@
+#pragma once
+// shade::dielectric_albedo_grid: the single-scattering albedo R + T of one rough GGX dielectric
+// interface, integrated on a grid of views when it is built (both sides), for
+// shade::compensated_rough_dielectric's per-interface mode.
+
+#include <cmath>
+#include <concepts>
+#include <optional>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <shade/brdf/fresnel.hpp>
+#include <shade/brdf/microfacet/ggx.hpp>
+#include <shade/bsdf/refract.hpp>
+#include <shade/core/error.hpp>
+#include <shade/core/math.hpp>
+#include <shade/core/types.hpp>
+
+namespace shade {
+
+namespace detail {
+
+/// R + T in importance mode of shade::rough_dielectric over `distribution` for the unit view v
+/// (v.z > 0) in a medium whose index ratio to the far side is eta_s = n_far / n_v: the
+/// expectation, over visible normals m (Heitz 2018, "Sampling the GGX Distribution of Visible
+/// Normals", JCGT 7(4)), of the weight of rough_dielectric's sampler,
+///
+///     E(v) = E_m[ F(v·m) G2(v, l_r) / G1(v) + (1 - F(v·m)) G2(v, l_t) / G1(v) ],
+///
+/// l_r the mirror of v about m, l_t its refraction through m (Walter, Marschner, Li, Torrance
+/// 2007, "Microfacet Models for Refraction through Rough Surfaces", EGSR, eqs. 40 and 41;
+/// the Fresnel factor of each branch is the probability with which the sampler takes it),
+/// and G2 = 1 / (1 + Lambda(v) + Lambda(l)) the height-correlated masking-shadowing (Heitz 2014,
+/// "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT 3(2),
+/// eq. 99); a branch whose direction lands on the wrong side of the surface adds 0. The
+/// sampler's weight f |n·l| / pdf reduces to exactly G2 / G1(v) on both branches, so this is
+/// what rough_dielectric's own sampler averages to. Midpoint rule over cells x cells squares of
+/// the unit square that sample_visible_normal maps onto the visible normals. Dimensionless, in
+/// [0, 1].
+[[nodiscard]] inline double dielectric_visible_albedo(const ggx<double>& distribution, const vec3<double>& v,
+                                                      double eta_s, int cells) noexcept {
+    const double masking_v = 1.0 + distribution.Lambda(v); // 1 / G1(v)
+    double sum = 0.0;
+    for (int i = 0; i < cells; ++i)
+        for (int j = 0; j < cells; ++j) {
+            const vec2<double> u((double(i) + 0.5) / double(cells), (double(j) + 0.5) / double(cells));
+            const vec3<double> m = distribution.sample_visible_normal(v, u);
+            const double v_dot_m = glm::dot(v, m);
+            if (!(v_dot_m > 0.0)) continue;
+            const double F = F_dielectric(v_dot_m, eta_s);
+            if (F > 0.0) {
+                const vec3<double> l = 2.0 * v_dot_m * m - v;
+                if (l.z > 0.0) sum += F * masking_v / (masking_v + distribution.Lambda(l));
+            }
+            if (F < 1.0) {
+                const std::optional<vec3<double>> t = refract(v, m, eta_s);
+                if (t && t->z < 0.0) sum += (1.0 - F) * masking_v / (masking_v + distribution.Lambda(*t));
+            }
+        }
+    return sum / (double(cells) * double(cells));
+}
+
+/// Added to every value of a dielectric_albedo_grid: the grid reads E_s this much high, so
+/// that the compensation's R + T = 1 + E_true - E_read errs below 1 rather than above where
+/// the grid's interpolation and quadrature err (measured ranges in docs/properties.md).
+inline constexpr double dielectric_albedo_grid_margin = 3e-3;
+
+} // namespace detail
+
+/// The total single-scattering albedo E_s(w) = R + T (importance mode) of one
+/// shade::rough_dielectric over GGX, seen from either side, integrated on a grid of views
+/// when the grid is built; what shade::compensated_rough_dielectric reads instead of its
+/// tables when it is given one (its class comment).
+///
+/// The tables of compensated_rough_dielectric hold E_s for isotropic GGX and an anisotropic
+/// correction interpolated over (alpha_x, alpha_y, eta, mu, azimuth); at strong anisotropy
+/// and from the denser side that interpolation misses E_s by up to several per cent (the
+/// white furnace of an anisotropic interface then reads 0.94 to 1.002). A grid of one
+/// interface needs no interpolation over the interface's parameters, only over the view:
+///
+/// - rows in mu = |n·w|: without total internal reflection (eta_s = n_far / n_s > 1) 16 rows
+///   at mu = x^1.5, x = 0, 1/15, ..., 1 (denser toward grazing); with it (eta_s < 1) the
+///   critical cosine mu_c = sqrt(1 - eta_s^2), where E_s has a kink, is a row, with 24 rows
+///   below it at mu_c x^1.5 and 12 evenly spaced above;
+/// - 37 azimuths per row, in s = cos^2 of the angle from the rougher axis (sin^2 when
+///   alpha_y > alpha_x), spaced by the half-sum of s and log(1 + (q^2 - 1) s) / log(q^2),
+///   q = min(alpha_max / alpha_min, 20), so that they crowd toward the smoother axis, where
+///   E_s changes fastest;
+/// - each node the midpoint rule of detail::dielectric_visible_albedo on 48 x 48 visible
+///   normals, plus detail::dielectric_albedo_grid_margin; a read interpolates bilinearly in
+///   those coordinates and is clamped to [0, 1].
+///
+/// E_s,avg = 2 int E_s(w) mu dw / (2 pi) over the hemisphere (the compensation's average) is
+/// integrated from the grid's own reads. Building takes about 0.3 s (some 2,000 nodes on 48^2
+/// visible normals each); the object holds about 11 KB. Meant to be built once per material,
+/// not per shading point. Isotropic interfaces are handled as well (E_s then does not depend
+/// on the azimuth; every azimuth node holds the same value to the quadrature's rounding).
+template <std::floating_point T>
+class dielectric_albedo_grid {
+public:
+    static constexpr int azimuths = 37;  ///< azimuth nodes per row
+    static constexpr int max_rows = 37;  ///< rows on a side with total internal reflection
+    static constexpr int cells = 48;     ///< visible normals per axis at each node
+
+    /// The grid of rough_dielectric(distribution, eta). Throws shade::invalid_parameter
+    /// naming "eta" unless eta lies in [1e-4, 1e4] and is not 1 (as rough_dielectric).
+    dielectric_albedo_grid(const ggx<T>& distribution, T eta)
+        : distribution_(distribution), eta_(require_in_range("eta", eta, dielectric_eta_min<T>, dielectric_eta_max<T>)) {
+        if (eta == T(1))
+            throw invalid_parameter("eta", "must not be 1 (an index-matched interface is a delta: smooth_dielectric)",
+                                    detail::to_text(eta));
+        const double alpha_x = double(distribution.alpha_x()), alpha_y = double(distribution.alpha_y());
+        const double q = glm::min(glm::max(alpha_x, alpha_y) / glm::min(alpha_x, alpha_y), 20.0);
+        log_q2_ = T(2 * std::log(q));
+        smoother_y_ = alpha_x > alpha_y;
+        const ggx<double> d(unchecked, alpha_x, alpha_y);
+        for (int s = 0; s < 2; ++s) build(s, d, s == 0 ? double(eta) : 1.0 / double(eta));
+    }
+
+    /// The distribution the grid was built for.
+    [[nodiscard]] constexpr const ggx<T>& distribution() const noexcept { return distribution_; }
+    /// The relative index n_inside / n_outside the grid was built for.
+    [[nodiscard]] constexpr T eta() const noexcept { return eta_; }
+
+    /// Whether the grid was built for exactly this distribution and eta.
+    [[nodiscard]] bool built_for(const ggx<T>& distribution, T eta) const noexcept {
+        return distribution.alpha_x() == distribution_.alpha_x() && distribution.alpha_y() == distribution_.alpha_y() &&
+               eta == eta_;
+    }
+
+    /// E_s(w) for the local direction w (n = +z, the tangent along +x) in medium `inside`
+    /// (false: outside); only |w.z| and w's azimuth are read, so w may point either way.
+    /// Dimensionless, in [0, 1]; the grid's margin included.
+    [[nodiscard]] T albedo(bool inside, const vec3<T>& w) const noexcept {
+        const side_grid& g = side_[inside ? 1 : 0];
+        const T mu = glm::clamp(std::abs(w.z), T(0), T(1));
+        const T row = glm::min(mu_coordinate(g, mu), T(g.rows - 1));
+        const int i = glm::min(int(row), g.rows - 2);
+        const T t = row - T(i);
+        const T along = glm::min(azimuth_coordinate(w), T(azimuths - 1));
+        const int j = glm::min(int(along), azimuths - 2);
+        const T a = along - T(j);
+        const auto at = [&g](int r, int c) { return T(g.e[r * azimuths + c]); };
+        const T e = (T(1) - t) * ((T(1) - a) * at(i, j) + a * at(i, j + 1)) +
+                    t * ((T(1) - a) * at(i + 1, j) + a * at(i + 1, j + 1));
+        return glm::clamp(e, T(0), T(1));
+    }
+
+    /// E_s,avg of medium `inside`: the cosine-weighted hemispherical average of albedo().
+    [[nodiscard]] T average(bool inside) const noexcept { return side_[inside ? 1 : 0].average; }
+
+private:
+    static constexpr int rows_without_critical = 16;
+    static constexpr int rows_below_critical = 24;
+    static constexpr int rows_above_critical = 12;
+
+    struct side_grid {
+        T mu_c = 0;    ///< critical cosine, 0 when eta_s > 1
+        int rows = rows_without_critical;
+        T average = 1; ///< E_s,avg
+        float e[max_rows * azimuths]{};
+    };
+
+    /// The row coordinate (0 to rows - 1) of mu on side g.
+    [[nodiscard]] static T mu_coordinate(const side_grid& g, T mu) noexcept {
+        if (!(g.mu_c > T(0))) return T(rows_without_critical - 1) * std::cbrt(mu * mu);
+        if (mu <= g.mu_c) return T(rows_below_critical) * std::cbrt(sqr(mu / g.mu_c));
+        return T(rows_below_critical) + T(rows_above_critical) * (mu - g.mu_c) / (T(1) - g.mu_c);
+    }
+
+    /// mu of row i on side g.
+    [[nodiscard]] static double row_mu(const side_grid& g, int i) noexcept {
+        if (!(g.mu_c > T(0))) {
+            const double x = double(i) / double(rows_without_critical - 1);
+            return x * std::sqrt(x);
+        }
+        const double mu_c = double(g.mu_c);
+        if (i <= rows_below_critical) {
+            const double x = double(i) / double(rows_below_critical);
+            return mu_c * x * std::sqrt(x);
+        }
+        return mu_c + (1.0 - mu_c) * double(i - rows_below_critical) / double(rows_above_critical);
+    }
+
+    /// The spacing function of the azimuth nodes: s -> [0, 1], increasing.
+    [[nodiscard]] static double azimuth_warp(double s, double log_q2) noexcept {
+        const double logarithmic = log_q2 > 0.0 ? std::log1p(std::expm1(log_q2) * s) / log_q2 : s;
+        return 0.5 * (s + logarithmic);
+    }
+
+    /// The azimuth coordinate (0 to azimuths - 1) of the local direction w.
+    [[nodiscard]] T azimuth_coordinate(const vec3<T>& w) const noexcept {
+        const T xx = w.x * w.x, yy = w.y * w.y;
+        const T planar = xx + yy;
+        // On the normal the azimuth is undefined and E_s the same at every one: read s = 1.
+        const T cos2 = planar > T(0) ? xx / planar : T(1);
+        const T s = smoother_y_ ? cos2 : T(1) - cos2;
+        return T(azimuth_warp(double(glm::clamp(s, T(0), T(1))), double(log_q2_))) * T(azimuths - 1);
+    }
+
+    void build(int side, const ggx<double>& d, double eta_s) {
+        side_grid& g = side_[side];
+        g.mu_c = eta_s < 1.0 ? T(std::sqrt((1.0 - eta_s) * (1.0 + eta_s))) : T(0);
+        g.rows = g.mu_c > T(0) ? rows_below_critical + rows_above_critical + 1 : rows_without_critical;
+        const double log_q2 = double(log_q2_);
+        for (int j = 0; j < azimuths; ++j) {
+            // The s whose warp is j / (azimuths - 1), by bisection (the warp is increasing).
+            const double target = double(j) / double(azimuths - 1);
+            double lo = 0.0, hi = 1.0;
+            for (int k = 0; k < 60; ++k) {
+                const double mid = 0.5 * (lo + hi);
+                (azimuth_warp(mid, log_q2) < target ? lo : hi) = mid;
+            }
+            const double s = 0.5 * (lo + hi);
+            const double cos2 = smoother_y_ ? s : 1.0 - s;
+            const double c = std::sqrt(cos2), sn = std::sqrt(glm::max(0.0, 1.0 - cos2));
+            for (int i = 0; i < g.rows; ++i) {
+                const double mu = glm::clamp(row_mu(g, i), 1e-4, 1.0);
+                const double st = std::sqrt((1.0 - mu) * (1.0 + mu));
+                const vec3<double> v(st * c, st * sn, mu);
+                const double e = detail::dielectric_visible_albedo(d, v, eta_s, cells) + detail::dielectric_albedo_grid_margin;
+                g.e[i * azimuths + j] = float(glm::min(e, 1.0));
+            }
+        }
+        // E_s,avg = (2 / pi) int_0^{pi/2} int_0^1 E_s mu dmu dphi over a quarter of the
+        // azimuths (E_s is even in both axes): midpoint rule on 512 x 90 reads.
+        constexpr int mu_steps = 512, phi_steps = 90;
+        double sum = 0.0;
+        for (int a = 0; a < phi_steps; ++a) {
+            const double phi = (double(a) + 0.5) * (0.5 * pi<double> / phi_steps);
+            for (int k = 0; k < mu_steps; ++k) {
+                const double mu = (double(k) + 0.5) / mu_steps;
+                const double st = std::sqrt((1.0 - mu) * (1.0 + mu));
+                sum += mu * double(albedo(side == 1, vec3<T>(T(st * std::cos(phi)), T(st * std::sin(phi)), T(mu))));
+            }
+        }
+        g.average = T(glm::clamp(2.0 * sum / (double(mu_steps) * phi_steps), 0.0, 1.0));
+    }
+
+    ggx<T> distribution_;
+    T eta_;
+    T log_q2_ = 0;           ///< 2 log q, the azimuth spacing's parameter
+    bool smoother_y_ = false; ///< alpha_x > alpha_y: the smoother axis is y
+    side_grid side_[2]{};
+};
+
+} // namespace shade
