@@ -18,6 +18,8 @@
 // are not counted), and peak_bytes_per_triangle, the most held during the commit.
 // bvh/build/<scene>/shade_parallel: shade's build through support::thread_executor on all
 // hardware threads (counter build_threads; bench/report.py times it by the wall clock).
+// bvh/<primary|incoherent>/<scene>/shade_lean: triangle_bvh::find_closest, the nearest hit
+// without the record's point, normal and error bound (closer to what rtcIntersect1 returns).
 
 #include <cmath>
 #include <cstddef>
@@ -366,6 +368,28 @@ void register_scene(const built& b) {
                 [&tree, &rays] {
                     for (const auto& r : rays) {
                         const auto h = tree.closest(r);
+                        benchmark::DoNotOptimize(h);
+                    }
+                },
+                double(hits) / n,
+                {{"agreement", double(agree) / n}, {"node_width", double(tree.node_width())}});
+        }
+        {
+            // find_closest: the nearest hit's triangle, t, barycentrics and front_face, no
+            // record (Embree's rtcIntersect1 returns t, u, v, the unnormalised normal and the
+            // primitive).
+            const shade::triangle_bvh<float>& tree = b.shade_bvh;
+            std::size_t agree = 0, hits = 0;
+            for (const auto& r : rays) {
+                const bool a = tree.find_closest(r).has_value();
+                agree += a == (embree_closest(b.embree, r) < std::numeric_limits<float>::infinity());
+                hits += a;
+            }
+            shade_bench::add(
+                group + "shade_lean", n,
+                [&tree, &rays] {
+                    for (const auto& r : rays) {
+                        const auto h = tree.find_closest(r);
                         benchmark::DoNotOptimize(h);
                     }
                 },

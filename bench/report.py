@@ -394,7 +394,9 @@ def bvh_rows(runs, flags=None, ctx=None):
     if flags is None:
         out += ["`shade::triangle_bvh<float>` (Möller-Trumbore leaves through the batch kernel; nodes of "
                 f"{width} children, the default width on this CPU; the column 'nodes of 4' is the same "
-                "hierarchy built with `shade::bvh_width::four`) against "
+                "hierarchy built with `shade::bvh_width::four`; 'find_closest' the same nearest hits through "
+                "`triangle_bvh::find_closest`, which returns the triangle, t, barycentrics and front_face "
+                "without `closest()`'s record of point, unit normal, dp/du and error bound) against "
                 "Embree 3 (`rtcIntersect1` for closest hits, `rtcOccluded1` for shadow rays, default "
                 "build quality, device `threads=1`) in the same "
                 "binary (bench/bvh.cpp), single thread; the repetitions of the two are "
@@ -417,8 +419,8 @@ def bvh_rows(runs, flags=None, ctx=None):
                 "faster than shade's single-thread one, memory <= 1.0x at ico82k and "
                 "ico328k, agreement >= 99.99 %.", ""]
     out += ["| scene | rays | shade Mrays/s | Embree Mrays/s | shade / Embree | goal | nodes of 4 / Embree | "
-            "agreement | hits |",
-            "|---|---|---:|---:|---:|---|---:|---:|---:|"]
+            "find_closest / Embree | agreement | hits |",
+            "|---|---|---:|---:|---:|---|---:|---:|---:|---:|"]
     for sc in scenes:
         for kind in ("primary", "incoherent", "shadow"):
             a, e = ns.get(f"bvh/{kind}/{sc}/shade"), ns.get(f"bvh/{kind}/{sc}/embree")
@@ -429,7 +431,10 @@ def bvh_rows(runs, flags=None, ctx=None):
             goal = "≥ 1.0 " + ("yes" if e / a >= 1.0 else "**no**")
             four = ns.get(f"bvh/{kind}/{sc}/shade_four")
             four_ratio = f"{e / four:.2f}×" if four else ""
+            lean = ns.get(f"bvh/{kind}/{sc}/shade_lean")
+            lean_ratio = f"{e / lean:.2f}×" if lean else ""
             out.append(f"| {sc} | {kind} | {1e3 / a:.2f} | {1e3 / e:.2f} | {e / a:.2f}× | {goal} | {four_ratio} | "
+                       f"{lean_ratio} | "
                        f"{'?' if agree is None else f'{agree * 100:.3f} %'} | "
                        f"{'' if hit is None else f'{hit * 100:.1f} %'} |")
     out += ["", "| scene | shade build ms | Embree build ms | shade / Embree | goal | parallel build ms (threads) | "

@@ -1,5 +1,6 @@
 // Bounding-volume hierarchies (bvh, primitive_bvh, triangle_bvh), with nodes of four and
-// of eight children: closest and any agree with a brute-force loop over every primitive on
+// of eight children: closest, triangle_bvh's find_closest (with make_hit, closest's record)
+// and any agree with a brute-force loop over every primitive on
 // random rays over random meshes; a closed mesh behind the watertight test lets no ray
 // through shared edges or vertices escape; degenerate inputs (empty, one triangle, all
 // coplanar, NaN vertices).
@@ -66,8 +67,45 @@ struct tally {
     std::size_t rays = 0, hits = 0;
 };
 
-// closest and any against brute force on rays; t, the record and the triangle must
-// match exactly (the triangle may differ only when another one is hit at the same t).
+// Every member of two hit records equal, bit for bit.
+template <class T>
+void check_same_record(const shade::triangle_hit<T>& a, const shade::triangle_hit<T>& b) {
+    CHECK(a.t == b.t);
+    CHECK(a.p == b.p);
+    CHECK(a.n == b.n);
+    CHECK(a.front_face == b.front_face);
+    CHECK(a.uv == b.uv);
+    CHECK(a.dpdu == b.dpdu);
+    CHECK(a.p_error == b.p_error);
+    CHECK(a.barycentric == b.barycentric);
+}
+
+// find_closest against closest on r: the same hit or miss, the same triangle, t,
+// barycentrics and front_face, all finite, and make_hit of it closest's record.
+template <class Algorithm, class T>
+void check_lean_query(const shade::triangle_bvh<T, Algorithm>& accel, const shade::ray<T>& r,
+                      shade::culling cull = shade::culling::none) {
+    const auto full = accel.closest(r, cull);
+    const auto lean = accel.find_closest(r, cull);
+    REQUIRE(lean.has_value() == full.has_value());
+    if (!lean) return;
+    CHECK(lean->primitive == full->primitive);
+    CHECK(lean->hit.t == full->hit.t);
+    CHECK(lean->hit.barycentric == full->hit.barycentric);
+    CHECK(lean->hit.front_face == full->hit.front_face);
+    CHECK(std::isfinite(lean->hit.t));
+    CHECK(shade::is_finite(lean->hit.barycentric));
+    const auto record = accel.make_hit(*lean);
+    CHECK(record.primitive == full->primitive);
+    check_same_record(record.hit, full->hit);
+    CHECK(shade::is_finite(record.hit.p));
+    CHECK(shade::is_finite(record.hit.n));
+    CHECK(shade::is_finite(record.hit.p_error));
+}
+
+// closest, find_closest and any against brute force on rays; t, the record and the
+// triangle must match exactly (the triangle may differ only when another one is hit at
+// the same t).
 template <class Algorithm, class T>
 void check_against_brute_force(const shade::triangle_bvh<T, Algorithm>& accel,
                                std::span<const shade::triangle<T>> tris, const std::vector<shade::ray<T>>& rays,
@@ -78,6 +116,7 @@ void check_against_brute_force(const shade::triangle_bvh<T, Algorithm>& accel,
         ++count.rays;
         REQUIRE(got.has_value() == expected.has_value());
         CHECK(accel.any(r) == expected.has_value());
+        check_lean_query(accel, r);
         if (!expected) continue;
         ++count.hits;
         CHECK(got->hit.t == expected->second.t);
@@ -166,6 +205,13 @@ TEST_CASE_TEMPLATE("triangle_bvh: closest and any agree with brute force on rand
     const shade::ray<T> inside{{0, 0, 0}, {0.3, 0.2, 1}};
     CHECK(accel.closest(inside));
     CHECK_FALSE(accel.closest(inside, shade::culling::back_faces));
+    CHECK(accel.find_closest(inside));
+    CHECK_FALSE(accel.find_closest(inside, shade::culling::back_faces));
+    // From outside only front faces face the ray: the same hit with culling as without.
+    const shade::ray<T> outside{{0.1, 0.2, -3}, {0, 0, 1}};
+    check_lean_query(accel, outside, shade::culling::back_faces);
+    REQUIRE(accel.find_closest(outside, shade::culling::back_faces));
+    CHECK(accel.find_closest(outside, shade::culling::back_faces)->hit.front_face);
     CHECK_FALSE(accel.any(inside, shade::culling::back_faces));
 }
 
@@ -204,9 +250,11 @@ TEST_CASE_TEMPLATE("triangle_bvh: degenerate inputs", T, float, double) {
         const shade::triangle_bvh<T> empty(std::span<const shade::triangle<T>>{});
         CHECK(empty.size() == 0);
         CHECK_FALSE(empty.closest(down));
+        CHECK_FALSE(empty.find_closest(down));
         CHECK_FALSE(empty.any(down));
         const shade::triangle_bvh<T> defaulted;
         CHECK_FALSE(defaulted.closest(down));
+        CHECK_FALSE(defaulted.find_closest(down));
     }
     SUBCASE("one triangle") {
         const std::vector<shade::triangle<T>> one{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}};
@@ -220,7 +268,19 @@ TEST_CASE_TEMPLATE("triangle_bvh: degenerate inputs", T, float, double) {
             // b1 = b2 = 1/4, b0 = 1/2 at (1/4, 1/4, 0).
             CHECK(h->hit.barycentric == v3<T>(0.5, 0.25, 0.25));
             CHECK(h->hit.p == v3<T>(0.25, 0.25, 0));
+            const auto lean = accel.find_closest(down);
+            REQUIRE(lean);
+            CHECK(lean->primitive == 0);
+            CHECK(lean->hit.t == T(1));
+            CHECK(lean->hit.barycentric == v3<T>(0.5, 0.25, 0.25));
+            CHECK(lean->hit.front_face);
+            CHECK(accel.make_hit(*lean).hit.p == v3<T>(0.25, 0.25, 0));
+            // The interval decides: t = 1 lies outside [0, 0.5] and inside [1, 1].
+            CHECK_FALSE(accel.find_closest(shade::ray<T>{down.origin, down.direction, T(0), T(0.5)}));
+            CHECK(accel.find_closest(shade::ray<T>{down.origin, down.direction, T(1), T(1)}));
+            CHECK_FALSE(accel.find_closest(shade::ray<T>{down.origin, down.direction, T(1.5), T(3)}));
             CHECK_FALSE(accel.closest(shade::ray<T>{{0.75, 0.75, 1}, {0, 0, -1}}));
+            CHECK_FALSE(accel.find_closest(shade::ray<T>{{0.75, 0.75, 1}, {0, 0, -1}}));
             CHECK_FALSE(accel.closest(down, shade::culling::back_faces) == std::nullopt); // front face
             CHECK(accel.any(down));
         }
@@ -307,7 +367,10 @@ TEST_CASE_TEMPLATE("triangle_bvh: a ray's validity as ray::valid() decides it", 
                         (expected ? valid : invalid) += 1;
                         if (!expected) {
                             CHECK_FALSE(accel.closest(r));
+                            CHECK_FALSE(accel.find_closest(r));
                             CHECK_FALSE(accel.any(r));
+                        } else {
+                            check_lean_query(accel, r);
                         }
                     }
     // Both answers occur many times (each base with one number changed to 1 alone gives
@@ -421,6 +484,7 @@ TEST_CASE_TEMPLATE("triangle_bvh: directions whose components have no float reci
             REQUIRE(h.has_value());
             CHECK(h->hit.t == loop->second.t);
             CHECK(tree->any(r));
+            check_lean_query(*tree, r);
         }
     }
 }

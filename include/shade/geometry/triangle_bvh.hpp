@@ -8,6 +8,8 @@
 //     const shade::triangle_bvh<float> mesh(tris);                 // Möller-Trumbore
 //     if (auto h = mesh.closest(r))                                 // nearest hit
 //         use(h->primitive, h->hit.t, h->hit.p, h->hit.n, h->hit.barycentric);
+//     if (auto x = mesh.find_closest(r))          // the same hit without p, n, dpdu, p_error
+//         if (needs_record(x->primitive, x->hit.t)) use(mesh.make_hit(*x)); // closest's record
 //     const bool shadowed = mesh.any(shadow_ray);
 //     const shade::triangle_bvh<double, shade::watertight> closed(tris_d); // no leaks
 //     const shade::triangle_bvh<float> fast(tris, shade::bvh_width::automatic, threads);
@@ -86,51 +88,45 @@ public:
         build(triangles, width, detail::executor_ref(run));
     }
 
+    /// A nearest hit without its full record, from find_closest: the index of the triangle
+    /// in the list given, the intersection as the triangle algorithm's find returns it (t,
+    /// barycentrics, front_face), and where this hierarchy holds the triangle (slot, which
+    /// only make_hit of the same hierarchy reads).
+    struct intersection {
+        std::uint32_t primitive = 0;    ///< index of the triangle in the list given
+        triangle_intersection<T> hit{}; ///< t, barycentrics (b0, b1, b2) and front_face
+        std::uint32_t slot = 0;         ///< the triangle's place in this hierarchy's leaves
+    };
+
+    /// The nearest hit of r (double-sided unless cull is culling::back_faces) without the
+    /// record's point, normal, parameterisation and error bound: the triangle's index, t,
+    /// barycentrics and front_face, exactly those of closest(r, cull) (which is
+    /// make_hit(*find_closest(r, cull))), or nothing. For callers that need the record of
+    /// some hits only, or none.
+    [[nodiscard]] std::optional<intersection> find_closest(const ray<T>& r, culling cull = culling::none) const {
+        triangle_intersection<T> x;
+        const std::uint32_t slot = walk(r, cull, x);
+        if (slot == no_hit) return std::nullopt;
+        return intersection{id_of(slot), x, slot};
+    }
+
+    /// The full record of a hit that find_closest of this hierarchy returned: its
+    /// primitive and shade::make_hit's record of the triangle and intersection (t, p, n,
+    /// front_face, uv, dpdu, p_error, barycentrics): what closest() returns for that ray.
+    /// Precondition: h came from this hierarchy (unchanged since).
+    [[nodiscard]] primitive_hit<triangle_hit<T>> make_hit(const intersection& h) const noexcept {
+        return {h.primitive, shade::make_hit(triangle_at(h.slot), h.hit)};
+    }
+
     /// The nearest hit of r (double-sided unless cull is culling::back_faces): the index
     /// of the triangle in the list given and shade::make_hit's record (t, p, n,
-    /// front_face, barycentrics), or nothing.
-    [[nodiscard]] std::optional<primitive_hit<triangle_hit<T>>> closest(ray<T> r,
+    /// front_face, barycentrics), or nothing: make_hit(*find_closest(r, cull)).
+    [[nodiscard]] std::optional<primitive_hit<triangle_hit<T>>> closest(const ray<T>& r,
                                                                        culling cull = culling::none) const {
-        if (size_ == 0 || !detail::bvh_ray_valid(r)) return std::nullopt;
-        std::uint32_t best = no_hit;
         triangle_intersection<T> x;
-        // The leaf data and cull held in the leaf function itself (one load each in a leaf).
-        const auto* const data = leaf_data();
-        const auto leaf = [&, data, cull](std::uint32_t first, std::uint32_t count, auto avx) SHADE_DETAIL_LEAF_INLINE {
-            if constexpr (batched) {
-                for (std::uint32_t b = first; b < first + count; ++b) {
-                    // The line of the indices, fetched with the batch's (the lane is not
-                    // known yet): one latency for both in a hierarchy beyond the caches.
-                    detail::bvh_prefetch(data[b].id.data());
-                    const auto hits = test(r, data[b].batch, cull, avx);
-                    if (hits.hit_bits == 0) continue;
-                    const std::size_t lane = *hits.closest(); // every hit has t <= r.t_max
-                    r.t_max = hits.t[lane];
-                    x = triangle_intersection<T>{hits.t[lane],
-                                                 vec3<T>(hits.b0[lane], hits.b1[lane], hits.b2[lane]),
-                                                 hits.front_face(lane)};
-                    best = static_cast<std::uint32_t>(b * leaf_width + lane);
-                }
-            } else {
-                for (std::uint32_t i = first; i < first + count; ++i) {
-                    if (auto h = Algorithm::find(r, data[i], cull)) {
-                        r.t_max = h->t;
-                        x = *h;
-                        best = i;
-                    }
-                }
-            }
-            return false;
-        };
-        detail::bvh_traverse<detail::bvh_order::sorted>(tree_, r, r.t_max, leaf);
-        if (best == no_hit) return std::nullopt;
-        if constexpr (batched) {
-            const leaf_batch& b = leaves_[best / leaf_width];
-            const std::size_t lane = best % leaf_width;
-            return primitive_hit<triangle_hit<T>>{b.id[lane], make_hit(b.batch.get(lane), x)};
-        } else {
-            return primitive_hit<triangle_hit<T>>{ids_[best], make_hit(triangles_[best], x)};
-        }
+        const std::uint32_t slot = walk(r, cull, x);
+        if (slot == no_hit) return std::nullopt;
+        return primitive_hit<triangle_hit<T>>{id_of(slot), shade::make_hit(triangle_at(slot), x)};
     }
 
     /// True when r hits some triangle within [t_min, t_max] (for shadow rays).
@@ -170,6 +166,60 @@ public:
 
 private:
     static constexpr std::uint32_t no_hit = ~std::uint32_t(0);
+
+    /// The walk of find_closest and closest: the nearest hit's slot (no_hit when there is
+    /// none), its intersection written to x (left as it was on a miss; written in place,
+    /// not returned, so that the caller's record is made from it without a copy).
+    [[nodiscard]] std::uint32_t walk(ray<T> r, culling cull, triangle_intersection<T>& x) const {
+        if (size_ == 0 || !detail::bvh_ray_valid(r)) return no_hit;
+        std::uint32_t best = no_hit;
+        // The leaf data and cull held in the leaf function itself (one load each in a leaf).
+        const auto* const data = leaf_data();
+        const auto leaf = [&, data, cull](std::uint32_t first, std::uint32_t count, auto avx) SHADE_DETAIL_LEAF_INLINE {
+            if constexpr (batched) {
+                for (std::uint32_t b = first; b < first + count; ++b) {
+                    // The line of the indices, fetched with the batch's (the lane is not
+                    // known yet): one latency for both in a hierarchy beyond the caches.
+                    detail::bvh_prefetch(data[b].id.data());
+                    const auto hits = test(r, data[b].batch, cull, avx);
+                    if (hits.hit_bits == 0) continue;
+                    const std::size_t lane = *hits.closest(); // every hit has t <= r.t_max
+                    r.t_max = hits.t[lane];
+                    x = triangle_intersection<T>{hits.t[lane],
+                                                 vec3<T>(hits.b0[lane], hits.b1[lane], hits.b2[lane]),
+                                                 hits.front_face(lane)};
+                    best = static_cast<std::uint32_t>(b * leaf_width + lane);
+                }
+            } else {
+                for (std::uint32_t i = first; i < first + count; ++i) {
+                    if (auto h = Algorithm::find(r, data[i], cull)) {
+                        r.t_max = h->t;
+                        x = *h;
+                        best = i;
+                    }
+                }
+            }
+            return false;
+        };
+        detail::bvh_traverse<detail::bvh_order::sorted>(tree_, r, r.t_max, leaf);
+        return best;
+    }
+
+    /// The index in the list given of the triangle at slot.
+    [[nodiscard]] std::uint32_t id_of(std::uint32_t slot) const noexcept {
+        if constexpr (batched)
+            return leaves_[slot / leaf_width].id[slot % leaf_width];
+        else
+            return ids_[slot];
+    }
+
+    /// The triangle at slot (its vertices from the leaf block when batched).
+    [[nodiscard]] triangle<T> triangle_at(std::uint32_t slot) const noexcept {
+        if constexpr (batched)
+            return leaves_[slot / leaf_width].batch.get(slot % leaf_width);
+        else
+            return triangles_[slot];
+    }
 
     /// What the leaves' ranges index: the leaf blocks (batched), else the triangles.
     [[nodiscard]] const auto* leaf_data() const noexcept {
