@@ -12,6 +12,7 @@
 #include <map>
 #include <optional>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include <doctest/doctest.h>
@@ -332,24 +333,36 @@ TEST_CASE_TEMPLATE("triangle_bvh: degenerate inputs", T, float, double) {
     }
 }
 
-// closest() and any() test a ray's validity by detail::bvh_ray_valid, a vector form of
-// ray::valid() for float rays: the same answer for every value in every one and every
+// closest(), find_closest() and any() test a ray's validity in the walk, with the test
+// for a direction that needs scaling: for a float ray in the eight-wide walk by
+// detail::bvh_ray_plain8 (valid and needing no scaling, eight lanes at once), else by
+// detail::bvh_ray_valid (a vector form of ray::valid() for float rays) and
+// bvh_scale_needed. Each gives the scalar answer for every value in every one and every
 // two of the ray's eight numbers (origin, direction, t_min, t_max), from a valid ray and
-// from one with a zero direction; and no hit for the invalid ones.
+// from one with a zero direction; the invalid rays hit nothing and the valid ones (some
+// scaled) hit as the triangle test does, at both widths.
 TEST_CASE_TEMPLATE("triangle_bvh: a ray's validity as ray::valid() decides it", T, float, double) {
     using lim = std::numeric_limits<T>;
     const T values[] = {T(0), -T(0), T(1), T(-2.5), lim::denorm_min(), -lim::min(), lim::max(),
-                        lim::lowest(), lim::infinity(), -lim::infinity(), lim::quiet_NaN()};
+                        lim::lowest(), lim::infinity(), -lim::infinity(), lim::quiet_NaN(),
+                        T(0x1p-125), T(-0x1p+125), T(0x1p+126)}; // the bounds of the unscaled range and beyond
     const auto slot = [](shade::ray<T>& r, int k) -> T& {
         return k < 3 ? r.origin[k] : k < 6 ? r.direction[k - 3] : k == 6 ? r.t_min : r.t_max;
     };
     // The one triangle of the plane z = 0 around the origin's column: hit by valid rays
     // pointing down from (0, 0, 1), whatever else changes.
     const std::vector<shade::triangle<T>> tris{{{-10, -10, 0}, {10, -10, 0}, {0, 10, 0}}};
-    const shade::triangle_bvh<T> accel(tris);
+    const shade::triangle_bvh<T> four(tris, shade::bvh_width::four);
+    const shade::triangle_bvh<T> eight(tris, shade::bvh_width::eight);
     const shade::ray<T> bases[] = {{{0, 0, 1}, {0, 0, -1}, T(0), lim::infinity()},
                                    {{0, 0, 1}, {0, 0, 0}, T(0), T(2)}};
-    std::size_t valid = 0, invalid = 0;
+    // The walk alone (bvh_traverse validating), over one leaf of the triangle's box: an
+    // invalid ray reaches no leaf.
+    std::vector<shade::detail::bvh_prim_ref> refs{shade::detail::make_prim_ref(shade::bounds(tris[0]), 0)};
+    auto refs8 = refs;
+    const auto tree4 = shade::detail::bvh_builder(1, 1).build(refs, 4);
+    const auto tree8 = shade::detail::bvh_builder(1, 1).build(refs8, shade::detail::bvh_node_width(8));
+    std::size_t valid = 0, invalid = 0, scaled = 0, hits = 0;
     for (const shade::ray<T>& base : bases)
         for (int i = 0; i < 8; ++i)
             for (int j = i; j < 8; ++j)
@@ -364,19 +377,45 @@ TEST_CASE_TEMPLATE("triangle_bvh: a ray's validity as ray::valid() decides it", 
                         CAPTURE(b);
                         const bool expected = r.valid();
                         REQUIRE(shade::detail::bvh_ray_valid(r) == expected);
+                        const bool needs_scaling = shade::detail::bvh_ray_scale<T>::needed(r.direction);
+                        REQUIRE(shade::detail::bvh_scale_needed(r.direction) == needs_scaling);
+#if defined(__GNUC__) && defined(__x86_64__)
+                        if constexpr (std::is_same_v<T, float>)
+                            if (shade::detail::cpu_has_avx())
+                                REQUIRE(shade::detail::bvh_ray_plain8(r) == (expected && !needs_scaling));
+#endif
                         (expected ? valid : invalid) += 1;
-                        if (!expected) {
-                            CHECK_FALSE(accel.closest(r));
-                            CHECK_FALSE(accel.find_closest(r));
-                            CHECK_FALSE(accel.any(r));
-                        } else {
-                            check_lean_query(accel, r);
+                        scaled += expected && needs_scaling;
+                        const auto loop = brute_force<shade::moller_trumbore>(r, std::span<const shade::triangle<T>>(tris));
+                        hits += loop.has_value();
+                        for (const auto* tree : {&tree4, &tree8}) {
+                            std::size_t leaves = 0;
+                            shade::detail::bvh_traverse<shade::detail::bvh_order::sorted, true>(
+                                *tree, r, r.t_max, [&](std::uint32_t, std::uint32_t, auto) { return ++leaves, false; });
+                            if (!expected) CHECK(leaves == 0);
+                            if (expected && loop) CHECK(leaves == 1); // a hit lies in the box
+                        }
+                        for (const auto* accel : {&four, &eight}) {
+                            if (!expected) {
+                                CHECK_FALSE(accel->closest(r));
+                                CHECK_FALSE(accel->find_closest(r));
+                                CHECK_FALSE(accel->any(r));
+                                continue;
+                            }
+                            check_lean_query(*accel, r);
+                            CHECK(accel->any(r) == loop.has_value());
+                            const auto h = accel->closest(r);
+                            REQUIRE(h.has_value() == loop.has_value());
+                            if (h) CHECK(h->hit.t == loop->second.t);
                         }
                     }
     // Both answers occur many times (each base with one number changed to 1 alone gives
-    // valid rays from the valid base and, through the direction, from the zero one).
+    // valid rays from the valid base and, through the direction, from the zero one), and
+    // valid rays that need scaling, and hits, too.
     CHECK(valid > 1000);
     CHECK(invalid > 1000);
+    CHECK(scaled > 100);
+    CHECK(hits > 100);
 }
 
 TEST_CASE_TEMPLATE("primitive_bvh and bvh: spheres against brute force", T, float, double) {

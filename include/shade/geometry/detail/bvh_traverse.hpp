@@ -348,6 +348,30 @@ template <std::floating_point T>
     }
 }
 
+#if defined(__x86_64__)
+/// For a float ray in the walk compiled for AVX: true when r.valid() and its direction
+/// needs no scaling (!bvh_ray_scale<float>::needed), from the ray's 32 bytes as eight lanes
+/// (origin, direction, t_min, t_max) in one pair of comparisons: |origin| <= the largest
+/// float (finite), each |direction component| zero or in [2^-125, 2^125], t_min and t_max
+/// in [0, +inf] (NaN failing every comparison), some component nonzero, t_min <= t_max.
+[[gnu::target("avx")]] inline bool bvh_ray_plain8(const ray<float>& r) noexcept {
+    static_assert(sizeof(ray<float>) == sizeof(bvh_f8));
+    bvh_f8 a;
+    __builtin_memcpy(&a, &r, sizeof a);
+    constexpr float big = std::numeric_limits<float>::max();
+    constexpr float inf = infinity<float>;
+    // The magnitudes of the origin and direction; t_min and t_max as they are (a negative
+    // one then fails >= 0).
+    const bvh_i8 magnitude{0x7fff'ffff, 0x7fff'ffff, 0x7fff'ffff, 0x7fff'ffff, 0x7fff'ffff, 0x7fff'ffff, -1, -1};
+    const auto m = reinterpret_cast<bvh_f8>(reinterpret_cast<bvh_i8>(a) & magnitude);
+    const bvh_f8 low{0.0f, 0.0f, 0.0f, 0x1p-125f, 0x1p-125f, 0x1p-125f, 0.0f, 0.0f};
+    const bvh_f8 high{big, big, big, 0x1p+125f, 0x1p+125f, 0x1p+125f, inf, inf};
+    const bvh_i8 zero = m == 0.0f;
+    const unsigned in_range = bvh_bits8((m >= low) & (m <= high)) | (bvh_bits8(zero) & 0x38u);
+    return in_range == 0xffu && (bvh_bits8(zero) & 0x38u) != 0x38u && r.t_min <= r.t_max;
+}
+#endif
+
 /// The conservative slab test of r against node's boxes (as many as Lanes holds) within
 /// [t_min, t_max]: bit j set where child j's box is entered, t_enter[j] where (bvh_keep
 /// ignores a NaN slab distance).
@@ -358,7 +382,9 @@ template <std::size_t W, class Lanes>
     const auto* planes = reinterpret_cast<const unsigned char*>(node.planes.data());
     Lanes near = r.t_min;
     Lanes far = r.far_start;
-    const auto slab = [&](std::size_t k) { // called with constants: the ray stays in registers
+    // Called with constants, forced inline (in a large translation unit g++ may otherwise
+    // call it, its vectors then passing through memory): the ray stays in registers.
+    const auto slab = [&](std::size_t k) __attribute__((always_inline)) {
         Lanes lo, hi;
         __builtin_memcpy(&lo, planes + r.near_offset[k], sizeof lo);
         __builtin_memcpy(&hi, planes + r.far_offset[k], sizeof hi);
@@ -436,14 +462,32 @@ enum class bvh_order {
     sorted,  ///< nearest first, then by entry distance
 };
 
-/// bvh_traverse's walk over nodes of W children (inlined there and in bvh_walk_wide).
-template <bvh_order Order, class Ray, std::size_t W, std::floating_point T, class Leaf>
+/// True when r is valid and needs no scaling (the common case), in the walk of Ray: for
+/// a float ray in the AVX walk bvh_ray_plain8, else bvh_ray_valid and bvh_scale_needed.
+template <class Ray, std::floating_point T>
+[[gnu::always_inline]] inline bool bvh_ray_plain(const ray<T>& r) noexcept {
+#if defined(__GNUC__) && defined(__x86_64__)
+    if constexpr (sizeof(typename Ray::lanes) == 32 && std::is_same_v<T, float>) return bvh_ray_plain8(r); else
+#endif
+    return bvh_ray_valid(r) && !bvh_scale_needed(r.direction);
+}
+
+/// bvh_traverse's walk over nodes of W children (inlined there and in bvh_walk_wide); with
+/// Validate, a ray that is not valid() visits nothing.
+template <bvh_order Order, bool Validate, class Ray, std::size_t W, std::floating_point T, class Leaf>
 [[gnu::always_inline]] inline void bvh_walk(const bvh_node<W>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf) {
     // Built only for the rare rays that need scaling, so that the common case stays a few
-    // inlined comparisons.
+    // inlined comparisons (with Validate, one test for both questions; the rare rays that
+    // fail it are asked each question apart).
     bvh_ray_scale<T> scale;
-    if (bvh_scale_needed(r.direction)) [[unlikely]]
+    if constexpr (Validate) {
+        if (!bvh_ray_plain<Ray>(r)) [[unlikely]] {
+            if (!bvh_ray_valid(r)) return;
+            if (bvh_scale_needed(r.direction)) scale = bvh_ray_scale<T>(r.direction);
+        }
+    } else if (bvh_scale_needed(r.direction)) [[unlikely]] {
         scale = bvh_ray_scale<T>(r.direction);
+    }
     const Ray fr(r, scale);
     typename Ray::lanes t_enter;
     float t_max_f = scale.t_up(t_max);
@@ -527,16 +571,16 @@ template <bvh_order Order, class Ray, std::size_t W, std::floating_point T, clas
 #define SHADE_DETAIL_BVH_WIDE 1 // this build has the eight-wide walk (undefined at the end)
 /// bvh_walk over nodes of eight, compiled for AVX (without FMA: leaf tests inlined here
 /// give the baseline build's bits); used only where the CPU has AVX (bvh_node_width).
-template <bvh_order Order, std::floating_point T, class Leaf>
+template <bvh_order Order, bool Validate, std::floating_point T, class Leaf>
 [[gnu::target("avx")]] void bvh_walk_wide(const bvh_node<8>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf) {
-    bvh_walk<Order, bvh_ray_lanes<bvh_f8>>(nodes, r, t_max, leaf);
+    bvh_walk<Order, Validate, bvh_ray_lanes<bvh_f8>>(nodes, r, t_max, leaf);
 }
 #endif
 
 /// bvh_walk over nodes of four, as a function of its own (bvh_traverse is only the choice).
-template <bvh_order Order, std::floating_point T, class Leaf>
+template <bvh_order Order, bool Validate, std::floating_point T, class Leaf>
 void bvh_walk_four(const bvh_node<4>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf) {
-    bvh_walk<Order, bvh_ray4>(nodes, r, t_max, leaf);
+    bvh_walk<Order, Validate, bvh_ray4>(nodes, r, t_max, leaf);
 }
 
 /// The children per node (4 or 8) a build uses when `requested` are asked for.
@@ -552,14 +596,16 @@ void bvh_walk_four(const bvh_node<4>* nodes, const ray<T>& r, const T& t_max, Le
 /// AVX (a leaf test may then use AVX inline) and std::false_type otherwise; stops when
 /// leaf returns true (any-hit). Order: the order of the children (see bvh_order). t_max is
 /// read again after each leaf (a closest-hit
-/// leaf shrinks it), which prunes the boxes and the stacked entries beyond it.
-/// Precondition: the tree has nodes and r is valid.
-template <bvh_order Order, std::floating_point T, class Leaf>
+/// leaf shrinks it), which prunes the boxes and the stacked entries beyond it. Validate:
+/// a ray that is not valid() (see shade::ray) visits nothing, tested in the walk with the
+/// test for scaling; without it the caller has tested that.
+/// Precondition: the tree has nodes, and r is valid unless Validate.
+template <bvh_order Order, bool Validate = false, std::floating_point T, class Leaf>
 [[gnu::always_inline]] inline void bvh_traverse(const bvh_tree& tree, const ray<T>& r, const T& t_max, Leaf&& leaf) {
 #if defined(SHADE_DETAIL_BVH_WIDE)
-    if (!tree.wide_nodes.empty()) return bvh_walk_wide<Order>(tree.wide_nodes.data(), r, t_max, leaf);
+    if (!tree.wide_nodes.empty()) return bvh_walk_wide<Order, Validate>(tree.wide_nodes.data(), r, t_max, leaf);
 #endif
-    bvh_walk_four<Order>(tree.nodes.data(), r, t_max, leaf);
+    bvh_walk_four<Order, Validate>(tree.nodes.data(), r, t_max, leaf);
 }
 #undef SHADE_DETAIL_BVH_WIDE
 
