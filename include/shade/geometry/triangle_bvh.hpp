@@ -131,7 +131,7 @@ public:
 
     /// True when r hits some triangle within [t_min, t_max] (for shadow rays).
     [[nodiscard]] bool any(const ray<T>& r, culling cull = culling::none) const {
-        if (size_ == 0) return false; // an invalid ray: the walk visits nothing
+        if (size_ == 0) return false; // nothing to hit (the walk turns an invalid ray away)
         bool found = false;
         const auto* const data = leaf_data();
         const auto leaf = [&, data, cull](std::uint32_t first, std::uint32_t count, auto avx) SHADE_DETAIL_LEAF_INLINE {
@@ -171,7 +171,7 @@ private:
     /// none), its intersection written to x (left as it was on a miss; written in place,
     /// not returned, so that the caller's record is made from it without a copy).
     [[nodiscard]] std::uint32_t walk(ray<T> r, culling cull, triangle_intersection<T>& x) const {
-        if (size_ == 0) return no_hit; // an invalid ray: the walk visits nothing
+        if (size_ == 0) return no_hit; // nothing to hit (the walk turns an invalid ray away)
         std::uint32_t best = no_hit;
         // The leaf data and cull held in the leaf function itself (one load each in a leaf).
         const auto* const data = leaf_data();
