@@ -32,7 +32,8 @@ BASELINES = {
 # appearance in the JSON (random, with interleaved runs) would not do; others keep it.
 VARIANT_ORDER = {
     "bsdf": ["ggx_conductor", "ggx_conductor_exact_fresnel", "smooth_conductor", "smooth_dielectric",
-             "thin_dielectric", "rough_dielectric_ggx", "rough_dielectric_beckmann"],
+             "thin_dielectric", "rough_dielectric_ggx", "rough_dielectric_beckmann",
+             "compensated_dielectric_anisotropic_tables", "compensated_dielectric_anisotropic_grid"],
 }
 OPENPBR_MATERIALS = ["default_material", "metal", "rough_glass", "coated_plastic"]
 VARIANT_ORDER["openpbr"] = ["lambert"] + [v for m in OPENPBR_MATERIALS for v in (
