@@ -21,7 +21,7 @@
 // rough_dielectric_ggx and rough_dielectric_beckmann (eta 1.5, alpha 0.3 for the rough
 // ones), and shade::compensated_rough_dielectric over anisotropic GGX 0.05 x 0.5 (eta 1.5)
 // reading its tables (compensated_dielectric_anisotropic_tables) or a
-// shade::dielectric_albedo_grid of its interface (compensated_dielectric_anisotropic_grid).
+// shade::rough_dielectric_albedo_grid of its interface (compensated_dielectric_anisotropic_grid).
 // The delta models' f and pdf are the contract's constant 0 (shade/bsdf/bsdf.hpp); their rows
 // show what that costs.
 //
@@ -43,7 +43,7 @@
 #include <shade/brdf/microfacet.hpp>
 #include <shade/bsdf/bsdf.hpp>
 #include <shade/bsdf/compensated_rough_dielectric.hpp>
-#include <shade/bsdf/dielectric_albedo_grid.hpp>
+#include <shade/bsdf/rough_dielectric_albedo_grid.hpp>
 #include <shade/bsdf/rough_dielectric.hpp>
 #include <shade/bsdf/smooth_conductor.hpp>
 #include <shade/bsdf/smooth_dielectric.hpp>
@@ -157,7 +157,7 @@ void register_all(const std::string& type) {
     add_model(type, "rough_dielectric_beckmann", shade::rough_dielectric<beckmann<T>>(beckmann<T>(alpha), eta));
     // The grid outlives the models that point to it (a static of this instantiation).
     const ggx<T> anisotropic(T(0.05), T(0.5));
-    static const shade::dielectric_albedo_grid<T> grid(anisotropic, eta);
+    static const shade::rough_dielectric_albedo_grid<T> grid(anisotropic, eta);
     add_model(type, "compensated_dielectric_anisotropic_tables", shade::compensated_rough_dielectric<T>(anisotropic, eta));
     add_model(type, "compensated_dielectric_anisotropic_grid", shade::compensated_rough_dielectric<T>(anisotropic, eta, grid));
 }

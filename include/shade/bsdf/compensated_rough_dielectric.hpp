@@ -23,7 +23,7 @@
 #include <shade/bsdf/detail/dielectric_albedo_data.hpp>
 #include <shade/bsdf/detail/dielectric_albedo_row.hpp>
 #include <shade/bsdf/detail/dielectric_anisotropic_albedo_data.hpp>
-#include <shade/bsdf/dielectric_albedo_grid.hpp>
+#include <shade/bsdf/rough_dielectric_albedo_grid.hpp>
 #include <shade/bsdf/dielectric_albedo_table.hpp>
 #include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>
 #include <shade/bsdf/dielectric_reflection_albedo.hpp>
@@ -145,9 +145,10 @@ struct dielectric_albedo_tables_of<beckmann<T>> {
 /// reads the isotropic table at sqrt(m_x m_y) whatever the azimuth, an approximation that
 /// departs from R + T = 1 both ways as anisotropic GGX did before its correction.
 ///
-/// Per-interface mode: built with a shade::dielectric_albedo_grid of its own distribution and
-/// eta, the model reads E_s(w) and E_s,avg from that grid (integrated for this interface when
-/// the grid was built) instead of the tables, with the formulas above unchanged. The grid
+/// Per-interface mode: built with a shade::rough_dielectric_albedo_grid of its own
+/// distribution and eta, the model reads E_s(w) and E_s,avg from that grid (integrated for
+/// this interface when the grid was built) instead of the tables, with the formulas above
+/// unchanged. The grid
 /// needs no interpolation over the interface's parameters, so it holds R + T near 1 where the
 /// anisotropic correction cannot (strong anisotropy, seen from the denser side; measured
 /// ranges in docs/properties.md). The model keeps a pointer to the grid: the grid must
@@ -183,7 +184,7 @@ public:
     /// comment) instead of the tables; the grid must outlive the model. Throws
     /// shade::invalid_parameter naming "eta" as the constructor above, or naming "grid"
     /// unless the grid was built for exactly this distribution and eta.
-    compensated_rough_dielectric(const Distribution& distribution, T eta, const dielectric_albedo_grid<T>& grid)
+    compensated_rough_dielectric(const Distribution& distribution, T eta, const rough_dielectric_albedo_grid<T>& grid)
         requires std::same_as<Distribution, ggx<T>>
         : single_(distribution, eta), grid_(&grid) {
         // (A discarded branch for another distribution, which this constructor excludes, so
@@ -199,7 +200,7 @@ public:
     }
 
     /// The grid the model reads E_s from, or nullptr when it reads the tables.
-    [[nodiscard]] constexpr const dielectric_albedo_grid<T>* albedo_grid() const noexcept { return grid_; }
+    [[nodiscard]] constexpr const rough_dielectric_albedo_grid<T>* albedo_grid() const noexcept { return grid_; }
 
     /// The single-scattering model this compensates.
     [[nodiscard]] constexpr const single_scattering_type& single_scattering() const noexcept { return single_; }
@@ -535,7 +536,7 @@ private:
 
     single_scattering_type single_;
     side_state side_[2]{};
-    const dielectric_albedo_grid<T>* grid_ = nullptr; ///< E_s per interface, or nullptr: the tables
+    const rough_dielectric_albedo_grid<T>* grid_ = nullptr; ///< E_s per interface, or nullptr: the tables
     detail::dielectric_anisotropic_cell<T> anisotropic_cell_{}; ///< where Delta is read (when anisotropic)
     bool anisotropic_ = false; ///< alpha_x != alpha_y
     bool enabled_ = false;

@@ -1,6 +1,6 @@
 #pragma once
-// shade::dielectric_albedo_grid: the single-scattering albedo R + T of one rough GGX dielectric
-// interface, integrated on a grid of views when it is built (both sides), for
+// shade::rough_dielectric_albedo_grid: the single-scattering albedo R + T of one rough GGX
+// dielectric interface, integrated on a grid of views when it is built (both sides), for
 // shade::compensated_rough_dielectric's per-interface mode.
 
 #include <cmath>
@@ -41,11 +41,15 @@ namespace detail {
 [[nodiscard]] inline double dielectric_visible_albedo(const ggx<double>& distribution, const vec3<double>& v,
                                                       double eta_s, int cells) noexcept {
     const double masking_v = 1.0 + distribution.Lambda(v); // 1 / G1(v)
+    const vec3<double> v_stretched = distribution.stretch(v);
     double sum = 0.0;
-    for (int i = 0; i < cells; ++i)
+    for (int i = 0; i < cells; ++i) {
+        // u = ((i + 1/2) / cells, (j + 1/2) / cells): the angle 2 pi u_x is the column's.
+        const double phi = 2.0 * pi<double> * (double(i) + 0.5) / double(cells);
+        const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
         for (int j = 0; j < cells; ++j) {
-            const vec2<double> u((double(i) + 0.5) / double(cells), (double(j) + 0.5) / double(cells));
-            const vec3<double> m = distribution.sample_visible_normal(v, u);
+            const double u_y = (double(j) + 0.5) / double(cells);
+            const vec3<double> m = distribution.sample_visible_normal_stretched(v_stretched, cos_phi, sin_phi, u_y);
             const double v_dot_m = glm::dot(v, m);
             if (!(v_dot_m > 0.0)) continue;
             const double F = F_dielectric(v_dot_m, eta_s);
@@ -58,13 +62,20 @@ namespace detail {
                 if (t && t->z < 0.0) sum += (1.0 - F) * masking_v / (masking_v + distribution.Lambda(*t));
             }
         }
+    }
     return sum / (double(cells) * double(cells));
 }
 
-/// Added to every value of a dielectric_albedo_grid: the grid reads E_s this much high, so
-/// that the compensation's R + T = 1 + E_true - E_read errs below 1 rather than above where
-/// the grid's interpolation and quadrature err (measured ranges in docs/properties.md).
-inline constexpr double dielectric_albedo_grid_margin = 3e-3;
+/// Added to every value of a rough_dielectric_albedo_grid: the grid reads E_s this much
+/// high, so that the compensation's R + T = 1 + E_true - E_read errs below 1 rather than
+/// above where the grid's interpolation and quadrature err (measured ranges in
+/// docs/properties.md).
+inline constexpr double rough_dielectric_albedo_grid_margin = 3e-3;
+
+/// The margin at strong anisotropy (alpha_max / alpha_min >= 20, the grid's finer azimuths):
+/// seen from the denser side, E_s of a surface nearly smooth along one axis has features a
+/// few degrees wide in azimuth that the nodes straddle, so the interpolation errs more.
+inline constexpr double rough_dielectric_albedo_grid_margin_strong = 6e-3;
 
 } // namespace detail
 
@@ -83,29 +94,31 @@ inline constexpr double dielectric_albedo_grid_margin = 3e-3;
 ///   at mu = x^1.5, x = 0, 1/15, ..., 1 (denser toward grazing); with it (eta_s < 1) the
 ///   critical cosine mu_c = sqrt(1 - eta_s^2), where E_s has a kink, is a row, with 24 rows
 ///   below it at mu_c x^1.5 and 12 evenly spaced above;
-/// - 37 azimuths per row, in s = cos^2 of the angle from the rougher axis (sin^2 when
-///   alpha_y > alpha_x), spaced by the half-sum of s and log(1 + (q^2 - 1) s) / log(q^2),
-///   q = min(alpha_max / alpha_min, 20), so that they crowd toward the smoother axis, where
-///   E_s changes fastest;
+/// - 37 azimuths per row (73 at strong anisotropy, alpha_max / alpha_min >= 20), in
+///   s = cos^2 of the angle from the rougher axis (sin^2 when alpha_y > alpha_x), spaced by
+///   the half-sum of s and log(1 + (q^2 - 1) s) / log(q^2), q = min(alpha_max / alpha_min,
+///   20), so that they crowd toward the smoother axis, where E_s changes fastest;
 /// - each node the midpoint rule of detail::dielectric_visible_albedo on 48 x 48 visible
-///   normals, plus detail::dielectric_albedo_grid_margin; a read interpolates bilinearly in
+///   normals, plus detail::rough_dielectric_albedo_grid_margin (at strong anisotropy
+///   detail::rough_dielectric_albedo_grid_margin_strong); a read interpolates bilinearly in
 ///   those coordinates and is clamped to [0, 1].
 ///
 /// E_s,avg = 2 int E_s(w) mu dw / (2 pi) over the hemisphere (the compensation's average) is
 /// integrated from the grid's own reads. Building takes about 0.3 s (some 2,000 nodes on 48^2
-/// visible normals each); the object holds about 11 KB. Meant to be built once per material,
+/// visible normals each; twice that at strong anisotropy); the object holds about 22 KB. Meant to be built once per material,
 /// not per shading point. Isotropic interfaces are handled as well (E_s then does not depend
-/// on the azimuth; every azimuth node holds the same value to the quadrature's rounding).
+/// on the azimuth; the azimuth nodes agree within the midpoint rule's error, a few 1e-4).
 template <std::floating_point T>
-class dielectric_albedo_grid {
+class rough_dielectric_albedo_grid {
 public:
-    static constexpr int azimuths = 37;  ///< azimuth nodes per row
+    static constexpr int azimuths = 37;        ///< azimuth nodes per row
+    static constexpr int strong_azimuths = 73; ///< azimuth nodes per row at strong anisotropy
     static constexpr int max_rows = 37;  ///< rows on a side with total internal reflection
     static constexpr int cells = 48;     ///< visible normals per axis at each node
 
     /// The grid of rough_dielectric(distribution, eta). Throws shade::invalid_parameter
     /// naming "eta" unless eta lies in [1e-4, 1e4] and is not 1 (as rough_dielectric).
-    dielectric_albedo_grid(const ggx<T>& distribution, T eta)
+    rough_dielectric_albedo_grid(const ggx<T>& distribution, T eta)
         : distribution_(distribution), eta_(require_in_range("eta", eta, dielectric_eta_min<T>, dielectric_eta_max<T>)) {
         if (eta == T(1))
             throw invalid_parameter("eta", "must not be 1 (an index-matched interface is a delta: smooth_dielectric)",
@@ -113,6 +126,9 @@ public:
         const double alpha_x = double(distribution.alpha_x()), alpha_y = double(distribution.alpha_y());
         const double q = glm::min(glm::max(alpha_x, alpha_y) / glm::min(alpha_x, alpha_y), 20.0);
         log_q2_ = T(2 * std::log(q));
+        const bool strong = q >= 20.0;
+        azimuths_ = strong ? strong_azimuths : azimuths;
+        margin_ = strong ? detail::rough_dielectric_albedo_grid_margin_strong : detail::rough_dielectric_albedo_grid_margin;
         smoother_y_ = alpha_x > alpha_y;
         const ggx<double> d(unchecked, alpha_x, alpha_y);
         for (int s = 0; s < 2; ++s) build(s, d, s == 0 ? double(eta) : 1.0 / double(eta));
@@ -138,10 +154,11 @@ public:
         const T row = glm::min(mu_coordinate(g, mu), T(g.rows - 1));
         const int i = glm::min(int(row), g.rows - 2);
         const T t = row - T(i);
-        const T along = glm::min(azimuth_coordinate(w), T(azimuths - 1));
-        const int j = glm::min(int(along), azimuths - 2);
+        const T along = glm::min(azimuth_coordinate(w), T(azimuths_ - 1));
+        const int j = glm::min(int(along), azimuths_ - 2);
         const T a = along - T(j);
-        const auto at = [&g](int r, int c) { return T(g.e[r * azimuths + c]); };
+        const int n = azimuths_;
+        const auto at = [&g, n](int r, int c) { return T(g.e[r * n + c]); };
         const T e = (T(1) - t) * ((T(1) - a) * at(i, j) + a * at(i, j + 1)) +
                     t * ((T(1) - a) * at(i + 1, j) + a * at(i + 1, j + 1));
         return glm::clamp(e, T(0), T(1));
@@ -159,7 +176,7 @@ private:
         T mu_c = 0;    ///< critical cosine, 0 when eta_s > 1
         int rows = rows_without_critical;
         T average = 1; ///< E_s,avg
-        float e[max_rows * azimuths]{};
+        float e[max_rows * strong_azimuths]{}; ///< row by row, azimuths_ values each
     };
 
     /// The row coordinate (0 to rows - 1) of mu on side g.
@@ -189,14 +206,14 @@ private:
         return 0.5 * (s + logarithmic);
     }
 
-    /// The azimuth coordinate (0 to azimuths - 1) of the local direction w.
+    /// The azimuth coordinate (0 to azimuths_ - 1) of the local direction w.
     [[nodiscard]] T azimuth_coordinate(const vec3<T>& w) const noexcept {
         const T xx = w.x * w.x, yy = w.y * w.y;
         const T planar = xx + yy;
         // On the normal the azimuth is undefined and E_s the same at every one: read s = 1.
         const T cos2 = planar > T(0) ? xx / planar : T(1);
         const T s = smoother_y_ ? cos2 : T(1) - cos2;
-        return T(azimuth_warp(double(glm::clamp(s, T(0), T(1))), double(log_q2_))) * T(azimuths - 1);
+        return T(azimuth_warp(double(glm::clamp(s, T(0), T(1))), double(log_q2_))) * T(azimuths_ - 1);
     }
 
     void build(int side, const ggx<double>& d, double eta_s) {
@@ -204,9 +221,9 @@ private:
         g.mu_c = eta_s < 1.0 ? T(std::sqrt((1.0 - eta_s) * (1.0 + eta_s))) : T(0);
         g.rows = g.mu_c > T(0) ? rows_below_critical + rows_above_critical + 1 : rows_without_critical;
         const double log_q2 = double(log_q2_);
-        for (int j = 0; j < azimuths; ++j) {
-            // The s whose warp is j / (azimuths - 1), by bisection (the warp is increasing).
-            const double target = double(j) / double(azimuths - 1);
+        for (int j = 0; j < azimuths_; ++j) {
+            // The s whose warp is j / (azimuths_ - 1), by bisection (the warp is increasing).
+            const double target = double(j) / double(azimuths_ - 1);
             double lo = 0.0, hi = 1.0;
             for (int k = 0; k < 60; ++k) {
                 const double mid = 0.5 * (lo + hi);
@@ -219,8 +236,8 @@ private:
                 const double mu = glm::clamp(row_mu(g, i), 1e-4, 1.0);
                 const double st = std::sqrt((1.0 - mu) * (1.0 + mu));
                 const vec3<double> v(st * c, st * sn, mu);
-                const double e = detail::dielectric_visible_albedo(d, v, eta_s, cells) + detail::dielectric_albedo_grid_margin;
-                g.e[i * azimuths + j] = float(glm::min(e, 1.0));
+                const double e = detail::dielectric_visible_albedo(d, v, eta_s, cells) + margin_;
+                g.e[i * azimuths_ + j] = float(glm::min(e, 1.0));
             }
         }
         // E_s,avg = (2 / pi) int_0^{pi/2} int_0^1 E_s mu dmu dphi over a quarter of the
@@ -241,6 +258,8 @@ private:
     ggx<T> distribution_;
     T eta_;
     T log_q2_ = 0;           ///< 2 log q, the azimuth spacing's parameter
+    int azimuths_ = azimuths; ///< azimuth nodes per row (strong_azimuths at strong anisotropy)
+    double margin_ = detail::rough_dielectric_albedo_grid_margin; ///< added to every node
     bool smoother_y_ = false; ///< alpha_x > alpha_y: the smoother axis is y
     side_grid side_[2]{};
 };

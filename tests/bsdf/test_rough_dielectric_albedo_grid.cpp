@@ -1,4 +1,4 @@
-// shade::dielectric_albedo_grid and shade::compensated_rough_dielectric in its per-interface
+// shade::rough_dielectric_albedo_grid and shade::compensated_rough_dielectric in its per-interface
 // mode (issue #31: R + T in [0.99, 1.001] at 2:1 and 10:1 at every view azimuth and mu >= 0.1,
 // both sides): the white furnace over views, the grid's quadrature against the model's own
 // sampler, the lobe returning exactly 1 - E_s(v), symmetry, reciprocity and sampling in that
@@ -21,7 +21,7 @@
 
 #include <shade/brdf/microfacet/ggx.hpp>
 #include <shade/bsdf/compensated_rough_dielectric.hpp>
-#include <shade/bsdf/dielectric_albedo_grid.hpp>
+#include <shade/bsdf/rough_dielectric_albedo_grid.hpp>
 #include <shade/check/doctest.hpp>
 #include <shade/check/sampling.hpp>
 #include <shade/core/error.hpp>
@@ -36,20 +36,22 @@ using namespace bsdf_test::anisotropic;
 using brdf_test::close;
 using shade::transport_mode;
 
-TEST_CASE_TEMPLATE("dielectric_albedo_grid: R + T in [0.99, 1.001] at 2:1 and 10:1 over azimuths, mu >= 0.1, both sides", T,
-                   float, double) {
-    // Pairs at 2:1 and 10:1 with the smoother axis along t and along b, eta 1.33 and 2.4
-    // (seen from inside: 1 / 1.33 and 1 / 2.4, with total internal reflection); azimuths off
-    // the grid's nodes. Each reading held to the band widened by 4 standard errors of E_true
-    // (96^2 strata, standard error below 8e-4, asserted).
+TEST_CASE_TEMPLATE("rough_dielectric_albedo_grid: R + T in [0.99, 1.001] at 2:1, 10:1 and anisotropy 1 over azimuths, "
+                   "mu >= 0.1, both sides", T, float, double) {
+    // Pairs at 2:1 and 10:1 with the smoother axis along t and along b, and one at anisotropy 1
+    // (the smaller alpha 1.2e-4, as float(1e-4) is below the lobe's floor: the grid's finer
+    // azimuths and larger margin), eta 1.33 and 2.4 (seen from inside: 1 / 1.33 and 1 / 2.4,
+    // with total internal reflection); azimuths off the grid's nodes. Each reading held to the
+    // band widened by 4 standard errors of E_true (96^2 strata, standard error below 8e-4,
+    // asserted).
     struct lobe {
         double a_x, a_y;
     };
     double low[2] = {2, 2}, high[2] = {0, 0};
-    for (const lobe& r : {lobe{0.2, 0.4}, lobe{0.8, 0.08}, lobe{0.05, 0.5}})
+    for (const lobe& r : {lobe{0.2, 0.4}, lobe{0.8, 0.08}, lobe{0.05, 0.5}, lobe{1.2e-4, 0.6}})
         for (const double eta : {1.33, 2.4}) {
             const shade::ggx<T> distribution(T(r.a_x), T(r.a_y));
-            const shade::dielectric_albedo_grid<T> grid(distribution, T(eta));
+            const shade::rough_dielectric_albedo_grid<T> grid(distribution, T(eta));
             const compensated<T> model{distribution, T(eta), grid};
             for (const int side : {0, 1})
                 for (const double mu : {0.1, 0.35, 0.7, 1.0})
@@ -71,11 +73,11 @@ TEST_CASE_TEMPLATE("dielectric_albedo_grid: R + T in [0.99, 1.001] at 2:1 and 10
                         high[side] = std::max(high[side], total);
                     }
         }
-    MESSAGE("per-interface grid, R + T at 2:1 and 10:1: v outside " << low[0] << " to " << high[0] << ", v inside " << low[1]
+    MESSAGE("per-interface grid, R + T at 2:1, 10:1 and anisotropy 1: v outside " << low[0] << " to " << high[0] << ", v inside " << low[1]
                                                                      << " to " << high[1]);
 }
 
-TEST_CASE("dielectric_albedo_grid: the quadrature is rough_dielectric's own sampler, averaged (double)") {
+TEST_CASE("rough_dielectric_albedo_grid: the quadrature is rough_dielectric's own sampler, averaged (double)") {
     // detail::dielectric_visible_albedo takes the sampler's weight as G2(v, l) / G1(v) on
     // both branches (its comment derives it). Here the same midpoint visible normals go
     // through rough_dielectric::sample with uc choosing each branch, weighted by the Fresnel
@@ -111,7 +113,7 @@ TEST_CASE("dielectric_albedo_grid: the quadrature is rough_dielectric's own samp
                 }
 }
 
-TEST_CASE_TEMPLATE("dielectric_albedo_grid: the lobe returns exactly 1 - E_s(v); E_s,avg is the average of its reads", T,
+TEST_CASE_TEMPLATE("rough_dielectric_albedo_grid: the lobe returns exactly 1 - E_s(v); E_s,avg is the average of its reads", T,
                    float, double) {
     // f_ms integrates over l to 1 - E_s(v) only if E_s,avg is the cosine-weighted average
     // of the E_s(l) the lobe reads at every l; integrated by the midpoint rule (32 x 64 cells
@@ -121,7 +123,7 @@ TEST_CASE_TEMPLATE("dielectric_albedo_grid: the lobe returns exactly 1 - E_s(v);
     for (const auto& roughness : {std::pair{0.05, 0.5}, std::pair{0.6, 0.3}})
         for (const double eta : {1.2, 2.5}) {
             const shade::ggx<T> distribution(T(roughness.first), T(roughness.second));
-            const shade::dielectric_albedo_grid<T> grid(distribution, T(eta));
+            const shade::rough_dielectric_albedo_grid<T> grid(distribution, T(eta));
             const compensated<T> model{distribution, T(eta), grid};
             REQUIRE(model.albedo_grid() == &grid);
             for (const double mu : {0.2, -0.2, 0.6, -0.6})
@@ -144,11 +146,11 @@ TEST_CASE_TEMPLATE("dielectric_albedo_grid: the lobe returns exactly 1 - E_s(v);
     MESSAGE("per-interface grid: integral of f_ms against 1 - E_s(v): worst difference " << worst);
 }
 
-TEST_CASE("dielectric_albedo_grid: symmetric about both axes; isotropic interfaces read the same at every azimuth (double)") {
+TEST_CASE("rough_dielectric_albedo_grid: symmetric about both axes; isotropic interfaces read the same at every azimuth (double)") {
     using T = double;
     // Mirror symmetry of the interface about t and about b: the grid reads w's squared
     // components, so the mirrored views read the same value exactly.
-    const shade::dielectric_albedo_grid<T> grid(shade::ggx<T>(0.05, 0.5), 1.5);
+    const shade::rough_dielectric_albedo_grid<T> grid(shade::ggx<T>(0.05, 0.5), 1.5);
     for (const bool inside : {false, true})
         for (const double mu : {0.2, 0.7})
             for (const double phi : {20.0, 65.0}) {
@@ -160,7 +162,7 @@ TEST_CASE("dielectric_albedo_grid: symmetric about both axes; isotropic interfac
     // An isotropic interface: E_s does not depend on the azimuth; the nodes' midpoint rules
     // (whose visible normals are not those of another azimuth rotated) agree within their own
     // error, a few 1e-4 at 48^2 cells.
-    const shade::dielectric_albedo_grid<T> isotropic(shade::ggx<T>(0.4), 1 / 1.5);
+    const shade::rough_dielectric_albedo_grid<T> isotropic(shade::ggx<T>(0.4), 1 / 1.5);
     for (const bool inside : {false, true})
         for (const double mu : {0.1, 0.5, 0.95}) {
             const T e = isotropic.albedo(inside, view<T>(mu, 0));
@@ -170,7 +172,7 @@ TEST_CASE("dielectric_albedo_grid: symmetric about both axes; isotropic interfac
     // Reads stay in [0, 1], also on the normal, on the surface and for a smooth interface
     // (which loses nothing: E_s = 1, so the margin is clamped away, but for the last row,
     // mu below 0.02, where masking takes a little even at alpha 1e-4).
-    const shade::dielectric_albedo_grid<T> smooth(shade::ggx<T>(1e-4), 1.5);
+    const shade::rough_dielectric_albedo_grid<T> smooth(shade::ggx<T>(1e-4), 1.5);
     for (const bool inside : {false, true}) {
         CHECK(smooth.albedo(inside, vec3<T>(0, 0, 1)) == 1);
         CHECK(smooth.albedo(inside, view<T>(0.3, 30)) == 1);
@@ -185,14 +187,14 @@ TEST_CASE("dielectric_albedo_grid: symmetric about both axes; isotropic interfac
     }
 }
 
-TEST_CASE("dielectric_albedo_grid: per-interface mode keeps adjoint reciprocity to 1e-6 and samples agree with f and pdf "
+TEST_CASE("rough_dielectric_albedo_grid: per-interface mode keeps adjoint reciprocity to 1e-6 and samples agree with f and pdf "
           "(double)") {
     using T = double;
     const auto at = brdf_test::tilted<T>();
     shade::rng random(31);
     for (const double eta : {1.5, 1 / 1.33}) {
         const shade::ggx<T> distribution(0.1, 0.6);
-        const shade::dielectric_albedo_grid<T> grid(distribution, eta);
+        const shade::rough_dielectric_albedo_grid<T> grid(distribution, eta);
         const compensated<T> model{distribution, eta, grid};
         int compared = 0;
         for (int i = 0; i < 3000; ++i) {
@@ -230,19 +232,19 @@ TEST_CASE("dielectric_albedo_grid: per-interface mode keeps adjoint reciprocity 
     }
 }
 
-TEST_CASE_TEMPLATE("dielectric_albedo_grid: bad eta throws; a model given another interface's grid throws", T, float,
+TEST_CASE_TEMPLATE("rough_dielectric_albedo_grid: bad eta throws; a model given another interface's grid throws", T, float,
                    double) {
     const shade::ggx<T> distribution(T(0.1), T(0.5));
     for (const T eta : {T(1), T(0), T(-1.5), T(2e4), std::numeric_limits<T>::quiet_NaN()}) {
         CAPTURE(eta);
         try {
-            const shade::dielectric_albedo_grid<T> grid(distribution, eta);
+            const shade::rough_dielectric_albedo_grid<T> grid(distribution, eta);
             FAIL("no exception");
         } catch (const shade::invalid_parameter& e) {
             CHECK(e.parameter() == "eta");
         }
     }
-    const shade::dielectric_albedo_grid<T> grid(distribution, T(1.5));
+    const shade::rough_dielectric_albedo_grid<T> grid(distribution, T(1.5));
     CHECK(grid.built_for(distribution, T(1.5)));
     CHECK(grid.distribution().alpha_y() == T(0.5));
     CHECK(grid.eta() == T(1.5));
