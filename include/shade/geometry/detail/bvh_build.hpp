@@ -12,6 +12,7 @@
 #include <limits>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -652,8 +653,8 @@ private:
             const auto& bin_count = (binned ? *binned : bins_[0]).count;
             // Sweep, axis k in lane k: cost[j] = (A N of bins < j) + (A N of bins >= j),
             // infinite where one side is empty or the axis has no extent.
-            std::array<bvh_v4, bins> right_cost{};
-            std::array<bvh_v4, bins> cost{};
+            std::array<bvh_v4, bins> right_cost; // [1, nb) written below before it is read
+            std::array<bvh_v4, bins> cost; // likewise
             std::array<bvh_box, 3> acc{};
             std::array<std::uint32_t, 3> count{};
             for (std::size_t j = nb - 1; j > 0; --j) {
@@ -698,25 +699,12 @@ private:
                 for (std::size_t b = 0; b < nb; ++b) (b < best_split ? left_box : right_box).grow(bin_box[best_axis][b]);
                 const float lo = c_lo[best_axis], sc = scale[best_axis];
                 const auto plane = static_cast<float>(best_split);
-                const auto goes_left = [&](const bvh_prim_ref& r) {
-                    return !((r.lo[best_axis] + r.hi[best_axis] - lo) * sc >= plane); // centroid2's lane
+                const auto on = [&](auto axis) {
+                    return partition<decltype(axis)::value>(begin, end, lo, sc, plane, left_centroids, right_centroids);
                 };
-                std::uint32_t i = begin, j = end;
-                for (;;) {
-                    while (i < j && goes_left(refs_[i])) {
-                        const bvh_v4 c = refs_[i].centroid2();
-                        left_centroids.grow(c, c);
-                        ++i;
-                    }
-                    while (i < j && !goes_left(refs_[j - 1])) {
-                        --j;
-                        const bvh_v4 c = refs_[j].centroid2();
-                        right_centroids.grow(c, c);
-                    }
-                    if (i >= j) break;
-                    std::swap(refs_[i], refs_[j - 1]);
-                }
-                mid = i;
+                mid = best_axis == 0   ? on(std::integral_constant<std::size_t, 0>{})
+                      : best_axis == 1 ? on(std::integral_constant<std::size_t, 1>{})
+                                       : on(std::integral_constant<std::size_t, 2>{});
                 found = mid > begin && mid < end;
             } else if (n <= max_leaf_) {
                 return result; // all centroids coincide
@@ -735,6 +723,33 @@ private:
             bounds_of(mid, end, right_box, right_centroids);
         }
         return split_result{false, mid, left_box, left_centroids, right_box, right_centroids};
+    }
+
+    /// Partitions refs_[begin, end) (Hoare) into those whose scaled doubled centroid on
+    /// Axis, (c - lo) sc, is not >= plane (NaN included), then the others; returns where the
+    /// second side starts, and grows left and right by each side's doubled centroids. The
+    /// axis is a template argument so that the coordinate is a lane of the centroid, not a
+    /// load at an offset known only at run time; the same floats either way.
+    template <std::size_t Axis>
+    std::uint32_t partition(std::uint32_t begin, std::uint32_t end, float lo, float sc, float plane, bvh_box& left,
+                            bvh_box& right) noexcept {
+        bvh_prim_ref* i = refs_ + begin;
+        bvh_prim_ref* j = refs_ + end;
+        for (;;) {
+            for (; i < j; ++i) {
+                const bvh_v4 c = i->centroid2();
+                if ((c[Axis] - lo) * sc >= plane) break;
+                left.grow(c, c);
+            }
+            for (; i < j; --j) {
+                const bvh_v4 c = j[-1].centroid2();
+                if (!((c[Axis] - lo) * sc >= plane)) break;
+                right.grow(c, c);
+            }
+            if (i >= j) break;
+            std::swap(*i, j[-1]);
+        }
+        return static_cast<std::uint32_t>(i - refs_);
     }
 
     /// Bins for a node of n primitives: 4 + n / 20, at most `bins` (the rule of Embree's
@@ -777,26 +792,35 @@ private:
             const bvh_v4 lo = r.lo, hi = r.hi; // copies: no reload after the stores
             // Clamped without branches (a NaN lane gives 0), then truncated.
             const std::array<std::uint32_t, 4> b = bvh_truncate(bvh_vmin(bvh_vmax((lo + hi - c_lo_v) * scale_v, zero), last));
-            set.box[0][b[0]].grow(lo, hi); // unrolled by hand (-O2 does not)
-            set.box[1][b[1]].grow(lo, hi);
-            set.box[2][b[2]].grow(lo, hi);
+            // Each bin through one pointer, both bounds loaded before either is stored (two
+            // indexings of the array had g++ form the address twice).
+            const auto grow = [&](bvh_box* bin) {
+                const bvh_v4 l = bvh_vmin(bin->lo, lo), h = bvh_vmax(bin->hi, hi);
+                bin->lo = l;
+                bin->hi = h;
+            };
+            grow(set.box[0].data() + b[0]); // unrolled by hand (-O2 does not)
+            grow(set.box[1].data() + b[1]);
+            grow(set.box[2].data() + b[2]);
             ++set.count[0][b[0]], ++set.count[1][b[1]], ++set.count[2][b[2]];
         };
-        std::uint32_t i = begin;
+        // Walked by pointer (one increment per step, not an index scaled per reference).
+        const bvh_prim_ref* r = refs_ + begin;
+        const bvh_prim_ref* const last_ref = refs_ + end;
         if (sets == 4) {
-            for (; i + 3 < end; i += 4) {
-                bin_one(out[0], refs_[i]);
-                bin_one(out[1], refs_[i + 1]);
-                bin_one(out[2], refs_[i + 2]);
-                bin_one(out[3], refs_[i + 3]);
+            for (; last_ref - r >= 4; r += 4) {
+                bin_one(out[0], r[0]);
+                bin_one(out[1], r[1]);
+                bin_one(out[2], r[2]);
+                bin_one(out[3], r[3]);
             }
         } else if (sets == 2) {
-            for (; i + 1 < end; i += 2) {
-                bin_one(out[0], refs_[i]);
-                bin_one(out[1], refs_[i + 1]);
+            for (; last_ref - r >= 2; r += 2) {
+                bin_one(out[0], r[0]);
+                bin_one(out[1], r[1]);
             }
         }
-        for (; i < end; ++i) bin_one(out[0], refs_[i]);
+        for (; r != last_ref; ++r) bin_one(out[0], *r);
         for (std::size_t s = 1; s < sets; ++s) merge_bins(out[0], out[s], nb);
     }
 
