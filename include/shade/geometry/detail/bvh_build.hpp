@@ -97,6 +97,16 @@ inline constexpr std::uint32_t bvh_max_items = 1u << 27;
 using bvh_v4 [[gnu::vector_size(16)]] = float;
 [[nodiscard]] inline bvh_v4 bvh_vmin(const bvh_v4& a, const bvh_v4& b) noexcept { return a < b ? a : b; }
 [[nodiscard]] inline bvh_v4 bvh_vmax(const bvh_v4& a, const bvh_v4& b) noexcept { return a > b ? a : b; }
+/// bvh_vmax(a, b) for the binning's clamp: the same lanes (b where a > b is false, NaN
+/// included), in one SSE maxps on x86-64, which g++ does not pick for the select with a
+/// constant b (it compares and masks).
+[[nodiscard]] inline bvh_v4 bvh_vmax_clamp(const bvh_v4& a, const bvh_v4& b) noexcept {
+#if defined(__x86_64__)
+    return __builtin_ia32_maxps(a, b);
+#else
+    return bvh_vmax(a, b);
+#endif
+}
 #else
 /// Four floats (the builder's boxes), one at a time where GNU vectors are missing.
 struct bvh_v4 {
@@ -109,6 +119,7 @@ struct bvh_v4 {
 };
 [[nodiscard]] inline bvh_v4 bvh_vmin(bvh_v4 a, const bvh_v4& b) noexcept { for (std::size_t i = 0; i < 4; ++i) a.v[i] = b.v[i] < a.v[i] ? b.v[i] : a.v[i]; return a; }
 [[nodiscard]] inline bvh_v4 bvh_vmax(bvh_v4 a, const bvh_v4& b) noexcept { for (std::size_t i = 0; i < 4; ++i) a.v[i] = a.v[i] < b.v[i] ? b.v[i] : a.v[i]; return a; }
+[[nodiscard]] inline bvh_v4 bvh_vmax_clamp(const bvh_v4& a, const bvh_v4& b) noexcept { return bvh_vmax(a, b); }
 #endif
 
 /// The lanes of x, each in [0, 2^31), truncated toward zero to integers.
@@ -791,7 +802,7 @@ private:
         const auto bin_one = [&](bin_set& set, const bvh_prim_ref& r) {
             const bvh_v4 lo = r.lo, hi = r.hi; // copies: no reload after the stores
             // Clamped without branches (a NaN lane gives 0), then truncated.
-            const std::array<std::uint32_t, 4> b = bvh_truncate(bvh_vmin(bvh_vmax((lo + hi - c_lo_v) * scale_v, zero), last));
+            const std::array<std::uint32_t, 4> b = bvh_truncate(bvh_vmin(bvh_vmax_clamp((lo + hi - c_lo_v) * scale_v, zero), last));
             // Each bin through one pointer, both bounds loaded before either is stored (two
             // indexings of the array had g++ form the address twice).
             const auto grow = [&](bvh_box* bin) {
