@@ -104,17 +104,18 @@ inline constexpr double rough_dielectric_albedo_grid_margin_strong = 6e-3;
 ///   those coordinates and is clamped to [0, 1].
 ///
 /// E_s,avg = 2 int E_s(w) mu dw / (2 pi) over the hemisphere (the compensation's average) is
-/// integrated from the grid's own reads. Building takes about 0.3 s (some 2,000 nodes on 48^2
-/// visible normals each; twice that at strong anisotropy); the object holds about 22 KB. Meant to be built once per material,
-/// not per shading point. Isotropic interfaces are handled as well (E_s then does not depend
-/// on the azimuth; the azimuth nodes agree within the midpoint rule's error, a few 1e-4).
+/// integrated from the grid's own reads. Building takes about 0.3 s at -O2 (some 2,000 nodes
+/// on 48^2 visible normals each; twice that at strong anisotropy); the object holds about
+/// 22 KB. Meant to be built once per material, not per shading point. Isotropic interfaces
+/// are handled as well (E_s then does not depend on the azimuth; the azimuth nodes agree
+/// within the midpoint rule's error, a few 1e-4).
 template <std::floating_point T>
 class rough_dielectric_albedo_grid {
 public:
     static constexpr int azimuths = 37;        ///< azimuth nodes per row
     static constexpr int strong_azimuths = 73; ///< azimuth nodes per row at strong anisotropy
-    static constexpr int max_rows = 37;  ///< rows on a side with total internal reflection
-    static constexpr int cells = 48;     ///< visible normals per axis at each node
+    static constexpr int max_rows = 37;        ///< rows on a side with total internal reflection
+    static constexpr int cells = 48;           ///< visible normals per axis at each node
 
     /// The grid of rough_dielectric(distribution, eta). Throws shade::invalid_parameter
     /// naming "eta" unless eta lies in [1e-4, 1e4] and is not 1 (as rough_dielectric).
