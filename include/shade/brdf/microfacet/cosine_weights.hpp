@@ -36,25 +36,26 @@ namespace shade::detail {
 
 /// The quadrature of the GGX reflection lobe's measure of c = v·h at the local view v (unit,
 /// v.z > 0) for roughnesses alpha_x, alpha_y (> 0): calls visit(c, weight) for each of the
-/// strata^2 midpoints of the visible-normal sampler's square (Heitz 2018, "Sampling the GGX
-/// Distribution of Visible Normals", JCGT 7(4)) whose reflected direction lies above the
-/// surface, weight = G2(v, l) / G1(v) / strata^2, so that sum weight F(c) is the lobe's
-/// albedo with the Fresnel F.
+/// columns x rows midpoints of the visible-normal sampler's square (Heitz 2018, "Sampling the
+/// GGX Distribution of Visible Normals", JCGT 7(4); columns along its angle u_x, rows along
+/// u_y) whose reflected direction lies above the surface, weight = G2(v, l) / G1(v) /
+/// (columns rows), so that sum weight F(c) is the lobe's albedo with the Fresnel F. Near the
+/// normal c depends on u_y alone, so that rows sets the resolution in c there.
 template <class Visit>
-void visit_ggx_cosine_measure(const vec3<double>& v, double alpha_x, double alpha_y, std::size_t strata,
-                              Visit&& visit) {
+void visit_ggx_cosine_measure(const vec3<double>& v, double alpha_x, double alpha_y, std::size_t columns,
+                              std::size_t rows, Visit&& visit) {
     const ggx<double> d(unchecked, alpha_x, alpha_y);
     const double lambda_v = d.Lambda(v);
-    const double cell = 1 / (double(strata) * double(strata));
+    const double cell = 1 / (double(columns) * double(rows));
     const vec3<double> v_h = d.stretch(v);
-    for (std::size_t i = 0; i < strata; ++i) {
-        // u = ((i + 1/2) / strata, (j + 1/2) / strata): ggx::sample_visible_normal with the
+    for (std::size_t i = 0; i < columns; ++i) {
+        // u = ((i + 1/2) / columns, (j + 1/2) / rows): ggx::sample_visible_normal with the
         // column's angle 2 pi u_x computed once.
-        const double phi = 2 * pi<double> * ((double(i) + 0.5) / double(strata));
+        const double phi = 2 * pi<double> * ((double(i) + 0.5) / double(columns));
         const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
-        for (std::size_t j = 0; j < strata; ++j) {
+        for (std::size_t j = 0; j < rows; ++j) {
             const vec3<double> h =
-                d.sample_visible_normal_stretched(v_h, cos_phi, sin_phi, (double(j) + 0.5) / double(strata));
+                d.sample_visible_normal_stretched(v_h, cos_phi, sin_phi, (double(j) + 0.5) / double(rows));
             const double c = glm::dot(v, h);
             const vec3<double> l = 2 * c * h - v;
             if (!(l.z > 0) || !(c > 0)) continue;
@@ -63,6 +64,13 @@ void visit_ggx_cosine_measure(const vec3<double>& v, double alpha_x, double alph
             visit(c, cell * (1 + lambda_v) / (1 + lambda_v + d.Lambda(l)));
         }
     }
+}
+
+/// visit_ggx_cosine_measure on strata x strata cells.
+template <class Visit>
+void visit_ggx_cosine_measure(const vec3<double>& v, double alpha_x, double alpha_y, std::size_t strata,
+                              Visit&& visit) {
+    visit_ggx_cosine_measure(v, alpha_x, alpha_y, strata, strata, static_cast<Visit&&>(visit));
 }
 
 /// The quadrature of ggx_cosine_weights: visit_ggx_cosine_measure of the isotropic lobe at
@@ -147,6 +155,11 @@ public:
         for (std::size_t i = 0; i < cosine_weight_nodes; ++i) row_[i] += rgb<T>(T(margin[i]));
     }
 
+    /// Adds d[i] to view node i's sum, per channel (kink_cell_correction).
+    void add(const std::array<rgb<T>, cosine_weight_nodes>& d) {
+        for (std::size_t i = 0; i < cosine_weight_nodes; ++i) row_[i] += d[i];
+    }
+
     /// E_F at view cosine mu (clamped to [0, 1]), per channel.
     [[nodiscard]] rgb<T> at(T mu) const noexcept {
         constexpr std::size_t n = cosine_weight_nodes;
@@ -167,6 +180,93 @@ private:
 
     std::array<rgb<T>, cosine_weight_nodes> row_{};
 };
+
+/// What fresnel_albedo_row's node sum misses where F has a kink between two nodes (the
+/// total internal reflection of an index ratio below 1: F = 1 under the critical cosine,
+/// falling steeply above it, which the linear interpolation between the cell's nodes cuts
+/// off): for each view node mu_i (cosine_weight_node(i)), the integral of g = F minus that
+/// interpolation of f_nodes (the row's nodes, f_nodes[k] = F(c_k)) over the cell holding the
+/// cosine `kink`, against the measure of c of the GGX lobe of roughness alpha at mu_i. The
+/// cell is split into kink_sub_bins equal parts in x = c^(2/3); g's mean over each part is
+/// taken once (16 midpoints each), the measure's mass in each part per view node by
+/// visit_ggx_cosine_measure on columns x rows cells (rows many: near the normal c depends on
+/// the rows alone, and the cell is narrow in c), and the integral is their sum of products
+/// (g's square-root singularity at the critical cosine is averaged, not sampled by the
+/// measure's quadrature). Adding it to the row (fresnel_albedo_row::add) makes the node sum
+/// exact in that cell up to the masses' error; elsewhere the row is unchanged. F is a
+/// callable T -> rgb<T>. Zero for alpha <= 0 (the smooth lobe reads F at the nodes).
+inline constexpr std::size_t kink_sub_bins = 16;
+
+template <std::floating_point T, class Fresnel>
+[[nodiscard]] std::array<rgb<T>, cosine_weight_nodes> kink_cell_correction(
+    T alpha, const std::array<rgb<T>, cosine_weight_nodes>& f_nodes, const Fresnel& F, double kink,
+    std::size_t columns, std::size_t rows) {
+    constexpr std::size_t n = cosine_weight_nodes, bins = kink_sub_bins, points = 16;
+    std::array<rgb<T>, n> out{};
+    if (!(alpha > T(0))) return out;
+    const double k_c = glm::clamp(kink, 0.0, 1.0);
+    const std::size_t cell = glm::min(std::size_t(std::cbrt(k_c * k_c) * double(n - 1)), n - 2);
+    std::array<rgb<double>, bins> g_mean{};
+    for (std::size_t b = 0; b < bins; ++b) {
+        rgb<double> sum(0.0);
+        for (std::size_t q = 0; q < points; ++q) {
+            const double t = (double(b) + (double(q) + 0.5) / double(points)) / double(bins);
+            const double x = (double(cell) + t) / double(n - 1);
+            const rgb<double> chord = (1 - t) * rgb<double>(f_nodes[cell]) + t * rgb<double>(f_nodes[cell + 1]);
+            sum += rgb<double>(F(T(x * std::sqrt(x)))) - chord;
+        }
+        g_mean[b] = sum / double(points);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        std::array<double, bins> mass{};
+        const double mu = glm::clamp(cosine_weight_node(i), 1e-4, 1.0);
+        const vec3<double> v(std::sqrt((1 - mu) * (1 + mu)), 0, mu);
+        visit_ggx_cosine_measure(v, double(alpha), double(alpha), columns, rows, [&](double c, double weight) {
+            const double x = glm::clamp(std::cbrt(c * c), 0.0, 1.0) * double(n - 1);
+            if (!(x >= double(cell) && x < double(cell + 1))) return;
+            mass[glm::min(std::size_t((x - double(cell)) * double(bins)), bins - 1)] += weight;
+        });
+        rgb<double> sum(0.0);
+        for (std::size_t b = 0; b < bins; ++b) sum += mass[b] * g_mean[b];
+        out[i] = rgb<T>(sum);
+    }
+    return out;
+}
+
+/// Where F has a kink at a cosine (kink_cell_correction), E_F(mu) has one near the same view
+/// cosine when the lobe is narrow, which the row's linear interpolation between its view
+/// nodes cuts off as well. For each view cell within `reach` cells of the cell holding
+/// `kink`, E_F at four points inside the cell (visit_ggx_cosine_measure on strata^2 cells, F
+/// itself) less row.at() there, times 1.25 for the peaks between the points; returns per view
+/// node the largest positive such shortfall of its two cells (per channel), so that adding it
+/// (fresnel_albedo_row::add) lifts the row's reads in those cells to E_F or above. Zero for
+/// alpha <= 0 (a smooth lobe's row interpolates F itself: kink_cell_correction's case).
+template <std::floating_point T, class Fresnel>
+[[nodiscard]] std::array<rgb<T>, cosine_weight_nodes> kink_view_shortfall(T alpha, const fresnel_albedo_row<T>& row,
+                                                                          const Fresnel& F, double kink,
+                                                                          std::size_t reach, std::size_t strata) {
+    constexpr std::size_t n = cosine_weight_nodes;
+    std::array<rgb<T>, n> out{};
+    if (!(alpha > T(0))) return out;
+    const double k_c = glm::clamp(kink, 0.0, 1.0);
+    const std::size_t center = glm::min(std::size_t(std::cbrt(k_c * k_c) * double(n - 1)), n - 2);
+    const std::size_t first = center > reach ? center - reach : 0;
+    const std::size_t last = glm::min(center + reach, n - 2);
+    for (std::size_t j = first; j <= last; ++j) {
+        rgb<double> worst(0.0);
+        for (const double t : {0.2, 0.4, 0.6, 0.8}) {
+            const double x = (double(j) + t) / double(n - 1);
+            const double mu = x * std::sqrt(x);
+            rgb<double> e(0.0);
+            visit_ggx_cosine_measure(mu, double(alpha), strata,
+                                     [&](double c, double weight) { e += weight * rgb<double>(F(T(c))); });
+            worst = glm::max(worst, 1.25 * (e - rgb<double>(row.at(T(mu)))));
+        }
+        out[j] = glm::max(out[j], rgb<T>(worst));
+        out[j + 1] = glm::max(out[j + 1], rgb<T>(worst));
+    }
+    return out;
+}
 
 /// One view's sum of fresnel_albedo_row without keeping a row: e = sum_k w_k F(c_k) per
 /// channel (the lobe's albedo with F) and mass = sum_k w_k (its albedo with F = 1), the
