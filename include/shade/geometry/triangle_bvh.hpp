@@ -145,8 +145,10 @@ public:
             return false;
         };
         // Nearest child first, as for closest hits: a blocker is found after fewer nodes;
-        // the others unsorted (sorting them costs more than the nodes it saves).
-        detail::bvh_traverse<detail::bvh_order::nearest, true>(tree_, r, r.t_max, leaf);
+        // the others unsorted (sorting them costs more than the nodes it saves), and
+        // prefetched when stacked (nearly all of them are visited unless a blocker is found).
+        constexpr std::size_t item_bytes = batched ? sizeof(leaf_batch) : sizeof(triangle<T>);
+        detail::bvh_traverse<detail::bvh_order::nearest, true, item_bytes>(tree_, r, r.t_max, leaf, data);
         return found;
     }
 

@@ -473,9 +473,12 @@ template <class Ray, std::floating_point T>
 }
 
 /// bvh_traverse's walk over nodes of W children (inlined there and in bvh_walk_wide); with
-/// Validate, a ray that is not valid() visits nothing.
-template <bvh_order Order, bool Validate, class Ray, std::size_t W, std::floating_point T, class Leaf>
-[[gnu::always_inline]] inline void bvh_walk(const bvh_node<W>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf) {
+/// Validate, a ray that is not valid() visits nothing. With LeafBytes > 0, every child
+/// put on the stack is prefetched (see bvh_traverse).
+template <bvh_order Order, bool Validate, std::size_t LeafBytes, class Ray, std::size_t W, std::floating_point T,
+          class Leaf>
+[[gnu::always_inline]] inline void bvh_walk(const bvh_node<W>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf,
+                                            const void* leaf_base) {
     // Built only for the rare rays that need scaling, so that the common case stays a few
     // inlined comparisons (with Validate, one test for both questions; the rare rays that
     // fail it are asked each question apart).
@@ -495,6 +498,17 @@ template <bvh_order Order, bool Validate, class Ray, std::size_t W, std::floatin
     std::array<bvh_stack_entry, bvh_stack_size<W>> stack;
     std::size_t top = 0;
     std::uint32_t ref = 0;
+    // A stacked child's first sizeof(bvh_node<W>) bytes (a whole node), requested when it is
+    // stacked, so that they are near when it is popped: a leaf's first block at leaf_base +
+    // first LeafBytes, an inner node at nodes + ref (selected without a branch).
+    const auto fetch = [&](std::uint32_t child) __attribute__((always_inline)) {
+        if constexpr (LeafBytes != 0) {
+            const auto* p = is_leaf_ref(child) ? static_cast<const unsigned char*>(leaf_base) +
+                                                     std::size_t(leaf_first(child)) * LeafBytes
+                                               : reinterpret_cast<const unsigned char*>(nodes + child);
+            for (std::size_t line = 0; line < sizeof(bvh_node<W>); line += 64) bvh_prefetch(p + line);
+        }
+    };
     for (;;) {
         while (!is_leaf_ref(ref)) {
             const bvh_node<W>& node = nodes[ref];
@@ -517,6 +531,7 @@ template <bvh_order Order, bool Validate, class Ray, std::size_t W, std::floatin
                     const bool first_nearer = Order == bvh_order::child || t_enter[i0] <= t_enter[i1];
                     const std::size_t go = first_nearer ? i0 : i1, later = first_nearer ? i1 : i0;
                     stack[top++] = {node.child[later], t_enter[later]};
+                    fetch(node.child[later]);
                     ref = node.child[go];
                     continue;
                 }
@@ -532,6 +547,8 @@ template <bvh_order Order, bool Validate, class Ray, std::size_t W, std::floatin
                     const auto i = static_cast<std::size_t>(std::countr_zero(bits));
                     stack[top++] = {node.child[i], t_enter[i]};
                 }
+                if constexpr (LeafBytes != 0)
+                    for (std::size_t a = base; a < top; ++a) fetch(stack[a].ref);
                 if constexpr (Order == bvh_order::nearest) {
                     std::size_t best = base;
                     for (std::size_t a = base + 1; a < top; ++a)
@@ -571,16 +588,17 @@ template <bvh_order Order, bool Validate, class Ray, std::size_t W, std::floatin
 #define SHADE_DETAIL_BVH_WIDE 1 // this build has the eight-wide walk (undefined at the end)
 /// bvh_walk over nodes of eight, compiled for AVX (without FMA: leaf tests inlined here
 /// give the baseline build's bits); used only where the CPU has AVX (bvh_node_width).
-template <bvh_order Order, bool Validate, std::floating_point T, class Leaf>
-[[gnu::target("avx")]] void bvh_walk_wide(const bvh_node<8>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf) {
-    bvh_walk<Order, Validate, bvh_ray_lanes<bvh_f8>>(nodes, r, t_max, leaf);
+template <bvh_order Order, bool Validate, std::size_t LeafBytes, std::floating_point T, class Leaf>
+[[gnu::target("avx")]] void bvh_walk_wide(const bvh_node<8>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf,
+                                          const void* leaf_base) {
+    bvh_walk<Order, Validate, LeafBytes, bvh_ray_lanes<bvh_f8>>(nodes, r, t_max, leaf, leaf_base);
 }
 #endif
 
 /// bvh_walk over nodes of four, as a function of its own (bvh_traverse is only the choice).
-template <bvh_order Order, bool Validate, std::floating_point T, class Leaf>
-void bvh_walk_four(const bvh_node<4>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf) {
-    bvh_walk<Order, Validate, bvh_ray4>(nodes, r, t_max, leaf);
+template <bvh_order Order, bool Validate, std::size_t LeafBytes, std::floating_point T, class Leaf>
+void bvh_walk_four(const bvh_node<4>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf, const void* leaf_base) {
+    bvh_walk<Order, Validate, LeafBytes, bvh_ray4>(nodes, r, t_max, leaf, leaf_base);
 }
 
 /// The children per node (4 or 8) a build uses when `requested` are asked for.
@@ -598,14 +616,20 @@ void bvh_walk_four(const bvh_node<4>* nodes, const ray<T>& r, const T& t_max, Le
 /// read again after each leaf (a closest-hit
 /// leaf shrinks it), which prunes the boxes and the stacked entries beyond it. Validate:
 /// a ray that is not valid() (see shade::ray) visits nothing, tested in the walk with the
-/// test for scaling; without it the caller has tested that.
+/// test for scaling; without it the caller has tested that. LeafBytes > 0: the leaves'
+/// items are LeafBytes apart from leaf_base, and every child stacked for later is
+/// prefetched when it is stacked (its node, or its leaf's first item), so that it waits
+/// less for memory when popped (pays where the stacked children are nearly all visited,
+/// any-hit walks, and the hierarchy is beyond the first-level cache).
 /// Precondition: the tree has nodes, and r is valid unless Validate.
-template <bvh_order Order, bool Validate = false, std::floating_point T, class Leaf>
-[[gnu::always_inline]] inline void bvh_traverse(const bvh_tree& tree, const ray<T>& r, const T& t_max, Leaf&& leaf) {
+template <bvh_order Order, bool Validate = false, std::size_t LeafBytes = 0, std::floating_point T, class Leaf>
+[[gnu::always_inline]] inline void bvh_traverse(const bvh_tree& tree, const ray<T>& r, const T& t_max, Leaf&& leaf,
+                                                const void* leaf_base = nullptr) {
 #if defined(SHADE_DETAIL_BVH_WIDE)
-    if (!tree.wide_nodes.empty()) return bvh_walk_wide<Order, Validate>(tree.wide_nodes.data(), r, t_max, leaf);
+    if (!tree.wide_nodes.empty())
+        return bvh_walk_wide<Order, Validate, LeafBytes>(tree.wide_nodes.data(), r, t_max, leaf, leaf_base);
 #endif
-    bvh_walk_four<Order, Validate>(tree.nodes.data(), r, t_max, leaf);
+    bvh_walk_four<Order, Validate, LeafBytes>(tree.nodes.data(), r, t_max, leaf, leaf_base);
 }
 #undef SHADE_DETAIL_BVH_WIDE
 
