@@ -463,6 +463,61 @@ TEST_CASE_TEMPLATE("primitive_bvh and bvh: spheres against brute force", T, floa
 // slot is entered. It must then lead nowhere: it used to lead back to the root, and the
 // walk ran past the end of its stack (found by a libFuzzer run: two spheres, the first
 // with a radius beyond the float range; the ray below).
+namespace {
+/// A hit record of nothing but its ray parameter, for bvh::closest.
+template <class T>
+struct t_only {
+    T t;
+};
+} // namespace
+
+// The walk's box test (detail::bvh_test_boxes: far distances through the reciprocal
+// pre-multiplied by 1 + 2 gamma(n)) on rays through a box corner, exactly, as in
+// test_aabb.cpp's test of shade::intersect(ray, aabb): the corner is the only point of the
+// box on the exact ray, so only a conservative test reports every one (without the
+// enlargement the float walk misses about one ray in nine). A hierarchy over that box and
+// seven others far away, at both widths: any() and closest() must reach it.
+TEST_CASE_TEMPLATE("bvh: the walk's box test never misses a ray through a box corner", T, float, double) {
+    shade::rng g(11);
+    const int n = 20000;
+    for (const shade::bvh_width width : widths) {
+        CAPTURE(width);
+        int missed = 0;
+        for (int i = 0; i < n; ++i) {
+            // Dyadic corner, direction and t with few bits (float sizes in both types: the
+            // node's float planes then hold the box exactly), so o = corner - t d is exact.
+            shade::vec3<T> corner, d;
+            for (int k = 0; k < 3; ++k) {
+                corner[k] = T((std::floor(g.uniform<double>() * 512) - 256) / 64);
+                T dk = T((std::floor(g.uniform<double>() * 7) + 1) / 8);
+                if (g.uniform<double>() < 0.5) dk = -dk;
+                d[k] = dk;
+            }
+            const T t = T((std::floor(g.uniform<double>() * 64) + 1) / 256.0);
+            const shade::vec3<T> o = corner - t * d;
+            std::vector<shade::aabb<T>> boxes(8);
+            for (int k = 0; k < 3; ++k) {
+                const bool enters = k == 0 || (k == 2 && g.uniform<double>() < 0.5);
+                const bool above = enters == (d[k] > 0);
+                boxes[0].lo[k] = above ? corner[k] : corner[k] - T(1);
+                boxes[0].hi[k] = above ? corner[k] + T(1) : corner[k];
+            }
+            for (std::size_t b = 1; b < boxes.size(); ++b) {
+                boxes[b].lo = shade::vec3<T>(T(100 + 10 * int(b)));
+                boxes[b].hi = boxes[b].lo + shade::vec3<T>(1);
+            }
+            const shade::bvh<T> accel(boxes, width);
+            const shade::ray<T> r{o, d};
+            const auto first = [](std::uint32_t p, const shade::ray<T>&) { return p == 0; };
+            const auto h = accel.closest(r, [&](std::uint32_t p, const shade::ray<T>& s) {
+                return p == 0 && t >= s.t_min && t <= s.t_max ? std::optional<t_only<T>>(t_only<T>{t}) : std::nullopt;
+            });
+            if (!accel.any(r, first) || !h) ++missed;
+        }
+        CHECK(missed == 0);
+    }
+}
+
 TEST_CASE("bvh: a ray entering an unused child slot visits nothing") {
     const std::vector<shade::sphere<double>> spheres{
         shade::sphere<double>({0.0, 0.0, -0x1p-8}, 0x1.1004001004003p+977),
