@@ -443,6 +443,18 @@ inline unsigned bvh_test_boxes(const bvh_node<4>& node, const bvh_float_ray& r, 
 inline void bvh_prefetch(const void*) noexcept {}
 #endif
 
+/// Asks for the first sizeof(bvh_node<W>) bytes (a whole node) of a child stacked for
+/// later, so that they are near when it is popped: an inner node at nodes + child, a
+/// leaf's first item at leaf_base + leaf_first(child) LeafBytes.
+template <std::size_t LeafBytes, std::size_t W>
+[[gnu::always_inline]] inline void bvh_prefetch_child(const bvh_node<W>* nodes, const void* leaf_base,
+                                                      std::uint32_t child) noexcept {
+    const auto* p = is_leaf_ref(child)
+                        ? static_cast<const unsigned char*>(leaf_base) + std::size_t(leaf_first(child)) * LeafBytes
+                        : reinterpret_cast<const unsigned char*>(nodes + child);
+    for (std::size_t line = 0; line < sizeof(bvh_node<W>); line += 64) bvh_prefetch(p + line);
+}
+
 /// Entries of the traversal stack: a node reference and where the ray enters its box. A
 /// path holds at most 76 nodes (the binary depth bound, bvh_builder::median_depth + 28),
 /// each pushing at most W - 1 entries: 228 for four children, 532 for eight.
@@ -496,17 +508,6 @@ template <bvh_order Order, bool Validate, std::size_t LeafBytes, class Ray, std:
     std::array<bvh_stack_entry, bvh_stack_size<W>> stack;
     std::size_t top = 0;
     std::uint32_t ref = 0;
-    // A stacked child's first sizeof(bvh_node<W>) bytes (a whole node), requested when it is
-    // stacked, so that they are near when it is popped: a leaf's first block at leaf_base +
-    // first LeafBytes, an inner node at nodes + ref (selected without a branch).
-    const auto fetch = [&](std::uint32_t child) __attribute__((always_inline)) {
-        if constexpr (LeafBytes != 0) {
-            const auto* p = is_leaf_ref(child) ? static_cast<const unsigned char*>(leaf_base) +
-                                                     std::size_t(leaf_first(child)) * LeafBytes
-                                               : reinterpret_cast<const unsigned char*>(nodes + child);
-            for (std::size_t line = 0; line < sizeof(bvh_node<W>); line += 64) bvh_prefetch(p + line);
-        }
-    };
     for (;;) {
         while (!is_leaf_ref(ref)) {
             const bvh_node<W>& node = nodes[ref];
@@ -529,7 +530,7 @@ template <bvh_order Order, bool Validate, std::size_t LeafBytes, class Ray, std:
                     const bool first_nearer = Order == bvh_order::child || t_enter[i0] <= t_enter[i1];
                     const std::size_t go = first_nearer ? i0 : i1, later = first_nearer ? i1 : i0;
                     stack[top++] = {node.child[later], t_enter[later]};
-                    fetch(node.child[later]);
+                    if constexpr (LeafBytes != 0) bvh_prefetch_child<LeafBytes>(nodes, leaf_base, node.child[later]);
                     ref = node.child[go];
                     continue;
                 }
@@ -546,7 +547,8 @@ template <bvh_order Order, bool Validate, std::size_t LeafBytes, class Ray, std:
                     stack[top++] = {node.child[i], t_enter[i]};
                 }
                 if constexpr (LeafBytes != 0)
-                    for (std::size_t a = base; a < top; ++a) fetch(stack[a].ref);
+                    for (std::size_t a = base; a < top; ++a)
+                        bvh_prefetch_child<LeafBytes>(nodes, leaf_base, stack[a].ref);
                 if constexpr (Order == bvh_order::nearest) {
                     std::size_t best = base;
                     for (std::size_t a = base + 1; a < top; ++a)
