@@ -18,6 +18,7 @@
 #include <shade/bsdf/dielectric_albedo_table.hpp>
 #include <shade/bsdf/dielectric_anisotropic_reflection_table.hpp>
 #include <shade/bsdf/dielectric_reflection_albedo.hpp>
+#include <shade/bsdf/rough_dielectric_albedo_grid.hpp>
 #include <shade/core/error.hpp>
 #include <shade/core/types.hpp>
 
@@ -107,22 +108,72 @@ private:
 /// structure in mu, so the difference is smooth enough for the coarse grid. The margin keeps
 /// the reading at or above the true albedo (a material's white furnace reads 1 + true -
 /// read; the quadrature's error at 32^2 cells, largest where the measure is cut at the
-/// horizon, is within [-2e-3, +5e-3], docs/conventions.md). Elsewhere (eta_s <= 3, or equal
-/// alphas) exactly anisotropic_reflection_albedo. Cost beyond 3: 208 x beyond_cells^2 visits
-/// of the visible-normal sampler at construction (about 8 ms); at() then one isotropic table
-/// read and a bilinear read. alpha_x, alpha_y >= 0, eta_s > 0 (unchecked).
+/// horizon, is within [-2e-3, +5e-3], docs/conventions.md). Cost beyond 3: 208 x
+/// beyond_cells^2 visits of the visible-normal sampler at construction (about 8 ms); at() then
+/// one isotropic table read and a bilinear read.
+///
+/// From the denser side near index match (1 / 1.05 < eta_s < 1, alpha_x != alpha_y, both > 0),
+/// where the table's correction is extrapolated (scaled toward 0 at eta_s = 1), it misses the
+/// total reflection of grazing views along the smoother axis (reading up to 0.5 low), so R_ss
+/// is integrated per interface instead: a dielectric_side_grid of the interface's own views
+/// (rough_dielectric_albedo_grid's layout: the critical cosine on a row, azimuths crowded
+/// toward the smoother axis; here with the rows below it dense toward it as well), each node
+/// detail::dielectric_visible_albedo's reflected branch on below_cells^2 visible normals, plus
+/// below_margin (below_margin_strong at alpha_max / alpha_min >= 20), held on the heap (about
+/// 11 KB; copies copy it). Building takes 30 to 55 ms at -O2. Elsewhere (eta_s in
+/// [1 / 1.05, 3] otherwise, or equal alphas) exactly anisotropic_reflection_albedo. alpha_x,
+/// alpha_y >= 0, eta_s > 0 (unchecked).
 template <std::floating_point T>
 class anisotropic_reflection_albedo_grid {
 public:
     static constexpr std::size_t beyond_cells = 32; ///< the quadrature's cells per side
     /// What the reading beyond 3 adds to stay at or above the true albedo.
     static constexpr double beyond_margin = 2e-3;
+    static constexpr int below_cells = 24; ///< visible normals per axis at each node below 1
+    /// What the reading below 1 adds to stay at or above the true albedo.
+    static constexpr double below_margin = 5e-3;
+    /// below_margin at strong anisotropy (alpha_max / alpha_min >= 20).
+    static constexpr double below_margin_strong = 1e-2;
 
     anisotropic_reflection_albedo_grid() = default;
+    anisotropic_reflection_albedo_grid(const anisotropic_reflection_albedo_grid& other)
+        : table_(other.table_), views_(other.views_), delta_(other.delta_), alpha_x_(other.alpha_x_),
+          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_),
+          below_(other.below_ != nullptr ? new dielectric_side_grid<T>(*other.below_) : nullptr) {}
+    anisotropic_reflection_albedo_grid(anisotropic_reflection_albedo_grid&& other) noexcept
+        : table_(other.table_), views_(other.views_), delta_(other.delta_), alpha_x_(other.alpha_x_),
+          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_), below_(other.below_) {
+        other.below_ = nullptr;
+    }
+    anisotropic_reflection_albedo_grid& operator=(anisotropic_reflection_albedo_grid other) noexcept {
+        table_ = other.table_;
+        views_ = other.views_;
+        delta_ = other.delta_;
+        alpha_x_ = other.alpha_x_;
+        alpha_y_ = other.alpha_y_;
+        eta_s_ = other.eta_s_;
+        beyond_ = other.beyond_;
+        dielectric_side_grid<T>* const below = below_;
+        below_ = other.below_;
+        other.below_ = below;
+        return *this;
+    }
+    ~anisotropic_reflection_albedo_grid() { delete below_; }
 
     anisotropic_reflection_albedo_grid(T alpha_x, T alpha_y, T eta_s)
         : table_(alpha_x, alpha_y, eta_s), alpha_x_(alpha_x), alpha_y_(alpha_y), eta_s_(eta_s) {
-        beyond_ = eta_s > T(dielectric_albedo_eta_max) && alpha_x != alpha_y && alpha_x > T(0) && alpha_y > T(0);
+        const bool anisotropic_interface = alpha_x != alpha_y && alpha_x > T(0) && alpha_y > T(0);
+        if (anisotropic_interface && eta_s < T(1) && eta_s > T(1) / T(dielectric_albedo_eta_min)) {
+            const double ax = double(alpha_x), ay = double(alpha_y), eta = double(eta_s);
+            const ggx<double> d(unchecked, ax, ay);
+            below_ = new dielectric_side_grid<T>(ax, ay, eta, below_margin, below_margin_strong,
+                                                 [&d, eta](const vec3<double>& v) {
+                                                     return dielectric_visible_albedo(d, v, eta, below_cells, false);
+                                                 },
+                                                 true);
+            return;
+        }
+        beyond_ = eta_s > T(dielectric_albedo_eta_max) && anisotropic_interface;
         if (!beyond_) return;
         views_ = anisotropic_view_grid<T>(alpha_x, alpha_y);
         const double eta = double(eta_s);
@@ -137,6 +188,7 @@ public:
     /// R_ss(w) for the unit local direction w on the view's side (only its azimuth and |w.z|
     /// are used). Dimensionless, in [0, 1].
     [[nodiscard]] T at(const vec3<T>& w) const noexcept {
+        if (below_ != nullptr) return below_->at(w);
         if (!beyond_) return table_.at(w);
         const T mu = glm::min(std::abs(w.z), T(1));
         const T s2 = w.x * w.x + w.y * w.y;
@@ -162,6 +214,7 @@ private:
     std::array<T, anisotropic_view_grid<T>::size> delta_{};
     T alpha_x_ = 0, alpha_y_ = 0, eta_s_ = 1;
     bool beyond_ = false;
+    dielectric_side_grid<T>* below_ = nullptr; // R_ss per view below 1 (anisotropic), or nullptr
 };
 
 } // namespace detail

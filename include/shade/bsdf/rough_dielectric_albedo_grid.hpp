@@ -36,10 +36,11 @@ namespace detail {
 /// eq. 99); a branch whose direction lands on the wrong side of the surface adds 0. The
 /// sampler's weight f |n·l| / pdf reduces to exactly G2 / G1(v) on both branches, so this is
 /// what rough_dielectric's own sampler averages to. Midpoint rule over cells x cells squares of
-/// the unit square that sample_visible_normal maps onto the visible normals. Dimensionless, in
-/// [0, 1].
+/// the unit square that sample_visible_normal maps onto the visible normals. With
+/// `transmitted` false the refracted branch is left out: the reflection albedo R_ss(v) alone.
+/// Dimensionless, in [0, 1].
 [[nodiscard]] inline double dielectric_visible_albedo(const ggx<double>& distribution, const vec3<double>& v,
-                                                      double eta_s, int cells) noexcept {
+                                                      double eta_s, int cells, bool transmitted = true) noexcept {
     const double masking_v = 1.0 + distribution.Lambda(v); // 1 / G1(v)
     const vec3<double> v_stretched = distribution.stretch(v);
     double sum = 0.0;
@@ -57,7 +58,7 @@ namespace detail {
                 const vec3<double> l = 2.0 * v_dot_m * m - v;
                 if (l.z > 0.0) sum += F * masking_v / (masking_v + distribution.Lambda(l));
             }
-            if (F < 1.0) {
+            if (transmitted && F < 1.0) {
                 const std::optional<vec3<double>> t = refract(v, m, eta_s);
                 if (t && t->z < 0.0) sum += (1.0 - F) * masking_v / (masking_v + distribution.Lambda(*t));
             }
@@ -76,6 +77,157 @@ inline constexpr double rough_dielectric_albedo_grid_margin = 3e-3;
 /// seen from the denser side, E_s of a surface nearly smooth along one axis has features a
 /// few degrees wide in azimuth that the nodes straddle, so the interpolation errs more.
 inline constexpr double rough_dielectric_albedo_grid_margin_strong = 6e-3;
+
+/// One side of a rough GGX dielectric interface on the views of a
+/// shade::rough_dielectric_albedo_grid (its class comment: rows in mu with the critical
+/// cosine on a row where the side sees total internal reflection, azimuths crowded toward the
+/// smoother axis), holding a value per view node and reading it bilinearly; also its
+/// cosine-weighted hemispherical average. Used for R + T (rough_dielectric_albedo_grid) and
+/// for the reflection albedo R_ss alone (anisotropic_reflection_albedo_grid below an index
+/// ratio of 1).
+template <std::floating_point T>
+class dielectric_side_grid {
+public:
+    static constexpr int azimuths = 37;              ///< azimuth nodes per row
+    static constexpr int strong_azimuths = 73;       ///< azimuth nodes per row at strong anisotropy
+    static constexpr int max_rows = 37;              ///< rows on a side with total internal reflection
+    static constexpr int rows_without_critical = 16; ///< rows on a side without it
+    static constexpr int rows_below_critical = 24;   ///< intervals from grazing to the critical cosine
+    static constexpr int rows_above_critical = 12;   ///< intervals from the critical cosine to the normal
+
+    /// Whether the grid of alphas alpha_x, alpha_y is at strong anisotropy
+    /// (alpha_max / alpha_min >= 20): strong_azimuths and the larger margin.
+    [[nodiscard]] static bool strong(double alpha_x, double alpha_y) noexcept {
+        return glm::max(alpha_x, alpha_y) >= 20.0 * glm::min(alpha_x, alpha_y);
+    }
+
+    dielectric_side_grid() = default;
+
+    /// The side that sees the far medium at index ratio eta_s = n_far / n_side of an interface of
+    /// GGX alphas alpha_x, alpha_y > 0 (unchecked), each node holding value(v) for its unit view
+    /// v (vec3<double>, v.z > 0), plus `margin` (`strong_margin` at strong anisotropy), at most 1.
+    /// With dense_at_critical the rows below the critical cosine are at mu_c (3 x^2 - 2 x^3)
+    /// instead of mu_c x^1.5 (x = i / 24): dense toward the critical cosine as well as toward
+    /// grazing, for a value that steps there (the reflection albedo alone: R + T does not).
+    template <class Value>
+    dielectric_side_grid(double alpha_x, double alpha_y, double eta_s, double margin, double strong_margin,
+                         const Value& value, bool dense_at_critical = false)
+        : dense_at_critical_(dense_at_critical) {
+        const double q = glm::min(glm::max(alpha_x, alpha_y) / glm::min(alpha_x, alpha_y), 20.0);
+        log_q2_ = T(2 * std::log(q));
+        const bool is_strong = strong(alpha_x, alpha_y);
+        azimuths_ = is_strong ? strong_azimuths : azimuths;
+        const double added = is_strong ? strong_margin : margin;
+        smoother_y_ = alpha_x > alpha_y;
+        mu_c_ = eta_s < 1.0 ? T(std::sqrt((1.0 - eta_s) * (1.0 + eta_s))) : T(0);
+        rows_ = mu_c_ > T(0) ? rows_below_critical + rows_above_critical + 1 : rows_without_critical;
+        const double log_q2 = double(log_q2_);
+        for (int j = 0; j < azimuths_; ++j) {
+            // The s whose warp is j / (azimuths_ - 1), by bisection (the warp is increasing).
+            const double target = double(j) / double(azimuths_ - 1);
+            double lo = 0.0, hi = 1.0;
+            for (int k = 0; k < 60; ++k) {
+                const double mid = 0.5 * (lo + hi);
+                (azimuth_warp(mid, log_q2) < target ? lo : hi) = mid;
+            }
+            const double s = 0.5 * (lo + hi);
+            const double cos2 = smoother_y_ ? s : 1.0 - s;
+            const double c = std::sqrt(cos2), sn = std::sqrt(glm::max(0.0, 1.0 - cos2));
+            for (int i = 0; i < rows_; ++i) {
+                const double mu = glm::clamp(row_mu(i), 1e-4, 1.0);
+                const double st = std::sqrt((1.0 - mu) * (1.0 + mu));
+                const double e = double(value(vec3<double>(st * c, st * sn, mu))) + added;
+                e_[i * azimuths_ + j] = float(glm::min(e, 1.0));
+            }
+        }
+        // The average = (2 / pi) int_0^{pi/2} int_0^1 value mu dmu dphi over a quarter of the
+        // azimuths (the values are even in both axes): midpoint rule on 512 x 90 reads.
+        constexpr int mu_steps = 512, phi_steps = 90;
+        double sum = 0.0;
+        for (int a = 0; a < phi_steps; ++a) {
+            const double phi = (double(a) + 0.5) * (0.5 * pi<double> / phi_steps);
+            for (int k = 0; k < mu_steps; ++k) {
+                const double mu = (double(k) + 0.5) / mu_steps;
+                const double st = std::sqrt((1.0 - mu) * (1.0 + mu));
+                sum += mu * double(at(vec3<T>(T(st * std::cos(phi)), T(st * std::sin(phi)), T(mu))));
+            }
+        }
+        average_ = T(glm::clamp(2.0 * sum / (double(mu_steps) * phi_steps), 0.0, 1.0));
+    }
+
+    /// The value at the local direction w (n = +z, the tangent along +x): only |w.z| and w's
+    /// azimuth are read, so w may point either way. Bilinear between the nodes, in [0, 1].
+    [[nodiscard]] T at(const vec3<T>& w) const noexcept {
+        const T mu = glm::clamp(std::abs(w.z), T(0), T(1));
+        const T row = glm::min(mu_coordinate(mu), T(rows_ - 1));
+        const int i = glm::min(int(row), rows_ - 2);
+        const T t = row - T(i);
+        const T along = glm::min(azimuth_coordinate(w), T(azimuths_ - 1));
+        const int j = glm::min(int(along), azimuths_ - 2);
+        const T a = along - T(j);
+        const int n = azimuths_;
+        const auto node = [this, n](int r, int c) { return T(e_[r * n + c]); };
+        const T e = (T(1) - t) * ((T(1) - a) * node(i, j) + a * node(i, j + 1)) +
+                    t * ((T(1) - a) * node(i + 1, j) + a * node(i + 1, j + 1));
+        return glm::clamp(e, T(0), T(1));
+    }
+
+    /// The cosine-weighted hemispherical average of at(): 2 int at(w) mu dw / (2 pi).
+    [[nodiscard]] T average() const noexcept { return average_; }
+
+private:
+    /// The row coordinate (0 to rows_ - 1) of mu.
+    [[nodiscard]] T mu_coordinate(T mu) const noexcept {
+        if (!(mu_c_ > T(0))) return T(rows_without_critical - 1) * std::cbrt(mu * mu);
+        if (mu <= mu_c_) {
+            if (!dense_at_critical_) return T(rows_below_critical) * std::cbrt(sqr(mu / mu_c_));
+            // The inverse of the smoothstep 3 x^2 - 2 x^3 = y on [0, 1].
+            const double y = double(mu / mu_c_);
+            return T(rows_below_critical) * T(0.5 - std::sin(std::asin(glm::clamp(1.0 - 2.0 * y, -1.0, 1.0)) / 3.0));
+        }
+        return T(rows_below_critical) + T(rows_above_critical) * (mu - mu_c_) / (T(1) - mu_c_);
+    }
+
+    /// mu of row i.
+    [[nodiscard]] double row_mu(int i) const noexcept {
+        if (!(mu_c_ > T(0))) {
+            const double x = double(i) / double(rows_without_critical - 1);
+            return x * std::sqrt(x);
+        }
+        const double mu_c = double(mu_c_);
+        if (i <= rows_below_critical) {
+            const double x = double(i) / double(rows_below_critical);
+            if (dense_at_critical_) return mu_c * x * x * (3.0 - 2.0 * x);
+            return mu_c * x * std::sqrt(x);
+        }
+        return mu_c + (1.0 - mu_c) * double(i - rows_below_critical) / double(rows_above_critical);
+    }
+
+    /// The spacing function of the azimuth nodes: s -> [0, 1], increasing.
+    [[nodiscard]] static double azimuth_warp(double s, double log_q2) noexcept {
+        const double logarithmic = log_q2 > 0.0 ? std::log1p(std::expm1(log_q2) * s) / log_q2 : s;
+        return 0.5 * (s + logarithmic);
+    }
+
+    /// The azimuth coordinate (0 to azimuths_ - 1) of the local direction w.
+    [[nodiscard]] T azimuth_coordinate(const vec3<T>& w) const noexcept {
+        const T xx = w.x * w.x, yy = w.y * w.y;
+        const T planar = xx + yy;
+        // On the normal the azimuth is undefined and the value the same at every one: s = 1.
+        const T cos2 = planar > T(0) ? xx / planar : T(1);
+        const T s = smoother_y_ ? cos2 : T(1) - cos2;
+        return T(azimuth_warp(double(glm::clamp(s, T(0), T(1))), double(log_q2_))) * T(azimuths_ - 1);
+    }
+
+    T mu_c_ = 0;               ///< critical cosine, 0 when eta_s > 1
+    int rows_ = rows_without_critical;
+    int azimuths_ = azimuths;  ///< azimuth nodes per row (strong_azimuths at strong anisotropy)
+    T log_q2_ = 0;             ///< 2 log q, the azimuth spacing's parameter
+    bool smoother_y_ = false;  ///< alpha_x > alpha_y: the smoother axis is y
+    bool dense_at_critical_ = false; ///< rows below mu_c by the smoothstep (constructor)
+    T average_ = 1;
+    float e_[max_rows * strong_azimuths]{}; ///< row by row, azimuths_ values each
+};
 
 } // namespace detail
 
@@ -112,10 +264,12 @@ inline constexpr double rough_dielectric_albedo_grid_margin_strong = 6e-3;
 template <std::floating_point T>
 class rough_dielectric_albedo_grid {
 public:
-    static constexpr int azimuths = 37;        ///< azimuth nodes per row
-    static constexpr int strong_azimuths = 73; ///< azimuth nodes per row at strong anisotropy
-    static constexpr int max_rows = 37;        ///< rows on a side with total internal reflection
-    static constexpr int cells = 48;           ///< visible normals per axis at each node
+    static constexpr int azimuths = detail::dielectric_side_grid<T>::azimuths; ///< azimuth nodes per row
+    /// azimuth nodes per row at strong anisotropy
+    static constexpr int strong_azimuths = detail::dielectric_side_grid<T>::strong_azimuths;
+    /// rows on a side with total internal reflection
+    static constexpr int max_rows = detail::dielectric_side_grid<T>::max_rows;
+    static constexpr int cells = 48; ///< visible normals per axis at each node
 
     /// The grid of rough_dielectric(distribution, eta). Throws shade::invalid_parameter
     /// naming "eta" unless eta lies in [1e-4, 1e4] and is not 1 (as rough_dielectric).
@@ -125,14 +279,14 @@ public:
             throw invalid_parameter("eta", "must not be 1 (an index-matched interface is a delta: smooth_dielectric)",
                                     detail::to_text(eta));
         const double alpha_x = double(distribution.alpha_x()), alpha_y = double(distribution.alpha_y());
-        const double q = glm::min(glm::max(alpha_x, alpha_y) / glm::min(alpha_x, alpha_y), 20.0);
-        log_q2_ = T(2 * std::log(q));
-        const bool strong = q >= 20.0;
-        azimuths_ = strong ? strong_azimuths : azimuths;
-        margin_ = strong ? detail::rough_dielectric_albedo_grid_margin_strong : detail::rough_dielectric_albedo_grid_margin;
-        smoother_y_ = alpha_x > alpha_y;
         const ggx<double> d(unchecked, alpha_x, alpha_y);
-        for (int s = 0; s < 2; ++s) build(s, d, s == 0 ? double(eta) : 1.0 / double(eta));
+        for (int s = 0; s < 2; ++s) {
+            const double eta_s = s == 0 ? double(eta) : 1.0 / double(eta);
+            side_[s] = detail::dielectric_side_grid<T>(
+                alpha_x, alpha_y, eta_s, detail::rough_dielectric_albedo_grid_margin,
+                detail::rough_dielectric_albedo_grid_margin_strong,
+                [&d, eta_s](const vec3<double>& v) { return detail::dielectric_visible_albedo(d, v, eta_s, cells); });
+        }
     }
 
     /// The distribution the grid was built for.
@@ -149,120 +303,15 @@ public:
     /// E_s(w) for the local direction w (n = +z, the tangent along +x) in medium `inside`
     /// (false: outside); only |w.z| and w's azimuth are read, so w may point either way.
     /// Dimensionless, in [0, 1]; the grid's margin included.
-    [[nodiscard]] T albedo(bool inside, const vec3<T>& w) const noexcept {
-        const side_grid& g = side_[inside ? 1 : 0];
-        const T mu = glm::clamp(std::abs(w.z), T(0), T(1));
-        const T row = glm::min(mu_coordinate(g, mu), T(g.rows - 1));
-        const int i = glm::min(int(row), g.rows - 2);
-        const T t = row - T(i);
-        const T along = glm::min(azimuth_coordinate(w), T(azimuths_ - 1));
-        const int j = glm::min(int(along), azimuths_ - 2);
-        const T a = along - T(j);
-        const int n = azimuths_;
-        const auto at = [&g, n](int r, int c) { return T(g.e[r * n + c]); };
-        const T e = (T(1) - t) * ((T(1) - a) * at(i, j) + a * at(i, j + 1)) +
-                    t * ((T(1) - a) * at(i + 1, j) + a * at(i + 1, j + 1));
-        return glm::clamp(e, T(0), T(1));
-    }
+    [[nodiscard]] T albedo(bool inside, const vec3<T>& w) const noexcept { return side_[inside ? 1 : 0].at(w); }
 
     /// E_s,avg of medium `inside`: the cosine-weighted hemispherical average of albedo().
-    [[nodiscard]] T average(bool inside) const noexcept { return side_[inside ? 1 : 0].average; }
+    [[nodiscard]] T average(bool inside) const noexcept { return side_[inside ? 1 : 0].average(); }
 
 private:
-    static constexpr int rows_without_critical = 16;
-    static constexpr int rows_below_critical = 24;
-    static constexpr int rows_above_critical = 12;
-
-    struct side_grid {
-        T mu_c = 0;    ///< critical cosine, 0 when eta_s > 1
-        int rows = rows_without_critical;
-        T average = 1; ///< E_s,avg
-        float e[max_rows * strong_azimuths]{}; ///< row by row, azimuths_ values each
-    };
-
-    /// The row coordinate (0 to rows - 1) of mu on side g.
-    [[nodiscard]] static T mu_coordinate(const side_grid& g, T mu) noexcept {
-        if (!(g.mu_c > T(0))) return T(rows_without_critical - 1) * std::cbrt(mu * mu);
-        if (mu <= g.mu_c) return T(rows_below_critical) * std::cbrt(sqr(mu / g.mu_c));
-        return T(rows_below_critical) + T(rows_above_critical) * (mu - g.mu_c) / (T(1) - g.mu_c);
-    }
-
-    /// mu of row i on side g.
-    [[nodiscard]] static double row_mu(const side_grid& g, int i) noexcept {
-        if (!(g.mu_c > T(0))) {
-            const double x = double(i) / double(rows_without_critical - 1);
-            return x * std::sqrt(x);
-        }
-        const double mu_c = double(g.mu_c);
-        if (i <= rows_below_critical) {
-            const double x = double(i) / double(rows_below_critical);
-            return mu_c * x * std::sqrt(x);
-        }
-        return mu_c + (1.0 - mu_c) * double(i - rows_below_critical) / double(rows_above_critical);
-    }
-
-    /// The spacing function of the azimuth nodes: s -> [0, 1], increasing.
-    [[nodiscard]] static double azimuth_warp(double s, double log_q2) noexcept {
-        const double logarithmic = log_q2 > 0.0 ? std::log1p(std::expm1(log_q2) * s) / log_q2 : s;
-        return 0.5 * (s + logarithmic);
-    }
-
-    /// The azimuth coordinate (0 to azimuths_ - 1) of the local direction w.
-    [[nodiscard]] T azimuth_coordinate(const vec3<T>& w) const noexcept {
-        const T xx = w.x * w.x, yy = w.y * w.y;
-        const T planar = xx + yy;
-        // On the normal the azimuth is undefined and E_s the same at every one: read s = 1.
-        const T cos2 = planar > T(0) ? xx / planar : T(1);
-        const T s = smoother_y_ ? cos2 : T(1) - cos2;
-        return T(azimuth_warp(double(glm::clamp(s, T(0), T(1))), double(log_q2_))) * T(azimuths_ - 1);
-    }
-
-    void build(int side, const ggx<double>& d, double eta_s) {
-        side_grid& g = side_[side];
-        g.mu_c = eta_s < 1.0 ? T(std::sqrt((1.0 - eta_s) * (1.0 + eta_s))) : T(0);
-        g.rows = g.mu_c > T(0) ? rows_below_critical + rows_above_critical + 1 : rows_without_critical;
-        const double log_q2 = double(log_q2_);
-        for (int j = 0; j < azimuths_; ++j) {
-            // The s whose warp is j / (azimuths_ - 1), by bisection (the warp is increasing).
-            const double target = double(j) / double(azimuths_ - 1);
-            double lo = 0.0, hi = 1.0;
-            for (int k = 0; k < 60; ++k) {
-                const double mid = 0.5 * (lo + hi);
-                (azimuth_warp(mid, log_q2) < target ? lo : hi) = mid;
-            }
-            const double s = 0.5 * (lo + hi);
-            const double cos2 = smoother_y_ ? s : 1.0 - s;
-            const double c = std::sqrt(cos2), sn = std::sqrt(glm::max(0.0, 1.0 - cos2));
-            for (int i = 0; i < g.rows; ++i) {
-                const double mu = glm::clamp(row_mu(g, i), 1e-4, 1.0);
-                const double st = std::sqrt((1.0 - mu) * (1.0 + mu));
-                const vec3<double> v(st * c, st * sn, mu);
-                const double e = detail::dielectric_visible_albedo(d, v, eta_s, cells) + margin_;
-                g.e[i * azimuths_ + j] = float(glm::min(e, 1.0));
-            }
-        }
-        // E_s,avg = (2 / pi) int_0^{pi/2} int_0^1 E_s mu dmu dphi over a quarter of the
-        // azimuths (E_s is even in both axes): midpoint rule on 512 x 90 reads.
-        constexpr int mu_steps = 512, phi_steps = 90;
-        double sum = 0.0;
-        for (int a = 0; a < phi_steps; ++a) {
-            const double phi = (double(a) + 0.5) * (0.5 * pi<double> / phi_steps);
-            for (int k = 0; k < mu_steps; ++k) {
-                const double mu = (double(k) + 0.5) / mu_steps;
-                const double st = std::sqrt((1.0 - mu) * (1.0 + mu));
-                sum += mu * double(albedo(side == 1, vec3<T>(T(st * std::cos(phi)), T(st * std::sin(phi)), T(mu))));
-            }
-        }
-        g.average = T(glm::clamp(2.0 * sum / (double(mu_steps) * phi_steps), 0.0, 1.0));
-    }
-
     ggx<T> distribution_;
     T eta_;
-    T log_q2_ = 0;           ///< 2 log q, the azimuth spacing's parameter
-    int azimuths_ = azimuths; ///< azimuth nodes per row (strong_azimuths at strong anisotropy)
-    double margin_ = detail::rough_dielectric_albedo_grid_margin; ///< added to every node
-    bool smoother_y_ = false; ///< alpha_x > alpha_y: the smoother axis is y
-    side_grid side_[2]{};
+    detail::dielectric_side_grid<T> side_[2]{};
 };
 
 } // namespace shade
