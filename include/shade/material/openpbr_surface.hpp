@@ -1340,9 +1340,11 @@ void openpbr_surface<T>::build() {
             // under the base's critical cosine (by Snell's invariant, at the angle of the bare
             // interface), a kink of F_film between two nodes that the row's interpolation cuts
             // off, in c and, for narrow lobes, in mu: the row gets the kink cell's integral
-            // exactly (kink_cell_correction) and is lifted where it still reads low around the
-            // critical cosine (kink_view_shortfall). About 5 ms, only for such films. F's own
-            // kink (eta'_s < 1) is not in the nodes: below 1 they hold F_film alone.
+            // (kink_cell_correction, up to its quadrature's error, which film_kink_margin
+            // covers) and is lifted where it still reads low around the critical cosine
+            // (kink_view_shortfall). About 12 ms, only for such films; an anisotropic lobe's
+            // share (anisotropic_film_share) does not read this row. F's own kink (eta'_s < 1)
+            // is not in the nodes: below 1 they hold F_film alone.
             const T n_b = glm::clamp(p.specular_ior, T(1e-4), T(1e4));
             if (n_b < T(1)) {
                 const double kink = std::sqrt((1.0 - double(n_b)) * (1.0 + double(n_b)));
