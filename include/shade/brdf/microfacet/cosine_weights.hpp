@@ -181,6 +181,9 @@ private:
     std::array<rgb<T>, cosine_weight_nodes> row_{};
 };
 
+/// The parts of the kink cell in kink_cell_correction (equal in x = c^(2/3)).
+inline constexpr std::size_t kink_sub_bins = 16;
+
 /// What fresnel_albedo_row's node sum misses where F has a kink between two nodes (the
 /// total internal reflection of an index ratio below 1: F = 1 under the critical cosine,
 /// falling steeply above it, which the linear interpolation between the cell's nodes cuts
@@ -195,8 +198,6 @@ private:
 /// measure's quadrature). Adding it to the row (fresnel_albedo_row::add) makes the node sum
 /// exact in that cell up to the masses' error; elsewhere the row is unchanged. F is a
 /// callable T -> rgb<T>. Zero for alpha <= 0 (the smooth lobe reads F at the nodes).
-inline constexpr std::size_t kink_sub_bins = 16;
-
 template <std::floating_point T, class Fresnel>
 [[nodiscard]] std::array<rgb<T>, cosine_weight_nodes> kink_cell_correction(
     T alpha, const std::array<rgb<T>, cosine_weight_nodes>& f_nodes, const Fresnel& F, double kink,
