@@ -469,14 +469,14 @@ TEST_CASE_TEMPLATE("dielectric reflection albedo: near index match from the dens
     double low = 1, high = -1, table_worst = 0;
     for (const double eta : {0.96, 0.975, 0.99})
         for (const alphas& a : {alphas{0.38, 0.16}, alphas{0.48, 0.01}, alphas{0.02, 0.2}, alphas{0.5, 0.45}}) {
-            const d::anisotropic_reflection_albedo_grid<T> grid(T(a.x), T(a.y), T(eta));
+            const d::anisotropic_reflection_albedo_grid<T> per_interface(T(a.x), T(a.y), T(eta));
             const d::anisotropic_reflection_albedo<T> plain(T(a.x), T(a.y), T(eta));
             for (const double mu : {0.05, 0.1, 0.15, 0.2, 0.3, 0.6, 0.95})
                 for (const double degrees : {0.0, 30.0, 60.0, 80.0, 90.0, 110.0}) {
                     const auto v = view(mu, 0, degrees * shade::pi<double> / 180);
                     const auto fresh = fresh_reflection(a.x, a.y, eta, v, strata, 907);
                     const vec3<T> w(v);
-                    const double error = double(grid.at(w)) - fresh.albedo.x;
+                    const double error = double(per_interface.at(w)) - fresh.albedo.x;
                     CAPTURE(eta);
                     CAPTURE(a.x);
                     CAPTURE(a.y);
