@@ -1342,11 +1342,11 @@ void openpbr_surface<T>::build() {
             // off, in c and, for narrow lobes, in mu: the row gets the kink cell's integral
             // (kink_cell_correction, up to its quadrature's error, which film_kink_margin
             // covers) and is lifted where it still reads low around the critical cosine
-            // (kink_view_shortfall). About 12 ms, only for such films; an anisotropic lobe's
-            // share (anisotropic_film_share) does not read this row. F's own kink (eta'_s < 1)
-            // is not in the nodes: below 1 they hold F_film alone.
+            // (kink_view_shortfall). About 12 ms, only for such films on isotropic lobes: an
+            // anisotropic lobe's share (anisotropic_film_share) does not read this row. F's own
+            // kink (eta'_s < 1) is not in the nodes: below 1 they hold F_film alone.
             const T n_b = glm::clamp(p.specular_ior, T(1e-4), T(1e4));
-            if (n_b < T(1)) {
+            if (n_b < T(1) && !specular_anisotropic_) {
                 const double kink = std::sqrt((1.0 - double(n_b)) * (1.0 + double(n_b)));
                 film_albedo_.add(
                     detail::kink_cell_correction(specular_alpha_, film_nodes_, film_difference, kink, film_kink_columns,
