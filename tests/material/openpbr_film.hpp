@@ -52,8 +52,13 @@ public:
           spec_(shade::ggx<T>(alpha_.t, alpha_b_),
                 shade::openpbr::surface_fresnel<T>::dielectric(eta_, shade::rgb<T>(1), fl.weight, film_)) {}
 
-    /// E_R read - true at the view of cosine mu and azimuth phi, strata^2 cells.
-    [[nodiscard]] shade::rgb<double> error(double mu, double phi, std::size_t strata) const {
+    /// E_R read - true at the view of cosine mu and azimuth phi, strata^2 cells. With
+    /// r_ss_by_quadrature, R_ss is integrated on the same cells too (F(eta'_s) at each cell's
+    /// cosine) instead of read from the table: the true E_R with the table's error counted,
+    /// which matters below an index ratio of 1, where the material's share holds F_film
+    /// alone and a film of weight 1 leaves no part of R_ss in E_R.
+    [[nodiscard]] shade::rgb<double> error(double mu, double phi, std::size_t strata,
+                                           bool r_ss_by_quadrature = false) const {
         using shade::rgb;
         using shade::vec3;
         const auto at = check_test::model_point<T>();
@@ -62,9 +67,11 @@ public:
         const vec3<T> v = glm::normalize(at.shading.to_world(v_local));
         const vec3<T> l = at.n();
         const rgb<T> diffuse_part = m_.f(l, v, at) - spec_.f(l, v, at);
-        const double r_ss =
-            a_ == T(0) ? double(shade::dielectric_reflection_albedo(T(mu), alpha_.t, eta_))
-                       : double(shade::dielectric_reflection_albedo(shade::unchecked, v_local, alpha_.t, alpha_b_, eta_));
+        double r_ss = 0;
+        if (!r_ss_by_quadrature)
+            r_ss = a_ == T(0) ? double(shade::dielectric_reflection_albedo(T(mu), alpha_.t, eta_))
+                              : double(shade::dielectric_reflection_albedo(shade::unchecked, v_local, alpha_.t,
+                                                                           alpha_b_, eta_));
         const shade::ggx<double> d(shade::unchecked, double(alpha_.t), double(alpha_b_));
         const vec3<double> w(s * std::cos(phi), s * std::sin(phi), mu);
         const double lambda_v = d.Lambda(w);
@@ -78,6 +85,7 @@ public:
                 if (!(l_local.z > 0) || !(c > 0)) continue;
                 const double weight = (1 + lambda_v) / (1 + lambda_v + d.Lambda(l_local)) / double(strata * strata);
                 film_part += weight * (rgb<double>(film_.F(T(c))) - rgb<double>(shade::F_dielectric(c, double(eta_))));
+                if (r_ss_by_quadrature) r_ss += weight * shade::F_dielectric(c, double(eta_));
             }
         rgb<double> out;
         for (int k = 0; k < 3; ++k)

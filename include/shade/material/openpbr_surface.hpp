@@ -603,33 +603,54 @@ private:
                t * ((1 - u) * film_node_margin(j + 1, i) + u * film_node_margin(j + 1, i + 1));
     }
 
+    // A local view w as anisotropic_film_share reads it: cos^2 of its azimuth (1/2 where the
+    // azimuth is undefined or not a number: w along the pole, or a w that is not finite, so
+    // that alpha_v and mu are never NaN and the node indices are always in range), the
+    // lobe's roughness along that azimuth, alpha_v = sqrt(alpha_x^2 cos^2(phi) + alpha_y^2
+    // sin^2(phi)), and the view cosine clamped to [0, 1].
+    struct film_view {
+        T cos2_phi, alpha_v, mu;
+    };
+    [[nodiscard]] film_view anisotropic_film_view(const vec3<T>& w) const noexcept {
+        const T sin2 = w.x * w.x + w.y * w.y;
+        const T ratio = sin2 > T(0) ? w.x * w.x / sin2 : T(0.5);
+        const T cos2_phi = ratio >= T(0) && ratio <= T(1) ? ratio : T(0.5);
+        const T alpha_v = std::sqrt(film_alpha_x_ * film_alpha_x_ * cos2_phi +
+                                    film_alpha_y_ * film_alpha_y_ * (T(1) - cos2_phi));
+        return {cos2_phi, alpha_v, w.z > T(0) ? glm::min(w.z, T(1)) : T(0)};
+    }
+
+    // The anisotropic lobe's albedo with F = 1 at the view (the isotropic table at
+    // sqrt(alpha_x alpha_y) plus the anisotropic correction, as kulla_conty_anisotropic reads
+    // it; beyond that correction's anisotropy, film_mean_'s own quadrature).
+    [[nodiscard]] T anisotropic_film_e_one(const film_view& fv, const vec3<T>& w) const noexcept {
+        return film_cell_in_range_
+                   ? glm::clamp(detail::albedo_lookup(detail::ggx_albedo, detail::albedo_grid_nodes, fv.mu,
+                                                      specular_alpha_) +
+                                    detail::anisotropic_albedo_delta(detail::ggx_anisotropic_albedo_delta, film_cell_,
+                                                                     w.x, w.y, w.z),
+                                T(0), T(1))
+                   : film_mean_.albedo(fv.mu, fv.cos2_phi);
+    }
+
+    // anisotropic_film_share without its margin: the mean (film_reference_mean at alpha_v
+    // plus film_mean_) times the albedo with F = 1.
+    [[nodiscard]] rgb<T> anisotropic_film_share_read(const film_view& fv, T e_one) const noexcept {
+        return (film_reference_mean(fv.alpha_v, fv.mu) + film_mean_.at(fv.mu, fv.cos2_phi)) * e_one;
+    }
+
     // The film's share (the integral of F_film - F, or of F_film alone below an index ratio
     // of 1) for an anisotropic lobe at the local view w: the mean of F_film - F against the
     // anisotropic lobe's own measure of c = v·h, read as the isotropic lobe's at the roughness
     // along the view's azimuth, alpha_v = sqrt(alpha_x^2 cos^2(phi) + alpha_y^2 sin^2(phi))
     // (at the pole, phi = pi/4; it carries the fine structure in mu), plus the anisotropic
     // lobe's difference from it (film_mean_, tabulated per material over the view's cosine
-    // and azimuth); times the lobe's albedo with F = 1 (the isotropic table at sqrt(alpha_x
-    // alpha_y) plus the anisotropic correction, as kulla_conty_anisotropic reads it; beyond
-    // that correction's anisotropy, film_mean_'s own quadrature); plus the margin.
+    // and azimuth, lifted around a base's total-reflection kink where it read low); times
+    // the lobe's albedo with F = 1 (anisotropic_film_e_one); plus the margin.
     [[nodiscard]] rgb<T> anisotropic_film_share(const vec3<T>& w) const noexcept {
-        // cos^2(phi) is 1/2 where the azimuth is undefined or not a number (w along the
-        // pole, or a w that is not finite), so alpha_v and mu are never NaN and the node
-        // indices below are always in range.
-        const T sin2 = w.x * w.x + w.y * w.y;
-        const T ratio = sin2 > T(0) ? w.x * w.x / sin2 : T(0.5);
-        const T cos2_phi = ratio >= T(0) && ratio <= T(1) ? ratio : T(0.5);
-        const T alpha_v = std::sqrt(film_alpha_x_ * film_alpha_x_ * cos2_phi +
-                                    film_alpha_y_ * film_alpha_y_ * (T(1) - cos2_phi));
-        const T mu = w.z > T(0) ? glm::min(w.z, T(1)) : T(0);
-        const T e_one =
-            film_cell_in_range_
-                ? glm::clamp(detail::albedo_lookup(detail::ggx_albedo, detail::albedo_grid_nodes, mu, specular_alpha_) +
-                                 detail::anisotropic_albedo_delta(detail::ggx_anisotropic_albedo_delta, film_cell_,
-                                                                  w.x, w.y, w.z),
-                             T(0), T(1))
-                : film_mean_.albedo(mu, cos2_phi);
-        const rgb<T> share = (film_reference_mean(alpha_v, mu) + film_mean_.at(mu, cos2_phi)) * e_one;
+        const film_view fv = anisotropic_film_view(w);
+        const T alpha_v = fv.alpha_v, mu = fv.mu;
+        const rgb<T> share = anisotropic_film_share_read(fv, anisotropic_film_e_one(fv, w));
         // The margin: the isotropic lobes' (the larger of its reads at alpha_v and at the
         // lobe's smaller roughness) plus the grid's own (film_anisotropic_margin, raised near
         // the smoother axis for a film of low index).
@@ -1213,6 +1234,16 @@ private:
     static constexpr std::size_t film_kink_view_strata = 16;
     static constexpr std::size_t film_kink_view_reach = 2;
     static constexpr double film_kink_margin = 3e-3;
+    // The samples of F_film in the kink's cell of the nodes that an anisotropic lobe's
+    // film_mean_ reads (linear between them in x).
+    static constexpr std::size_t film_kink_samples = 256;
+    // The points per cell in mu at which an anisotropic lobe's share is checked against its
+    // own quadrature (film_kink_lift_strata^2 cells): film_kink_sparse_points in every cell
+    // of film_mean_, then film_kink_dense_points in the kink's cell and its neighbours (a
+    // narrow lobe's share changes there on the scale of its roughness along the view).
+    static constexpr std::size_t film_kink_sparse_points = 4;
+    static constexpr std::size_t film_kink_dense_points = 16;
+    static constexpr std::size_t film_kink_lift_strata = 12;
     T film_alpha_x_ = 0, film_alpha_y_ = 0;                         // the specular lobe's roughnesses (anisotropic)
     detail::anisotropic_albedo_cell<T> film_cell_{};                // its cell in the anisotropic tables
     bool film_cell_in_range_ = true;                                // its anisotropy within those tables' range
@@ -1360,16 +1391,63 @@ void openpbr_surface<T>::build() {
             if (specular_anisotropic_) {
                 film_alpha_x_ = base_distribution->alpha_x();
                 film_alpha_y_ = base_distribution->alpha_y();
-                film_mean_ = detail::anisotropic_fresnel_mean_grid<T>(
-                    film_alpha_x_, film_alpha_y_, film_nodes_, [&](T mu, T cos2_phi) {
-                        return film_reference_mean(std::sqrt(film_alpha_x_ * film_alpha_x_ * cos2_phi +
-                                                             film_alpha_y_ * film_alpha_y_ * (T(1) - cos2_phi)),
-                                                   mu);
-                    });
+                const auto reference = [&](T mu, T cos2_phi) {
+                    return film_reference_mean(std::sqrt(film_alpha_x_ * film_alpha_x_ * cos2_phi +
+                                                         film_alpha_y_ * film_alpha_y_ * (T(1) - cos2_phi)),
+                                               mu);
+                };
                 film_low_index_weight_ = glm::clamp((T(1.15) - film_ior) / T(0.05), T(0), T(1));
                 film_cell_ = detail::anisotropic_albedo_locate(film_alpha_x_, film_alpha_y_);
                 film_cell_in_range_ = glm::max(film_alpha_x_, film_alpha_y_) <=
                                       T(detail::anisotropic_albedo_ratio_max) * glm::min(film_alpha_x_, film_alpha_y_);
+                film_mean_ =
+                    detail::anisotropic_fresnel_mean_grid<T>(film_alpha_x_, film_alpha_y_, film_nodes_, reference);
+                if (n_b < T(1)) {
+                    // Over a base of specular_ior below 1 the same kink sits inside one cell
+                    // of the nodes (cut off in c by film_mean_ and by the reference alike)
+                    // and, for narrow lobes, between two of film_mean_'s view rows (cut off in
+                    // mu). The share is measured against the lobe's own quadrature
+                    // (film_kink_lift_strata^2 cells) of F_film (read from film_kink_samples +
+                    // 1 samples of the kink's cell, linear in x = c^(2/3), and as the nodes'
+                    // interpolation elsewhere) at points between film_mean_'s nodes, and the
+                    // nodes lifted for 1.25 times the shortfall found (the peaks between the
+                    // points), as kink_view_shortfall does for the isotropic row: first at a
+                    // few points in every cell, then densely around the kink.
+                    constexpr std::size_t n = detail::cosine_weight_nodes, samples = film_kink_samples;
+                    const double kink = std::sqrt((1.0 - double(n_b)) * (1.0 + double(n_b)));
+                    const double kink_x = std::cbrt(kink * kink);
+                    const std::size_t kink_node = glm::min(std::size_t(kink_x * double(n - 1)), n - 2);
+                    std::array<rgb<double>, samples + 1> in_cell;
+                    for (std::size_t q = 0; q <= samples; ++q) {
+                        const double x = (double(kink_node) + double(q) / double(samples)) / double(n - 1);
+                        in_cell[q] = rgb<double>(film.F(T(x * std::sqrt(x))));
+                    }
+                    const auto film_F = [&](double c) {
+                        const double xc = glm::clamp(std::cbrt(c * c), 0.0, 1.0) * double(n - 1);
+                        const std::size_t i = glm::min(std::size_t(xc), n - 2);
+                        const double t = xc - double(i);
+                        if (i != kink_node)
+                            return (1 - t) * rgb<double>(film_nodes_[i]) + t * rgb<double>(film_nodes_[i + 1]);
+                        const double y = t * double(samples);
+                        const std::size_t q = glm::min(std::size_t(y), samples - 1);
+                        return (double(q + 1) - y) * in_cell[q] + (y - double(q)) * in_cell[q + 1];
+                    };
+                    const auto shortfall = [&](const vec3<double>& v, T, T) {
+                        rgb<double> e(0.0);
+                        detail::visit_ggx_cosine_measure(v, double(film_alpha_x_), double(film_alpha_y_),
+                                                         film_kink_lift_strata,
+                                                         [&](double c, double weight) { e += weight * film_F(c); });
+                        const vec3<T> w(v);
+                        const film_view fv = anisotropic_film_view(w);
+                        const T e_one = anisotropic_film_e_one(fv, w);
+                        const rgb<T> read = anisotropic_film_share_read(fv, e_one);
+                        return e_one > T(0) ? T(1.25) * (rgb<T>(e) - read) / e_one : rgb<T>(0);
+                    };
+                    constexpr std::size_t rows = detail::anisotropic_view_grid<T>::mu_nodes;
+                    const std::size_t cell = glm::min(std::size_t(kink_x * double(rows - 1)), rows - 2);
+                    film_mean_.lift_cells(0, rows - 2, film_kink_sparse_points, shortfall);
+                    film_mean_.lift_cells(cell > 0 ? cell - 1 : 0, cell + 1, film_kink_dense_points, shortfall);
+                }
             }
             // The margin's film indices around thin_film_ior (the larger margin of the two,
             // or the one it equals); outside the grid's range, the largest of all.

@@ -357,6 +357,33 @@ public:
         }
     }
 
+    /// Calls point(node, a, b, v, mu, cos2_phi) at points inside the cells of the mu cells
+    /// first to last (cell i lies between mu nodes i and i + 1; last is clamped to
+    /// mu_nodes - 2): at x = i + p / (points + 1), p = 1 .. points, in mu and at every node
+    /// and half-way between nodes in u, with node the index of the cell's first node (its
+    /// others are node + 1, node + azimuth_nodes and node + azimuth_nodes + 1), a and b the
+    /// point's place in the cell in x and in u (at() weighs the nodes (1 - a)(1 - b),
+    /// (1 - a) b, a (1 - b), a b) and v, mu, cos2_phi as for_each_node's.
+    template <class Point>
+    void for_each_cell_point(std::size_t first, std::size_t last, std::size_t points, Point&& point) const {
+        constexpr std::size_t half_steps = 2 * (azimuth_nodes - 1);
+        for (std::size_t i = first; i <= glm::min(last, mu_nodes - 2); ++i) {
+            for (std::size_t p = 1; p <= points; ++p) {
+                const double t = double(p) / double(points + 1);
+                const double x = (double(i) + t) / double(mu_nodes - 1);
+                const double mu = glm::clamp(x * std::sqrt(x), 1e-4, 1.0);
+                const double sin_theta = std::sqrt((1 - mu) * (1 + mu));
+                for (std::size_t h = 0; h <= half_steps; ++h) {
+                    const double s = node_s(double(h) / double(half_steps));
+                    const double cos2_phi = x_rougher_ ? s : 1 - s;
+                    const vec3<double> v(sin_theta * std::sqrt(cos2_phi), sin_theta * std::sqrt(1 - cos2_phi), mu);
+                    const std::size_t j = glm::min(h / 2, azimuth_nodes - 2);
+                    point(i * azimuth_nodes + j, t, 0.5 * double(h) - double(j), v, mu, cos2_phi);
+                }
+            }
+        }
+    }
+
     /// The values `grid` (one per node, for_each_node's order) at view cosine mu and
     /// cos^2(phi) (each clamped to [0, 1]; NaN read as 0), bilinear in (x, u).
     template <class V>
@@ -445,6 +472,29 @@ public:
 
     /// The lobe's albedo with F = 1 (the quadrature's total weight), interpolated as at().
     [[nodiscard]] T albedo(T mu, T cos2_phi) const noexcept { return views_.at(albedo_, mu, cos2_phi); }
+
+    /// Lifts the mean where it reads low in the mu cells first to last: shortfall(v, mu,
+    /// cos2_phi) (rgb<T>, in the mean's units) is taken at the points of
+    /// anisotropic_view_grid::for_each_cell_point (`points` per cell in mu), and each node k
+    /// of a point's cell is raised by at least s w_k / sum_j w_j^2 (w the point's bilinear
+    /// weights, s its positive shortfall): the smallest lift, in the least-squares sense,
+    /// that reads s there, so that at every point the mean reads at least its shortfall
+    /// higher than before while a node far from a point moves little for it. The shortfalls
+    /// are all taken before any node moves.
+    template <class Shortfall>
+    void lift_cells(std::size_t first, std::size_t last, std::size_t points, const Shortfall& shortfall) {
+        constexpr std::size_t az = anisotropic_view_grid<T>::azimuth_nodes;
+        std::array<rgb<T>, anisotropic_view_grid<T>::size> lift{};
+        views_.for_each_cell_point(first, last, points, [&](std::size_t node, double a, double b,
+                                                            const vec3<double>& v, double mu, double cos2_phi) {
+            const rgb<T> s = glm::max(rgb<T>(shortfall(v, T(mu), T(cos2_phi))), rgb<T>(0));
+            const std::array<double, 4> w{(1 - a) * (1 - b), (1 - a) * b, a * (1 - b), a * b};
+            const double norm = w[0] * w[0] + w[1] * w[1] + w[2] * w[2] + w[3] * w[3];
+            const std::array<std::size_t, 4> k{node, node + 1, node + az, node + az + 1};
+            for (std::size_t q = 0; q < 4; ++q) lift[k[q]] = glm::max(lift[k[q]], s * T(w[q] / norm));
+        });
+        for (std::size_t k = 0; k < lift.size(); ++k) mean_[k] += lift[k];
+    }
 
 private:
     anisotropic_view_grid<T> views_{};
