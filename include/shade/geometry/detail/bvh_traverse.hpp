@@ -211,10 +211,13 @@ using bvh_i8 [[gnu::vector_size(32)]] = std::int32_t;
 [[gnu::target("avx")]] inline unsigned bvh_bits8(const bvh_i8& m) noexcept {
     return static_cast<unsigned>(__builtin_ia32_movmskps256(reinterpret_cast<bvh_f8>(m)));
 }
-/// out = x in all eight lanes: a shuffle and an insert without AVX2 (Lanes{} + x would
-/// also add, to turn -0 into +0, which the box test does not need).
-[[gnu::target("avx")]] inline void bvh_broadcast8(bvh_f8& out, const float& x) noexcept {
-    out = bvh_f8{x, x, x, x, x, x, x, x};
+
+/// out = lane k (0, 1 or 2) of v in all eight lanes (a shuffle of the register: a
+/// constant k once the loop that calls it is unrolled).
+[[gnu::always_inline]] inline void bvh_lane8(bvh_f8& out, const bvh_f4& v, std::size_t k) noexcept {
+    if (k == 0) out = __builtin_shufflevector(v, v, 0, 0, 0, 0, 0, 0, 0, 0);
+    else if (k == 1) out = __builtin_shufflevector(v, v, 1, 1, 1, 1, 1, 1, 1, 1);
+    else out = __builtin_shufflevector(v, v, 2, 2, 2, 2, 2, 2, 2, 2);
 }
 #endif
 
@@ -290,11 +293,13 @@ struct bvh_ray_lanes {
         for (std::size_t k = 0; k < 3; ++k) {
 #if defined(__x86_64__)
             if constexpr (sizeof(Lanes) == 32) {
-                const std::array<float, 4> values{inv3[k], inv_far3[k], near3[k], far3[k]};
-                bvh_broadcast8(inv[k], values[0]);
-                bvh_broadcast8(inv_far[k], values[1]);
-                bvh_broadcast8(origin_near[k], values[2]);
-                bvh_broadcast8(origin_far[k], values[3]);
+                // Lane k of each four-lane vector into eight lanes, register to register:
+                // these values are on the chain from the ray's division to the first node
+                // test, where a store and a broadcast load would add their latency.
+                bvh_lane8(inv[k], inv3, k);
+                bvh_lane8(inv_far[k], inv_far3, k);
+                bvh_lane8(origin_near[k], near3, k);
+                bvh_lane8(origin_far[k], far3, k);
             } else
 #endif
             {
