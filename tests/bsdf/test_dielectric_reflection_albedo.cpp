@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <limits>
 #include <memory>
 #include <type_traits>
@@ -393,6 +394,54 @@ TEST_CASE("dielectric reflection albedo: the anisotropic form against direct est
                                                       << " to " << high[1] << " (inside)");
 }
 
+namespace {
+
+// detail::anisotropic_reflection_albedo_grid (what a material reads) against fresh 64^2
+// estimates of the model on the rarer side's views, interfaces (eta, alpha_x, alpha_y) over
+// the given lists, at view cosines mus and azimuths degrees: read - fresh asserted within
+// [low_bound, high_bound] widened by 4 standard errors; returns the range found and the
+// largest |error| of the correction table alone (detail::anisotropic_reflection_albedo) at
+// the same views.
+struct grid_against_fresh {
+    double low = 1, high = -1, table_worst = 0;
+};
+struct alphas {
+    double x, y;
+};
+template <class T>
+grid_against_fresh check_grid_against_fresh(std::initializer_list<double> etas, std::initializer_list<alphas> interfaces,
+                                            std::initializer_list<double> mus, std::initializer_list<double> azimuths,
+                                            std::uint64_t seed, double low_bound, double high_bound) {
+    constexpr std::size_t strata = 64;
+    grid_against_fresh out;
+    for (const double eta : etas)
+        for (const alphas& a : interfaces) {
+            const d::anisotropic_reflection_albedo_grid<T> per_interface(T(a.x), T(a.y), T(eta));
+            const d::anisotropic_reflection_albedo<T> plain(T(a.x), T(a.y), T(eta));
+            for (const double mu : mus)
+                for (const double degrees : azimuths) {
+                    const auto v = view(mu, 0, degrees * shade::pi<double> / 180);
+                    const auto fresh = fresh_reflection(a.x, a.y, eta, v, strata, seed);
+                    const vec3<T> w(v);
+                    const double error = double(per_interface.at(w)) - fresh.albedo.x;
+                    CAPTURE(eta);
+                    CAPTURE(a.x);
+                    CAPTURE(a.y);
+                    CAPTURE(mu);
+                    CAPTURE(degrees);
+                    CAPTURE(fresh.albedo.x);
+                    CHECK(error >= low_bound - 4 * fresh.standard_error.x);
+                    CHECK(error <= high_bound + 4 * fresh.standard_error.x);
+                    out.low = std::min(out.low, error);
+                    out.high = std::max(out.high, error);
+                    out.table_worst = std::max(out.table_worst, std::abs(double(plain.at(w)) - fresh.albedo.x));
+                }
+        }
+    return out;
+}
+
+} // namespace
+
 TEST_CASE_TEMPLATE("dielectric reflection albedo: beyond eta_hat 3 an anisotropic interface's grid reads at or above direct estimates",
                    T, float, double) {
     // detail::anisotropic_reflection_albedo_grid (what a material reads) above the correction
@@ -404,40 +453,12 @@ TEST_CASE_TEMPLATE("dielectric reflection albedo: beyond eta_hat 3 an anisotropi
     // correction read at 3, errs by several per cent here (asserted: its largest |error| is
     // above 2e-2, so these points test the grid and not the table). At eta 2.4 and 1 / 1.5
     // the grid is the table, value for value.
-    constexpr std::size_t strata = 64;
-    struct alphas {
-        double x, y;
-    };
-    double low = 1, high = -1, table_worst = 0;
-    for (const double eta : {3.5, 6.0, 20.0})
-        for (const alphas& a : {alphas{0.3, 0.06}, alphas{0.06, 0.3}, alphas{0.15, 0.12}, alphas{1.2, 0.05},
-                                alphas{0.4, 0.9}})
-        {
-            const d::anisotropic_reflection_albedo_grid<T> extended(T(a.x), T(a.y), T(eta));
-            const d::anisotropic_reflection_albedo<T> plain(T(a.x), T(a.y), T(eta));
-            for (const double mu : {0.1, 0.3, 0.6, 0.95})
-                for (const double degrees : {0.0, 25.0, 50.0, 75.0, 90.0, 140.0}) {
-                    const auto v = view(mu, 0, degrees * shade::pi<double> / 180);
-                    const auto fresh = fresh_reflection(a.x, a.y, eta, v, strata, 901);
-                    const vec3<T> w(v);
-                    const double r = double(extended.at(w));
-                    const double error = r - fresh.albedo.x;
-                    CAPTURE(eta);
-                    CAPTURE(a.x);
-                    CAPTURE(a.y);
-                    CAPTURE(mu);
-                    CAPTURE(degrees);
-                    CAPTURE(fresh.albedo.x);
-                    CHECK(error >= -4 * fresh.standard_error.x);
-                    CHECK(error <= 1e-2 + 4 * fresh.standard_error.x);
-                    low = std::min(low, error);
-                    high = std::max(high, error);
-                    table_worst = std::max(table_worst, std::abs(double(plain.at(w)) - fresh.albedo.x));
-                }
-        }
-    MESSAGE("anisotropic grid beyond eta 3 - fresh: " << low << " to " << high << "; the table alone: |error| up to "
-                                                      << table_worst);
-    CHECK(table_worst > 2e-2);
+    const grid_against_fresh found = check_grid_against_fresh<T>(
+        {3.5, 6.0, 20.0}, {{0.3, 0.06}, {0.06, 0.3}, {0.15, 0.12}, {1.2, 0.05}, {0.4, 0.9}}, {0.1, 0.3, 0.6, 0.95},
+        {0.0, 25.0, 50.0, 75.0, 90.0, 140.0}, 901, 0.0, 1e-2);
+    MESSAGE("anisotropic grid beyond eta 3 - fresh: " << found.low << " to " << found.high
+                                                      << "; the table alone: |error| up to " << found.table_worst);
+    CHECK(found.table_worst > 2e-2);
     for (const double eta : {2.4, 1 / 1.5}) {
         const d::anisotropic_reflection_albedo_grid<T> extended(T(0.3), T(0.06), T(eta));
         const d::anisotropic_reflection_albedo<T> plain(T(0.3), T(0.06), T(eta));
@@ -462,38 +483,14 @@ TEST_CASE_TEMPLATE("dielectric reflection albedo: near index match from the dens
     // and at most 0.2: just above the critical cosine along the smoother axis of a surface
     // that is nearly smooth along it, R_ss steps by up to 1 - F within a row, which the rows
     // bridge from above (measured 0.158).
-    constexpr std::size_t strata = 64;
-    struct alphas {
-        double x, y;
-    };
-    double low = 1, high = -1, table_worst = 0;
-    for (const double eta : {0.96, 0.975, 0.99})
-        for (const alphas& a : {alphas{0.38, 0.16}, alphas{0.48, 0.01}, alphas{0.02, 0.2}, alphas{0.5, 0.45}}) {
-            const d::anisotropic_reflection_albedo_grid<T> per_interface(T(a.x), T(a.y), T(eta));
-            const d::anisotropic_reflection_albedo<T> plain(T(a.x), T(a.y), T(eta));
-            for (const double mu : {0.05, 0.1, 0.15, 0.2, 0.3, 0.6, 0.95})
-                for (const double degrees : {0.0, 30.0, 60.0, 80.0, 90.0, 110.0}) {
-                    const auto v = view(mu, 0, degrees * shade::pi<double> / 180);
-                    const auto fresh = fresh_reflection(a.x, a.y, eta, v, strata, 907);
-                    const vec3<T> w(v);
-                    const double error = double(per_interface.at(w)) - fresh.albedo.x;
-                    CAPTURE(eta);
-                    CAPTURE(a.x);
-                    CAPTURE(a.y);
-                    CAPTURE(mu);
-                    CAPTURE(degrees);
-                    CAPTURE(fresh.albedo.x);
-                    CHECK(error >= -1e-3 - 4 * fresh.standard_error.x);
-                    CHECK(error <= 0.2 + 4 * fresh.standard_error.x);
-                    low = std::min(low, error);
-                    high = std::max(high, error);
-                    table_worst = std::max(table_worst, std::abs(double(plain.at(w)) - fresh.albedo.x));
-                }
-        }
-    MESSAGE("anisotropic grid near index match, denser side - fresh: " << low << " to " << high
+    const grid_against_fresh found =
+        check_grid_against_fresh<T>({0.96, 0.975, 0.99}, {{0.38, 0.16}, {0.48, 0.01}, {0.02, 0.2}, {0.5, 0.45}},
+                                    {0.05, 0.1, 0.15, 0.2, 0.3, 0.6, 0.95}, {0.0, 30.0, 60.0, 80.0, 90.0, 110.0}, 907,
+                                    -1e-3, 0.2);
+    MESSAGE("anisotropic grid near index match, denser side - fresh: " << found.low << " to " << found.high
                                                                         << "; the table alone: |error| up to "
-                                                                        << table_worst);
-    CHECK(table_worst > 0.1);
+                                                                        << found.table_worst);
+    CHECK(found.table_worst > 0.1);
     // Copies own their grid: a copy reads as the original after the original is gone.
     const vec3<T> w(view(0.1, 0, shade::pi<double> / 2));
     auto original = std::make_unique<d::anisotropic_reflection_albedo_grid<T>>(T(0.38), T(0.16), T(0.96));
