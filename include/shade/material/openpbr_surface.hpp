@@ -1415,8 +1415,7 @@ void openpbr_surface<T>::build() {
                     // few points in every cell, then densely around the kink.
                     constexpr std::size_t n = detail::cosine_weight_nodes, samples = film_kink_samples;
                     const double kink = std::sqrt((1.0 - double(n_b)) * (1.0 + double(n_b)));
-                    const double kink_x = std::cbrt(kink * kink);
-                    const std::size_t kink_node = glm::min(std::size_t(kink_x * double(n - 1)), n - 2);
+                    const std::size_t kink_node = detail::cosine_weight_cell(kink);
                     std::array<rgb<double>, samples + 1> in_cell;
                     for (std::size_t q = 0; q <= samples; ++q) {
                         const double x = (double(kink_node) + double(q) / double(samples)) / double(n - 1);
@@ -1444,7 +1443,8 @@ void openpbr_surface<T>::build() {
                         return e_one > T(0) ? T(1.25) * (rgb<T>(e) - read) / e_one : rgb<T>(0);
                     };
                     constexpr std::size_t rows = detail::anisotropic_view_grid<T>::mu_nodes;
-                    const std::size_t cell = glm::min(std::size_t(kink_x * double(rows - 1)), rows - 2);
+                    const std::size_t cell =
+                        glm::min(std::size_t(std::cbrt(kink * kink) * double(rows - 1)), rows - 2);
                     film_mean_.lift_cells(0, rows - 2, film_kink_sparse_points, shortfall);
                     film_mean_.lift_cells(cell > 0 ? cell - 1 : 0, cell + 1, film_kink_dense_points, shortfall);
                 }

@@ -6,6 +6,7 @@
 // the smooth limit; and fresnel_albedo_row against the quadrature between the nodes.
 
 #include <cmath>
+#include <limits>
 #include <cstddef>
 #include <vector>
 
@@ -93,6 +94,19 @@ TEST_CASE("cosine weights: the smooth lobe's row is F itself at the nodes and li
         const float mu = float(d::cosine_weight_node(i));
         CHECK(row.at(mu).x == doctest::Approx(double(F(mu).x)).epsilon(1e-5));
     }
+}
+
+TEST_CASE("cosine weights: the cell holding a cosine") {
+    // Nodes c_k = (k / (n - 1))^(3/2): half-way between two nodes in x = c^(2/3) lies in the
+    // cell of the lower one; 1 lies in the last cell; below 0 and NaN read as 0.
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+        const double x = (double(k) + 0.5) / double(n - 1);
+        CHECK(d::cosine_weight_cell(x * std::sqrt(x)) == k);
+    }
+    CHECK(d::cosine_weight_cell(1.0) == n - 2);
+    CHECK(d::cosine_weight_cell(2.0) == n - 2);
+    CHECK(d::cosine_weight_cell(-0.5) == 0);
+    CHECK(d::cosine_weight_cell(std::numeric_limits<double>::quiet_NaN()) == 0);
 }
 
 TEST_CASE_TEMPLATE("fresnel_albedo_row: the albedo with a dielectric Fresnel between the nodes", T, float, double) {

@@ -27,6 +27,14 @@ namespace shade::detail {
     return x * std::sqrt(x);
 }
 
+/// The cell of those nodes that holds the cosine c (clamped to [0, 1]; NaN read as 0): the
+/// k with c_k <= c < c_(k+1), at most cosine_weight_nodes - 2.
+[[nodiscard]] inline std::size_t cosine_weight_cell(double c) noexcept {
+    const double clamped = c > 0 ? glm::min(c, 1.0) : 0.0;
+    return glm::min(std::size_t(std::cbrt(clamped * clamped) * double(cosine_weight_nodes - 1)),
+                    cosine_weight_nodes - 2);
+}
+
 /// The alpha of row j of the table: alpha_j = (j / (m - 1))^2, m = cosine_weight_alpha_nodes
 /// (uniform in sqrt(alpha) over [0, 1]).
 [[nodiscard]] inline double cosine_weight_alpha(std::size_t j) noexcept {
@@ -205,8 +213,7 @@ template <std::floating_point T, class Fresnel>
     constexpr std::size_t n = cosine_weight_nodes, bins = kink_sub_bins, points = 16;
     std::array<rgb<T>, n> out{};
     if (!(alpha > T(0))) return out;
-    const double k_c = glm::clamp(kink, 0.0, 1.0);
-    const std::size_t cell = glm::min(std::size_t(std::cbrt(k_c * k_c) * double(n - 1)), n - 2);
+    const std::size_t cell = cosine_weight_cell(kink);
     std::array<rgb<double>, bins> g_mean{};
     for (std::size_t b = 0; b < bins; ++b) {
         rgb<double> sum(0.0);
@@ -249,8 +256,7 @@ template <std::floating_point T, class Fresnel>
     constexpr std::size_t n = cosine_weight_nodes;
     std::array<rgb<T>, n> out{};
     if (!(alpha > T(0))) return out;
-    const double k_c = glm::clamp(kink, 0.0, 1.0);
-    const std::size_t center = glm::min(std::size_t(std::cbrt(k_c * k_c) * double(n - 1)), n - 2);
+    const std::size_t center = cosine_weight_cell(kink);
     const std::size_t first = center > reach ? center - reach : 0;
     const std::size_t last = glm::min(center + reach, n - 2);
     for (std::size_t j = first; j <= last; ++j) {
