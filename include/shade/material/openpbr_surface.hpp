@@ -633,10 +633,37 @@ private:
                    : film_mean_.albedo(fv.mu, fv.cos2_phi);
     }
 
-    // anisotropic_film_share without its margin: the mean (film_reference_mean at alpha_v
-    // plus film_mean_) times the albedo with F = 1.
+    // What an isotropic lobe's row misses of a total-reflection kink of F_film (over a base
+    // of specular_ior below 1) at roughness alpha and view cosine mu, as a mean (divided by
+    // the lobe's albedo with F = 1): the rows of film_kink_rows_ (kink_cell_correction plus
+    // kink_view_shortfall at film_kink_alpha_rows roughnesses from the anisotropic lobe's
+    // smaller to its larger, evenly in log alpha), read linearly in log alpha (clamped to
+    // those roughnesses) and in x = mu^(2/3). Zero without such a kink.
+    [[nodiscard]] rgb<T> film_kink_mean(T alpha, T mu) const noexcept {
+        if (!film_kink_rows_used_) return rgb<T>(0);
+        constexpr std::size_t n = detail::cosine_weight_nodes, m = film_kink_alpha_rows;
+        const T a = alpha > film_kink_alpha_first_ ? alpha : film_kink_alpha_first_;
+        const T s = glm::clamp(film_kink_log_step_ > T(0) ? std::log(a / film_kink_alpha_first_) / film_kink_log_step_
+                                                          : T(0),
+                               T(0), T(m - 1));
+        const std::size_t j = glm::min(std::size_t(s), m - 2);
+        const T t = s - T(j);
+        const T c = mu > T(0) ? glm::min(mu, T(1)) : T(0);
+        const T x = std::cbrt(c * c) * T(n - 1);
+        const std::size_t i = glm::min(std::size_t(x), n - 2);
+        const T u = x - T(i);
+        const rgb<T> e = (T(1) - t) * ((T(1) - u) * film_kink_rows_[j][i] + u * film_kink_rows_[j][i + 1]) +
+                         t * ((T(1) - u) * film_kink_rows_[j + 1][i] + u * film_kink_rows_[j + 1][i + 1]);
+        const T mass = detail::fresnel_albedo_at(alpha, mu, film_nodes_).mass;
+        return mass > T(0) ? e / mass : e;
+    }
+
+    // anisotropic_film_share without its margin: the mean (film_reference_mean at alpha_v,
+    // film_kink_mean there and film_mean_) times the albedo with F = 1.
     [[nodiscard]] rgb<T> anisotropic_film_share_read(const film_view& fv, T e_one) const noexcept {
-        return (film_reference_mean(fv.alpha_v, fv.mu) + film_mean_.at(fv.mu, fv.cos2_phi)) * e_one;
+        return (film_reference_mean(fv.alpha_v, fv.mu) + film_kink_mean(fv.alpha_v, fv.mu) +
+                film_mean_.at(fv.mu, fv.cos2_phi)) *
+               e_one;
     }
 
     // The film's share (the integral of F_film - F, or of F_film alone below an index ratio
@@ -1238,12 +1265,19 @@ private:
     // film_mean_ reads (linear between them in x).
     static constexpr std::size_t film_kink_samples = 256;
     // The points per cell in mu at which an anisotropic lobe's share is checked against its
-    // own quadrature (film_kink_lift_strata^2 cells): film_kink_sparse_points in every cell
-    // of film_mean_, then film_kink_dense_points in the kink's cell and its neighbours (a
-    // narrow lobe's share changes there on the scale of its roughness along the view).
+    // own quadrature (film_kink_lift_strata^2 cells, whose own error is lifted as if it were
+    // a shortfall, so it must stay well under the margins): film_kink_sparse_points in every
+    // cell of film_mean_, then
+    // film_kink_dense_points in the kink's cell and its neighbours (a narrow lobe's share
+    // changes there on the scale of its roughness along the view).
     static constexpr std::size_t film_kink_sparse_points = 4;
     static constexpr std::size_t film_kink_dense_points = 16;
-    static constexpr std::size_t film_kink_lift_strata = 12;
+    static constexpr std::size_t film_kink_lift_strata = 24;
+    // film_kink_mean's rows (anisotropic lobes over specular_ior < 1 only).
+    static constexpr std::size_t film_kink_alpha_rows = 3;
+    std::array<std::array<rgb<T>, detail::cosine_weight_nodes>, film_kink_alpha_rows> film_kink_rows_{};
+    T film_kink_alpha_first_ = 0, film_kink_log_step_ = 0;
+    bool film_kink_rows_used_ = false;
     T film_alpha_x_ = 0, film_alpha_y_ = 0;                         // the specular lobe's roughnesses (anisotropic)
     detail::anisotropic_albedo_cell<T> film_cell_{};                // its cell in the anisotropic tables
     bool film_cell_in_range_ = true;                                // its anisotropy within those tables' range
@@ -1405,23 +1439,44 @@ void openpbr_surface<T>::build() {
                 if (n_b < T(1)) {
                     // Over a base of specular_ior below 1 the same kink sits inside one cell
                     // of the nodes (cut off in c by film_mean_ and by the reference alike)
-                    // and, for narrow lobes, between two of film_mean_'s view rows (cut off in
-                    // mu). The share is measured against the lobe's own quadrature
-                    // (film_kink_lift_strata^2 cells) of F_film (read from film_kink_samples +
-                    // 1 samples of the kink's cell, linear in x = c^(2/3), and as the nodes'
-                    // interpolation elsewhere) at points between film_mean_'s nodes, and the
-                    // nodes lifted for 1.25 times the shortfall found (the peaks between the
-                    // points), as kink_view_shortfall does for the isotropic row: first at a
-                    // few points in every cell, then densely around the kink.
+                    // and, for narrow lobes, between two view nodes (cut off in mu). First the
+                    // isotropic row's corrections (kink_cell_correction and kink_view_shortfall)
+                    // at film_kink_alpha_rows roughnesses from the smaller alpha to the larger,
+                    // which film_kink_mean reads at alpha_v: the anisotropic lobe's share of the
+                    // kink is close to the isotropic lobe's at alpha_v, and the reference's 64
+                    // view nodes follow it in mu where film_mean_'s 16 cannot. Then what still
+                    // reads low: anisotropic_film_share (margins included) is measured against
+                    // the lobe's own quadrature (film_kink_lift_strata^2 cells) of what the row
+                    // sums (F_film - F, or F_film alone), read from film_kink_samples + 1
+                    // samples of the kink's cell and as the nodes' interpolation elsewhere, at
+                    // points between film_mean_'s nodes (a few in every cell, then many around
+                    // the kink), and film_mean_'s nodes lifted for 1.25 times the shortfall
+                    // found (the peaks between the points), as kink_view_shortfall does for
+                    // the isotropic row.
                     constexpr std::size_t n = detail::cosine_weight_nodes, samples = film_kink_samples;
                     const double kink = std::sqrt((1.0 - double(n_b)) * (1.0 + double(n_b)));
                     const std::size_t kink_node = detail::cosine_weight_cell(kink);
+                    const T alpha_lo = glm::min(film_alpha_x_, film_alpha_y_);
+                    const T alpha_hi = glm::max(film_alpha_x_, film_alpha_y_);
+                    film_kink_alpha_first_ = alpha_lo;
+                    film_kink_log_step_ = std::log(alpha_hi / alpha_lo) / T(film_kink_alpha_rows - 1);
+                    for (std::size_t k = 0; k < film_kink_alpha_rows; ++k) {
+                        const T alpha_k = alpha_lo * std::exp(film_kink_log_step_ * T(k));
+                        detail::fresnel_albedo_row<T> row(alpha_k, film_nodes_);
+                        const auto cell = detail::kink_cell_correction(alpha_k, film_nodes_, film_difference, kink,
+                                                                       film_kink_columns, film_kink_rows);
+                        row.add(cell);
+                        const auto near = detail::kink_view_shortfall(alpha_k, row, film_difference, kink,
+                                                                      film_kink_view_reach, film_kink_view_strata);
+                        for (std::size_t i = 0; i < n; ++i) film_kink_rows_[k][i] = cell[i] + near[i];
+                    }
+                    film_kink_rows_used_ = true;
                     std::array<rgb<double>, samples + 1> in_cell;
                     for (std::size_t q = 0; q <= samples; ++q) {
                         const double x = (double(kink_node) + double(q) / double(samples)) / double(n - 1);
-                        in_cell[q] = rgb<double>(film.F(T(x * std::sqrt(x))));
+                        in_cell[q] = rgb<double>(film_difference(T(x * std::sqrt(x))));
                     }
-                    const auto film_F = [&](double c) {
+                    const auto resolved = [&](double c) {
                         const double xc = glm::clamp(std::cbrt(c * c), 0.0, 1.0) * double(n - 1);
                         const std::size_t i = glm::min(std::size_t(xc), n - 2);
                         const double t = xc - double(i);
@@ -1435,11 +1490,10 @@ void openpbr_surface<T>::build() {
                         rgb<double> e(0.0);
                         detail::visit_ggx_cosine_measure(v, double(film_alpha_x_), double(film_alpha_y_),
                                                          film_kink_lift_strata,
-                                                         [&](double c, double weight) { e += weight * film_F(c); });
+                                                         [&](double c, double weight) { e += weight * resolved(c); });
                         const vec3<T> w(v);
-                        const film_view fv = anisotropic_film_view(w);
-                        const T e_one = anisotropic_film_e_one(fv, w);
-                        const rgb<T> read = anisotropic_film_share_read(fv, e_one);
+                        const T e_one = anisotropic_film_e_one(anisotropic_film_view(w), w);
+                        const rgb<T> read = anisotropic_film_share(w);
                         return e_one > T(0) ? T(1.25) * (rgb<T>(e) - read) / e_one : rgb<T>(0);
                     };
                     constexpr std::size_t rows = detail::anisotropic_view_grid<T>::mu_nodes;
