@@ -634,13 +634,13 @@ private:
     }
 
     // What an isotropic lobe's row misses of a total-reflection kink of F_film (over a base
-    // of specular_ior below 1) at roughness alpha and view cosine mu, as a mean (divided by
-    // the lobe's albedo with F = 1): the rows of film_kink_rows_ (kink_cell_correction plus
-    // kink_view_shortfall at film_kink_alpha_rows roughnesses from the anisotropic lobe's
-    // smaller to its larger, evenly in log alpha), read linearly in log alpha (clamped to
-    // those roughnesses) and in x = mu^(2/3). Zero without such a kink.
-    [[nodiscard]] rgb<T> film_kink_mean(T alpha, T mu) const noexcept {
-        if (!film_kink_rows_used_) return rgb<T>(0);
+    // of specular_ior below 1) at roughness alpha and view cosine mu, in the row's units (an
+    // albedo): the rows of film_kink_rows_ (kink_cell_correction plus kink_view_shortfall at
+    // film_kink_alpha_rows roughnesses from the anisotropic lobe's smaller to its larger,
+    // evenly in log alpha), read linearly in log alpha (clamped to those roughnesses) and in
+    // x = mu^(2/3). Zero without such a kink (film_kink_alpha_first_ 0).
+    [[nodiscard]] rgb<T> film_kink_at(T alpha, T mu) const noexcept {
+        if (!(film_kink_alpha_first_ > T(0))) return rgb<T>(0);
         constexpr std::size_t n = detail::cosine_weight_nodes, m = film_kink_alpha_rows;
         const T a = alpha > film_kink_alpha_first_ ? alpha : film_kink_alpha_first_;
         const T s = glm::clamp(film_kink_log_step_ > T(0) ? std::log(a / film_kink_alpha_first_) / film_kink_log_step_
@@ -652,18 +652,17 @@ private:
         const T x = std::cbrt(c * c) * T(n - 1);
         const std::size_t i = glm::min(std::size_t(x), n - 2);
         const T u = x - T(i);
-        const rgb<T> e = (T(1) - t) * ((T(1) - u) * film_kink_rows_[j][i] + u * film_kink_rows_[j][i + 1]) +
-                         t * ((T(1) - u) * film_kink_rows_[j + 1][i] + u * film_kink_rows_[j + 1][i + 1]);
-        const T mass = detail::fresnel_albedo_at(alpha, mu, film_nodes_).mass;
-        return mass > T(0) ? e / mass : e;
+        return (T(1) - t) * ((T(1) - u) * film_kink_rows_[j][i] + u * film_kink_rows_[j][i + 1]) +
+               t * ((T(1) - u) * film_kink_rows_[j + 1][i] + u * film_kink_rows_[j + 1][i + 1]);
     }
 
-    // anisotropic_film_share without its margin: the mean (film_reference_mean at alpha_v,
-    // film_kink_mean there and film_mean_) times the albedo with F = 1.
+    // anisotropic_film_share without its margin: the mean at alpha_v (film_reference_mean's
+    // node sum with film_kink_at added, over the same sum's albedo with F = 1) plus
+    // film_mean_, times the anisotropic lobe's albedo with F = 1.
     [[nodiscard]] rgb<T> anisotropic_film_share_read(const film_view& fv, T e_one) const noexcept {
-        return (film_reference_mean(fv.alpha_v, fv.mu) + film_kink_mean(fv.alpha_v, fv.mu) +
-                film_mean_.at(fv.mu, fv.cos2_phi)) *
-               e_one;
+        const detail::fresnel_albedo_sum<T> sum = detail::fresnel_albedo_at(fv.alpha_v, fv.mu, film_nodes_);
+        const rgb<T> e = sum.e + film_kink_at(fv.alpha_v, fv.mu);
+        return ((sum.mass > T(0) ? e / sum.mass : e) + film_mean_.at(fv.mu, fv.cos2_phi)) * e_one;
     }
 
     // The film's share (the integral of F_film - F, or of F_film alone below an index ratio
@@ -1261,23 +1260,22 @@ private:
     static constexpr std::size_t film_kink_view_strata = 16;
     static constexpr std::size_t film_kink_view_reach = 2;
     static constexpr double film_kink_margin = 3e-3;
-    // The samples of F_film in the kink's cell of the nodes that an anisotropic lobe's
-    // film_mean_ reads (linear between them in x).
+    // The samples of the row's function in the kink's cell of the nodes that an anisotropic
+    // lobe's lift reads (linear between them in x; the nodes' interpolation elsewhere).
     static constexpr std::size_t film_kink_samples = 256;
     // The points per cell in mu at which an anisotropic lobe's share is checked against its
     // own quadrature (film_kink_lift_strata^2 cells, whose own error is lifted as if it were
     // a shortfall, so it must stay well under the margins): film_kink_sparse_points in every
-    // cell of film_mean_, then
-    // film_kink_dense_points in the kink's cell and its neighbours (a narrow lobe's share
-    // changes there on the scale of its roughness along the view).
+    // cell of film_mean_, then film_kink_dense_points in the kink's cell and its neighbours
+    // (a narrow lobe's share changes there on the scale of its roughness along the view).
     static constexpr std::size_t film_kink_sparse_points = 4;
     static constexpr std::size_t film_kink_dense_points = 16;
     static constexpr std::size_t film_kink_lift_strata = 24;
-    // film_kink_mean's rows (anisotropic lobes over specular_ior < 1 only).
+    // film_kink_at's rows (anisotropic lobes over specular_ior < 1 only; otherwise
+    // film_kink_alpha_first_ stays 0).
     static constexpr std::size_t film_kink_alpha_rows = 3;
     std::array<std::array<rgb<T>, detail::cosine_weight_nodes>, film_kink_alpha_rows> film_kink_rows_{};
     T film_kink_alpha_first_ = 0, film_kink_log_step_ = 0;
-    bool film_kink_rows_used_ = false;
     T film_alpha_x_ = 0, film_alpha_y_ = 0;                         // the specular lobe's roughnesses (anisotropic)
     detail::anisotropic_albedo_cell<T> film_cell_{};                // its cell in the anisotropic tables
     bool film_cell_in_range_ = true;                                // its anisotropy within those tables' range
@@ -1442,7 +1440,7 @@ void openpbr_surface<T>::build() {
                     // and, for narrow lobes, between two view nodes (cut off in mu). First the
                     // isotropic row's corrections (kink_cell_correction and kink_view_shortfall)
                     // at film_kink_alpha_rows roughnesses from the smaller alpha to the larger,
-                    // which film_kink_mean reads at alpha_v: the anisotropic lobe's share of the
+                    // which film_kink_at reads at alpha_v: the anisotropic lobe's share of the
                     // kink is close to the isotropic lobe's at alpha_v, and the reference's 64
                     // view nodes follow it in mu where film_mean_'s 16 cannot. Then what still
                     // reads low: anisotropic_film_share (margins included) is measured against
@@ -1470,19 +1468,15 @@ void openpbr_surface<T>::build() {
                                                                       film_kink_view_reach, film_kink_view_strata);
                         for (std::size_t i = 0; i < n; ++i) film_kink_rows_[k][i] = cell[i] + near[i];
                     }
-                    film_kink_rows_used_ = true;
                     std::array<rgb<double>, samples + 1> in_cell;
                     for (std::size_t q = 0; q <= samples; ++q) {
                         const double x = (double(kink_node) + double(q) / double(samples)) / double(n - 1);
                         in_cell[q] = rgb<double>(film_difference(T(x * std::sqrt(x))));
                     }
                     const auto resolved = [&](double c) {
-                        const double xc = glm::clamp(std::cbrt(c * c), 0.0, 1.0) * double(n - 1);
-                        const std::size_t i = glm::min(std::size_t(xc), n - 2);
-                        const double t = xc - double(i);
-                        if (i != kink_node)
-                            return (1 - t) * rgb<double>(film_nodes_[i]) + t * rgb<double>(film_nodes_[i + 1]);
-                        const double y = t * double(samples);
+                        if (detail::cosine_weight_cell(c) != kink_node) return detail::fresnel_nodes_at(film_nodes_, c);
+                        const double x = glm::clamp(std::cbrt(c * c), 0.0, 1.0) * double(n - 1);
+                        const double y = (x - double(kink_node)) * double(samples);
                         const std::size_t q = glm::min(std::size_t(y), samples - 1);
                         return (double(q + 1) - y) * in_cell[q] + (y - double(q)) * in_cell[q + 1];
                     };
@@ -1497,8 +1491,7 @@ void openpbr_surface<T>::build() {
                         return e_one > T(0) ? T(1.25) * (rgb<T>(e) - read) / e_one : rgb<T>(0);
                     };
                     constexpr std::size_t rows = detail::anisotropic_view_grid<T>::mu_nodes;
-                    const std::size_t cell =
-                        glm::min(std::size_t(std::cbrt(kink * kink) * double(rows - 1)), rows - 2);
+                    const std::size_t cell = detail::anisotropic_view_grid<T>::mu_cell(kink);
                     film_mean_.lift_cells(0, rows - 2, film_kink_sparse_points, shortfall);
                     film_mean_.lift_cells(cell > 0 ? cell - 1 : 0, cell + 1, film_kink_dense_points, shortfall);
                 }

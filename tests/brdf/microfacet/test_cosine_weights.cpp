@@ -6,8 +6,8 @@
 // the smooth limit; and fresnel_albedo_row against the quadrature between the nodes.
 
 #include <cmath>
-#include <limits>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include <doctest/doctest.h>

@@ -35,6 +35,18 @@ namespace shade::detail {
                     cosine_weight_nodes - 2);
 }
 
+/// F given at the nodes (f_nodes[k] = F(c_k)) read at the cosine c (clamped to [0, 1]; NaN
+/// read as 0), linear between the nodes in x = c^(2/3): the F a node sum integrates.
+template <std::floating_point T>
+[[nodiscard]] rgb<double> fresnel_nodes_at(const std::array<rgb<T>, cosine_weight_nodes>& f_nodes, double c) noexcept {
+    constexpr std::size_t n = cosine_weight_nodes;
+    const double clamped = c > 0 ? glm::min(c, 1.0) : 0.0;
+    const double x = std::cbrt(clamped * clamped) * double(n - 1);
+    const std::size_t i = glm::min(std::size_t(x), n - 2);
+    const double t = x - double(i);
+    return (1 - t) * rgb<double>(f_nodes[i]) + t * rgb<double>(f_nodes[i + 1]);
+}
+
 /// The alpha of row j of the table: alpha_j = (j / (m - 1))^2, m = cosine_weight_alpha_nodes
 /// (uniform in sqrt(alpha) over [0, 1]).
 [[nodiscard]] inline double cosine_weight_alpha(std::size_t j) noexcept {
@@ -390,6 +402,13 @@ public:
         }
     }
 
+    /// The mu cell (between mu nodes i and i + 1, at most mu_nodes - 2) holding the view
+    /// cosine mu (clamped to [0, 1]; NaN read as 0), as at() reads it.
+    [[nodiscard]] static std::size_t mu_cell(double mu) noexcept {
+        const double c = mu > 0 ? glm::min(mu, 1.0) : 0.0;
+        return glm::min(std::size_t(std::cbrt(c * c) * double(mu_nodes - 1)), mu_nodes - 2);
+    }
+
     /// The values `grid` (one per node, for_each_node's order) at view cosine mu and
     /// cos^2(phi) (each clamped to [0, 1]; NaN read as 0), bilinear in (x, u).
     template <class V>
@@ -456,15 +475,11 @@ public:
     anisotropic_fresnel_mean_grid(T alpha_x, T alpha_y, const std::array<rgb<T>, cosine_weight_nodes>& f_nodes,
                                   const Reference& reference)
         : views_(alpha_x, alpha_y) {
-        constexpr std::size_t n = cosine_weight_nodes;
         views_.for_each_node([&](std::size_t k, const vec3<double>& v, double mu, double cos2_phi) {
             rgb<double> sum(0);
             double mass = 0;
             visit_ggx_cosine_measure(v, double(alpha_x), double(alpha_y), strata, [&](double c, double weight) {
-                const double xc = glm::clamp(std::cbrt(c * c), 0.0, 1.0) * double(n - 1);
-                const std::size_t i = glm::min(std::size_t(xc), n - 2);
-                const double t = xc - double(i);
-                sum += weight * ((1 - t) * rgb<double>(f_nodes[i]) + t * rgb<double>(f_nodes[i + 1]));
+                sum += weight * fresnel_nodes_at(f_nodes, c);
                 mass += weight;
             });
             mean_[k] = (mass > 0 ? rgb<T>(sum / mass) : rgb<T>(0)) - reference(T(mu), T(cos2_phi));
