@@ -266,7 +266,10 @@ intersect_batch(const ray<T>& r, const Batch<T, N>& batch, culling cull) noexcep
 /// The any-hit form of intersect_batch: true exactly when intersect_batch(r, batch,
 /// cull).hit_bits != 0 (the same operations up to the test of t), without the
 /// barycentric divisions and the stores of the hit record, returning at the first step
-/// with a hit.
+/// with a hit. Each step makes one decision: t is divided out on every lane and tested
+/// together with the candidate mask, where intersect_batch first branches on whether any
+/// lane is a candidate: in a hierarchy's any-hit walk, one data-dependent branch a leaf
+/// instead of two.
 template <class L, template <class, std::size_t> class Batch, std::floating_point T, std::size_t N>
 [[nodiscard]] SHADE_DETAIL_BATCH_INLINE bool intersect_batch_any(const ray<T>& r, const Batch<T, N>& batch,
                                                                  culling cull) noexcept {
@@ -307,7 +310,8 @@ template <class L, template <class, std::size_t> class Batch, std::floating_poin
         const vec wn = a - (un + vn);
         mask candidate = (un >= zero) & (vn >= zero) & (wn >= zero) & (a > zero) & (a <= largest);
         if (front_only) candidate = candidate & (det > zero);
-        if (!L::any(candidate)) continue;
+        // Every lane divided, candidate or not: a lane that is not (a zero det, say) may
+        // give inf or NaN here, which the candidate mask discards.
         L::flip_sign(t_num, q_x * m_x + q_y * m_y + q_z * m_z, det);
         const vec t = t_num / a;
         if (L::any(candidate & (t >= t_lo) & (t <= t_hi))) return true;
