@@ -216,7 +216,7 @@ void bvh_for_ranges(executor_ref run, std::size_t n, std::size_t size, const F& 
 /// depth and so the traversal's stack).
 ///
 /// In parallel (through an executor, shade/core/parallel.hpp), as Wald 2007 proposes for
-/// few cores: nodes of more than t primitives (t = n / 8 for n primitives, at least 256,
+/// few cores: nodes of more than t primitives (t = n / 4 for n primitives, at least 256,
 /// at most task_size: task_for) are split level by level, the partitions of a level's
 /// nodes side by side and, for nodes of more than 4 t, their binning shared out t
 /// primitives per task first (a smaller node is binned by the task that partitions it:
@@ -293,11 +293,15 @@ private:
         std::uint32_t right = 0; ///< inner: right child
     };
 
-    /// The primitives per task of the level phase for a build over n: n / 8, so that a
-    /// small mesh is shared out too, but no fewer than 256 (each task's bins and merges
-    /// have their cost) and no more than task_size.
+    /// The primitives per task of the level phase for a build over n: n / 4, so that a
+    /// small mesh is shared out too, over few levels (each level is a synchronisation of
+    /// all threads; a node of at most 4 t primitives, so the root unless t is clamped,
+    /// is binned by the task that partitions it),
+    /// but no fewer than 256 (each task's bins and merges have their cost) and no more
+    /// than task_size.
     [[nodiscard]] std::uint32_t task_for(std::uint32_t n) const noexcept {
-        return static_cast<std::uint32_t>(bvh_range_size(n, 256, task_size_));
+        const std::uint32_t t = n / 4 > 256 ? n / 4 : 256;
+        return t < task_size_ ? t : task_size_;
     }
     /// The tasks of task_ primitives over n, and the range of task c from `first`.
     [[nodiscard]] std::size_t tasks(std::uint32_t n) const noexcept { return (n - 1) / task_ + 1; }
