@@ -118,18 +118,23 @@ private:
 /// is integrated per interface instead: a dielectric_side_grid of the interface's own views
 /// (rough_dielectric_albedo_grid's layout: the critical cosine on a row, azimuths crowded
 /// toward the smoother axis; here with the rows below it dense toward it as well), each node
-/// detail::dielectric_visible_albedo's reflected branch on below_cells^2 visible normals, plus
+/// detail::dielectric_visible_albedo's reflected branch on below_columns x below_rows visible normals, plus
 /// below_margin (below_margin_strong at alpha_max / alpha_min >= 20), held on the heap (about
-/// 11 KB; copies copy it). Building takes 30 to 55 ms at -O2. Elsewhere (eta_s in
-/// [1 / 1.05, 3] otherwise, or equal alphas) exactly anisotropic_reflection_albedo. alpha_x,
-/// alpha_y >= 0, eta_s > 0 (unchecked).
+/// 14 KB; copies copy it). Building takes 100 to 180 ms at -O2. With integrate_below_one the
+/// same grid serves every eta_s < 1 of an anisotropic interface: for a caller that needs
+/// R_ss close to its value from either side (at_without_margin), which the table, reading
+/// it up to 0.18 high there, does not give. Elsewhere (eta_s in [1 / 1.05, 3] otherwise, or equal alphas) exactly
+/// anisotropic_reflection_albedo. alpha_x, alpha_y >= 0, eta_s > 0 (unchecked).
 template <std::floating_point T>
 class anisotropic_reflection_albedo_grid {
 public:
     static constexpr std::size_t beyond_cells = 32; ///< the quadrature's cells per side
     /// What the reading beyond 3 adds to stay at or above the true albedo.
     static constexpr double beyond_margin = 2e-3;
-    static constexpr int below_cells = 24; ///< visible normals per axis at each node below 1
+    /// Visible normals at each node below 1: below_columns angles by below_rows in u_y (the
+    /// angle resolves more: the horizon's and the total reflection's edges cross the columns).
+    static constexpr int below_columns = 40;
+    static constexpr int below_rows = 40; ///< (below_columns)
     /// What the reading below 1 adds to stay at or above the true albedo.
     static constexpr double below_margin = 5e-3;
     /// below_margin at strong anisotropy (alpha_max / alpha_min >= 20).
@@ -138,11 +143,12 @@ public:
     anisotropic_reflection_albedo_grid() = default;
     anisotropic_reflection_albedo_grid(const anisotropic_reflection_albedo_grid& other)
         : table_(other.table_), views_(other.views_), delta_(other.delta_), alpha_x_(other.alpha_x_),
-          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_),
+          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), below_added_(other.below_added_), beyond_(other.beyond_),
           below_(other.below_ != nullptr ? new dielectric_side_grid<T>(*other.below_) : nullptr) {}
     anisotropic_reflection_albedo_grid(anisotropic_reflection_albedo_grid&& other) noexcept
         : table_(other.table_), views_(other.views_), delta_(other.delta_), alpha_x_(other.alpha_x_),
-          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_), below_(other.below_) {
+          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), below_added_(other.below_added_), beyond_(other.beyond_),
+          below_(other.below_) {
         other.below_ = nullptr;
     }
     anisotropic_reflection_albedo_grid& operator=(anisotropic_reflection_albedo_grid other) noexcept {
@@ -152,6 +158,7 @@ public:
         alpha_x_ = other.alpha_x_;
         alpha_y_ = other.alpha_y_;
         eta_s_ = other.eta_s_;
+        below_added_ = other.below_added_;
         beyond_ = other.beyond_;
         dielectric_side_grid<T>* const below = below_;
         below_ = other.below_;
@@ -160,15 +167,17 @@ public:
     }
     ~anisotropic_reflection_albedo_grid() { delete below_; }
 
-    anisotropic_reflection_albedo_grid(T alpha_x, T alpha_y, T eta_s)
+    anisotropic_reflection_albedo_grid(T alpha_x, T alpha_y, T eta_s, bool integrate_below_one = false)
         : table_(alpha_x, alpha_y, eta_s), alpha_x_(alpha_x), alpha_y_(alpha_y), eta_s_(eta_s) {
         const bool anisotropic_interface = alpha_x != alpha_y && alpha_x > T(0) && alpha_y > T(0);
-        if (anisotropic_interface && eta_s < T(1) && eta_s > T(1) / T(dielectric_albedo_eta_min)) {
+        if (anisotropic_interface && eta_s < T(1) &&
+            (integrate_below_one || eta_s > T(1) / T(dielectric_albedo_eta_min))) {
             const double ax = double(alpha_x), ay = double(alpha_y), eta = double(eta_s);
             const ggx<double> d(unchecked, ax, ay);
+            below_added_ = T(dielectric_side_grid<T>::strong(ax, ay) ? below_margin_strong : below_margin);
             below_ = new dielectric_side_grid<T>(ax, ay, eta, below_margin, below_margin_strong,
                                                  [&d, eta](const vec3<double>& v) {
-                                                     return dielectric_visible_albedo(d, v, eta, below_cells, false);
+                                                     return dielectric_visible_albedo(d, v, eta, below_columns, below_rows, false);
                                                  },
                                                  true);
             return;
@@ -199,6 +208,22 @@ public:
         return glm::clamp(r, T(0), T(1));
     }
 
+    /// Whether R_ss is read from a grid of this interface's own views below an index ratio of
+    /// 1 (the class comment), which at_without_margin reads.
+    [[nodiscard]] bool integrated_below_one() const noexcept { return below_ != nullptr; }
+
+    /// For integrated_below_one(): R_ss(w) without the margin the nodes hold, read by
+    /// dielectric_side_grid::at_or_below (chords that do not rise above R_ss where it is
+    /// concave in mu below the critical cosine and convex above), so that what is left is
+    /// the nodes' quadrature error, within about +-9e-3, and a low read where R_ss falls
+    /// across the critical cosine faster than the rows resolve (surfaces with an alpha below
+    /// about 0.05; docs/conventions.md has the measured ranges). Dimensionless, in [0, 1].
+    /// Otherwise at(w).
+    [[nodiscard]] T at_without_margin(const vec3<T>& w) const noexcept {
+        if (below_ == nullptr) return at(w);
+        return glm::max(below_->at_or_below(w) - below_added_, T(0));
+    }
+
 private:
     // The roughness projected on the azimuth of cos^2(phi) from the tangent, at most 1. Not
     // reflection_projected_alpha: that reads the smoother alpha at the pole, and the grid's
@@ -213,6 +238,7 @@ private:
     anisotropic_view_grid<T> views_{};
     std::array<T, anisotropic_view_grid<T>::size> delta_{};
     T alpha_x_ = 0, alpha_y_ = 0, eta_s_ = 1;
+    T below_added_ = 0; // the margin below_'s nodes hold
     bool beyond_ = false;
     dielectric_side_grid<T>* below_ = nullptr; // R_ss per view below 1 (anisotropic), or nullptr
 };

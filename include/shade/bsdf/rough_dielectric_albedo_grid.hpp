@@ -35,21 +35,21 @@ namespace detail {
 /// "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT 3(2),
 /// eq. 99); a branch whose direction lands on the wrong side of the surface adds 0. The
 /// sampler's weight f |n·l| / pdf reduces to exactly G2 / G1(v) on both branches, so this is
-/// what rough_dielectric's own sampler averages to. Midpoint rule over cells x cells squares of
-/// the unit square that sample_visible_normal maps onto the visible normals. With
-/// `transmitted` false the refracted branch is left out: the reflection albedo R_ss(v) alone.
-/// Dimensionless, in [0, 1].
+/// what rough_dielectric's own sampler averages to. Midpoint rule over columns x rows cells of
+/// the unit square that sample_visible_normal maps onto the visible normals (columns in the
+/// angle u_x, rows in u_y). With `transmitted` false the refracted branch is left out: the
+/// reflection albedo R_ss(v) alone. Dimensionless, in [0, 1].
 [[nodiscard]] inline double dielectric_visible_albedo(const ggx<double>& distribution, const vec3<double>& v,
-                                                      double eta_s, int cells, bool transmitted = true) noexcept {
+                                                      double eta_s, int columns, int rows, bool transmitted) noexcept {
     const double masking_v = 1.0 + distribution.Lambda(v); // 1 / G1(v)
     const vec3<double> v_stretched = distribution.stretch(v);
     double sum = 0.0;
-    for (int i = 0; i < cells; ++i) {
-        // u = ((i + 1/2) / cells, (j + 1/2) / cells): the angle 2 pi u_x is the column's.
-        const double phi = 2.0 * pi<double> * (double(i) + 0.5) / double(cells);
+    for (int i = 0; i < columns; ++i) {
+        // u = ((i + 1/2) / columns, (j + 1/2) / rows): the angle 2 pi u_x is the column's.
+        const double phi = 2.0 * pi<double> * (double(i) + 0.5) / double(columns);
         const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
-        for (int j = 0; j < cells; ++j) {
-            const double u_y = (double(j) + 0.5) / double(cells);
+        for (int j = 0; j < rows; ++j) {
+            const double u_y = (double(j) + 0.5) / double(rows);
             const vec3<double> m = distribution.sample_visible_normal_stretched(v_stretched, cos_phi, sin_phi, u_y);
             const double v_dot_m = glm::dot(v, m);
             if (!(v_dot_m > 0.0)) continue;
@@ -64,7 +64,13 @@ namespace detail {
             }
         }
     }
-    return sum / (double(cells) * double(cells));
+    return sum / (double(columns) * double(rows));
+}
+
+/// dielectric_visible_albedo on cells x cells squares.
+[[nodiscard]] inline double dielectric_visible_albedo(const ggx<double>& distribution, const vec3<double>& v,
+                                                      double eta_s, int cells, bool transmitted = true) noexcept {
+    return dielectric_visible_albedo(distribution, v, eta_s, cells, cells, transmitted);
 }
 
 /// Added to every value of a rough_dielectric_albedo_grid: the grid reads E_s this much
@@ -91,9 +97,11 @@ public:
     static constexpr int azimuths = 37;              ///< azimuth nodes per row
     static constexpr int strong_azimuths = 73;       ///< azimuth nodes per row at strong anisotropy
     static constexpr int max_rows = 37;              ///< rows on a side with total internal reflection
+    static constexpr int max_rows_dense = 49;        ///< the same with dense_at_critical
     static constexpr int rows_without_critical = 16; ///< rows on a side without it
     static constexpr int rows_below_critical = 24;   ///< intervals from grazing to the critical cosine
     static constexpr int rows_above_critical = 12;   ///< intervals from the critical cosine to the normal
+    static constexpr int rows_above_critical_dense = 24; ///< the same with dense_at_critical
 
     /// Whether the grid of alphas alpha_x, alpha_y is at strong anisotropy
     /// (alpha_max / alpha_min >= 20): strong_azimuths and the larger margin.
@@ -107,8 +115,10 @@ public:
     /// GGX alphas alpha_x, alpha_y > 0 (unchecked), each node holding value(v) for its unit view
     /// v (vec3<double>, v.z > 0), plus `margin` (`strong_margin` at strong anisotropy), at most 1.
     /// With dense_at_critical the rows below the critical cosine are at mu_c (3 x^2 - 2 x^3)
-    /// instead of mu_c x^1.5 (x = i / 24): dense toward the critical cosine as well as toward
-    /// grazing, for a value that steps there (the reflection albedo alone: R + T does not).
+    /// instead of mu_c x^1.5 (x = i / 24), and rows_above_critical_dense rows above it at
+    /// mu_c + (1 - mu_c) y^1.5 (y = (i - 24) / 24) instead of 12 evenly spaced ones: dense
+    /// toward the critical cosine from both sides as well as toward grazing, for a value that
+    /// steps there (the reflection albedo alone: R + T does not).
     template <class Value>
     dielectric_side_grid(double alpha_x, double alpha_y, double eta_s, double margin, double strong_margin,
                          const Value& value, bool dense_at_critical = false)
@@ -120,7 +130,8 @@ public:
         const double added = is_strong ? strong_margin : margin;
         smoother_y_ = alpha_x > alpha_y;
         mu_c_ = eta_s < 1.0 ? T(std::sqrt((1.0 - eta_s) * (1.0 + eta_s))) : T(0);
-        rows_ = mu_c_ > T(0) ? rows_below_critical + rows_above_critical + 1 : rows_without_critical;
+        rows_above_ = dense_at_critical ? rows_above_critical_dense : rows_above_critical;
+        rows_ = mu_c_ > T(0) ? rows_below_critical + rows_above_ + 1 : rows_without_critical;
         const double log_q2 = double(log_q2_);
         for (int j = 0; j < azimuths_; ++j) {
             // The s whose warp is j / (azimuths_ - 1), by bisection (the warp is increasing).
@@ -172,6 +183,43 @@ public:
         return glm::clamp(e, T(0), T(1));
     }
 
+    /// A read of the value at w that is at or below the nodes' own function (their margin
+    /// included) where that function is concave in mu below the critical cosine and convex
+    /// above it, as the reflection albedo R_ss of a side with total internal reflection is
+    /// (a plateau near 1 that falls across mu_c and flattens toward the normal): below mu_c
+    /// the chord between the rows (at or below a concave function), above it the larger of
+    /// the lines through the next two rows on either side within that range, extended into
+    /// the cell (at or below a convex function outside the two points), and not above the
+    /// chord. Each row's value at w's azimuth is linear between its azimuth nodes, as in
+    /// at(). In [0, 1].
+    [[nodiscard]] T at_or_below(const vec3<T>& w) const noexcept {
+        const T mu = glm::clamp(std::abs(w.z), T(0), T(1));
+        const T row = glm::min(mu_coordinate(mu), T(rows_ - 1));
+        const int i = glm::min(int(row), rows_ - 2);
+        const T along = glm::min(azimuth_coordinate(w), T(azimuths_ - 1));
+        const int j = glm::min(int(along), azimuths_ - 2);
+        const T a = along - T(j);
+        const auto value = [this, j, a](int r) {
+            return (T(1) - a) * T(e_[r * azimuths_ + j]) + a * T(e_[r * azimuths_ + j + 1]);
+        };
+        // The line through rows r and r + 1, at mu.
+        const auto line = [this, &value, mu](int r) {
+            const T m0 = T(row_mu(r)), m1 = T(row_mu(r + 1));
+            const T v0 = value(r), v1 = value(r + 1);
+            return v0 + (v1 - v0) * (mu - m0) / (m1 - m0);
+        };
+        const T chord = line(i);
+        T below = chord;
+        if (mu_c_ > T(0) && i >= rows_below_critical) {
+            const bool after = i + 2 <= rows_ - 1, before = i - 1 >= rows_below_critical;
+            if (after && before) below = glm::max(line(i + 1), line(i - 1));
+            else if (after) below = line(i + 1);
+            else if (before) below = line(i - 1);
+            below = glm::min(below, chord);
+        }
+        return glm::clamp(below, T(0), T(1));
+    }
+
     /// The cosine-weighted hemispherical average of at(): 2 int at(w) mu dw / (2 pi).
     [[nodiscard]] T average() const noexcept { return average_; }
 
@@ -185,7 +233,8 @@ private:
             const double y = double(mu / mu_c_);
             return T(rows_below_critical) * T(0.5 - std::sin(std::asin(glm::clamp(1.0 - 2.0 * y, -1.0, 1.0)) / 3.0));
         }
-        return T(rows_below_critical) + T(rows_above_critical) * (mu - mu_c_) / (T(1) - mu_c_);
+        const T y = (mu - mu_c_) / (T(1) - mu_c_);
+        return T(rows_below_critical) + T(rows_above_) * (dense_at_critical_ ? std::cbrt(y * y) : y);
     }
 
     /// mu of row i.
@@ -200,7 +249,8 @@ private:
             if (dense_at_critical_) return mu_c * x * x * (3.0 - 2.0 * x);
             return mu_c * x * std::sqrt(x);
         }
-        return mu_c + (1.0 - mu_c) * double(i - rows_below_critical) / double(rows_above_critical);
+        const double y = double(i - rows_below_critical) / double(rows_above_);
+        return mu_c + (1.0 - mu_c) * (dense_at_critical_ ? y * std::sqrt(y) : y);
     }
 
     /// The spacing function of the azimuth nodes: s -> [0, 1], increasing.
@@ -221,12 +271,13 @@ private:
 
     T mu_c_ = 0;               ///< critical cosine, 0 when eta_s > 1
     int rows_ = rows_without_critical;
+    int rows_above_ = rows_above_critical; ///< intervals from mu_c to the normal
     int azimuths_ = azimuths;  ///< azimuth nodes per row (strong_azimuths at strong anisotropy)
     T log_q2_ = 0;             ///< 2 log q, the azimuth spacing's parameter
     bool smoother_y_ = false;  ///< alpha_x > alpha_y: the smoother axis is y
-    bool dense_at_critical_ = false; ///< rows below mu_c by the smoothstep (constructor)
+    bool dense_at_critical_ = false; ///< rows dense toward mu_c from both sides (constructor)
     T average_ = 1;
-    float e_[max_rows * strong_azimuths]{}; ///< row by row, azimuths_ values each
+    float e_[max_rows_dense * strong_azimuths]{}; ///< row by row, azimuths_ values each
 };
 
 } // namespace detail
@@ -258,7 +309,7 @@ private:
 /// E_s,avg = 2 int E_s(w) mu dw / (2 pi) over the hemisphere (the compensation's average) is
 /// integrated from the grid's own reads. Building takes about 0.3 s at -O2 (some 2,000 nodes
 /// on 48^2 visible normals each; twice that at strong anisotropy); the object holds about
-/// 22 KB. Meant to be built once per material, not per shading point. Isotropic interfaces
+/// 29 KB. Meant to be built once per material, not per shading point. Isotropic interfaces
 /// are handled as well (E_s then does not depend on the azimuth; the azimuth nodes agree
 /// within the midpoint rule's error, a few 1e-4).
 template <std::floating_point T>
