@@ -7,6 +7,7 @@
 // index-matched limit, its anisotropic form, and its validation.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -401,8 +402,7 @@ namespace {
 // the given lists, at view cosines mus and azimuths degrees: read - fresh asserted within
 // [low_bound, high_bound] widened by 4 standard errors; returns the range found and the
 // largest |error| of the correction table alone (detail::anisotropic_reflection_albedo) at
-// the same views. With integrate_below_one the grids are built so (every index ratio below
-// 1 integrated), and with without_margin they are read by at_without_margin.
+// the same views. With without_margin the grids are read by at_without_margin.
 struct grid_against_fresh {
     double low = 1, high = -1, table_worst = 0;
 };
@@ -413,12 +413,12 @@ template <class T>
 grid_against_fresh check_grid_against_fresh(std::initializer_list<double> etas, std::initializer_list<alphas> interfaces,
                                             std::initializer_list<double> mus, std::initializer_list<double> azimuths,
                                             std::uint64_t seed, double low_bound, double high_bound,
-                                            bool integrate_below_one = false, bool without_margin = false) {
+                                            bool without_margin = false) {
     constexpr std::size_t strata = 64;
     grid_against_fresh out;
     for (const double eta : etas)
         for (const alphas& a : interfaces) {
-            const d::anisotropic_reflection_albedo_grid<T> per_interface(T(a.x), T(a.y), T(eta), integrate_below_one);
+            const d::anisotropic_reflection_albedo_grid<T> per_interface(T(a.x), T(a.y), T(eta));
             const d::anisotropic_reflection_albedo<T> plain(T(a.x), T(a.y), T(eta));
             for (const double mu : mus)
                 for (const double degrees : azimuths) {
@@ -455,16 +455,17 @@ TEST_CASE_TEMPLATE("dielectric reflection albedo: beyond eta_hat 3 an anisotropi
     // or above, so a material's white furnace does not exceed 1) and at most 1e-2 (its
     // margin 2e-3 plus the quadrature's error, measured within +5e-3). The table alone, its
     // correction read at 3, errs by several per cent here (asserted: its largest |error| is
-    // above 2e-2, so these points test the grid and not the table). At eta 2.4 and 1 / 1.5
-    // the grid is the table, value for value.
+    // above 2e-2, so these points test the grid and not the table). At eta 2.4 and 1.05
+    // the grid is the table, value for value (below 1 it integrates: the test below).
     const grid_against_fresh found = check_grid_against_fresh<T>(
         {3.5, 6.0, 20.0}, {{0.3, 0.06}, {0.06, 0.3}, {0.15, 0.12}, {1.2, 0.05}, {0.4, 0.9}}, {0.1, 0.3, 0.6, 0.95},
         {0.0, 25.0, 50.0, 75.0, 90.0, 140.0}, 901, 0.0, 1e-2);
     MESSAGE("anisotropic grid beyond eta 3 - fresh: " << found.low << " to " << found.high
                                                       << "; the table alone: |error| up to " << found.table_worst);
     CHECK(found.table_worst > 2e-2);
-    for (const double eta : {2.4, 1 / 1.5}) {
+    for (const double eta : {2.4, 1.05}) {
         const d::anisotropic_reflection_albedo_grid<T> extended(T(0.3), T(0.06), T(eta));
+        CHECK(!extended.integrated_below_one());
         const d::anisotropic_reflection_albedo<T> plain(T(0.3), T(0.06), T(eta));
         for (const double mu : {0.1, 0.5, 1.0})
             for (const double degrees : {0.0, 40.0, 90.0}) {
@@ -510,13 +511,12 @@ TEST_CASE_TEMPLATE("dielectric reflection albedo: near index match from the dens
     CHECK(moved.at(w) == expected);
 }
 
-TEST_CASE_TEMPLATE("dielectric reflection albedo: an anisotropic interface's grid integrated below an index ratio of 1 reads R_ss from either side within its bounds",
+TEST_CASE_TEMPLATE("dielectric reflection albedo: below an index ratio of 1 an anisotropic interface's grid reads R_ss from either side within its bounds",
                    T, float, double) {
-    // With integrate_below_one the grid integrates R_ss for the interface at every index ratio
-    // below 1 (here 0.4, 0.6 and 0.8: critical cosines 0.92, 0.80, 0.60), where the table,
-    // its correction extrapolated from the anisotropic table's nodes, reads up to 0.18 high
-    // (asserted: its largest |error| at these views is above 0.03, so the points test the
-    // grid). 2.4:1, 10:1 and 1.1:1 at moderate roughness, both axes smoother in turn, mu
+    // The grid integrates R_ss for the interface at every index ratio below 1 (here 0.4,
+    // 0.6 and 0.8: critical cosines 0.92, 0.80, 0.60), where the table reads it from 0.03 low
+    // to 0.18 high (asserted: its largest |error| at these views is above 0.03, so the
+    // points test the grid). 2.4:1, 10:1 and 1.1:1 at moderate roughness, both axes smoother in turn, mu
     // 0.05-1 and six azimuths, against fresh 64^2 estimates of the model. at() keeps the
     // near-index form's bound from below, -1e-3 - 4 standard errors, and reads at most 0.02
     // high (its margin 5e-3 plus the quadrature and the chords above the critical cosine,
@@ -528,24 +528,27 @@ TEST_CASE_TEMPLATE("dielectric reflection albedo: an anisotropic interface's gri
     const grid_against_fresh with_margin =
         check_grid_against_fresh<T>({0.4, 0.6, 0.8}, {{0.38, 0.16}, {0.16, 0.38}, {0.6, 0.06}, {0.5, 0.45}},
                                     {0.05, 0.2, 0.5, 0.75, 0.85, 0.95, 1.0}, {0.0, 30.0, 60.0, 90.0, 110.0, 160.0}, 911,
-                                    -1e-3, 0.02, true, false);
+                                    -1e-3, 0.02, false);
     const grid_against_fresh without =
         check_grid_against_fresh<T>({0.4, 0.6, 0.8}, {{0.38, 0.16}, {0.16, 0.38}, {0.6, 0.06}, {0.5, 0.45}},
                                     {0.05, 0.2, 0.5, 0.75, 0.85, 0.95, 1.0}, {0.0, 30.0, 60.0, 90.0, 110.0, 160.0}, 911,
-                                    -0.012, 0.012, true, true);
+                                    -0.012, 0.012, true);
     MESSAGE("anisotropic grid integrated below 1 - fresh: at() " << with_margin.low << " to " << with_margin.high
                                                                   << ", at_without_margin() " << without.low << " to "
                                                                   << without.high << "; the table alone: |error| up to "
                                                                   << with_margin.table_worst);
     CHECK(with_margin.table_worst > 0.03);
-    // Without the flag the grid below 1 / 1.05 is the table, value for value.
-    const d::anisotropic_reflection_albedo_grid<T> plain_grid(T(0.38), T(0.16), T(0.6));
-    const d::anisotropic_reflection_albedo<T> plain(T(0.38), T(0.16), T(0.6));
-    CHECK(!plain_grid.integrated_below_one());
-    for (const double mu : {0.1, 0.5, 1.0}) {
-        const vec3<T> w(view(mu, 0, 0.7));
-        CHECK(plain_grid.at(w) == plain.at(w));
-        CHECK(plain_grid.at_without_margin(w) == plain.at(w));
+    // Isotropic, or above 1, there is no grid: at_without_margin is at(), the table.
+    for (const std::array<double, 3> interface : {std::array<double, 3>{0.3, 0.3, 0.6}, std::array<double, 3>{0.38, 0.16, 1.5}}) {
+        const T ax = T(interface[0]), ay = T(interface[1]), eta = T(interface[2]);
+        const d::anisotropic_reflection_albedo_grid<T> grid_or_table{ax, ay, eta};
+        const d::anisotropic_reflection_albedo<T> plain{ax, ay, eta};
+        CHECK(!grid_or_table.integrated_below_one());
+        for (const double mu : {0.1, 0.5, 1.0}) {
+            const vec3<T> w(view(mu, 0, 0.7));
+            CHECK(grid_or_table.at(w) == plain.at(w));
+            CHECK(grid_or_table.at_without_margin(w) == plain.at(w));
+        }
     }
 }
 

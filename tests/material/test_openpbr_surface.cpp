@@ -1148,8 +1148,8 @@ TEST_CASE("openpbr_surface: white furnace of anisotropic glass with a thin film 
     // 1.035 (0.51, 0.97, 0.432, film weight 0.96, mu 0.8, phi 0.4), 1.015 (0.702, 0.47,
     // 0.517, mu 0.6, phi 1.2; all predicted from the lobes' albedos, the first sampled at
     // 1.034). Each view here read above 1.001 that way; with R_ss integrated for the
-    // interface (anisotropic_reflection_albedo_grid's integrate_below_one, read without its
-    // margin) none may: at most 1.001 + 4 standard errors of furnace_stratified (48^2 u
+    // interface (anisotropic_reflection_albedo_grid below 1, read without its margin) none
+    // may: at most 1.001 + 4 standard errors of furnace_stratified (48^2 u
     // strata; measured 0.980 to 0.991). Below the band: the film's share reads high by its
     // margins and E_s's tables by theirs, which the table's high R_ss had offset; asserted at
     // least 0.97.

@@ -112,19 +112,19 @@ private:
 /// beyond_cells^2 visits of the visible-normal sampler at construction (about 8 ms); at() then
 /// one isotropic table read and a bilinear read.
 ///
-/// From the denser side near index match (1 / 1.05 < eta_s < 1, alpha_x != alpha_y, both > 0),
-/// where the table's correction is extrapolated (scaled toward 0 at eta_s = 1), it misses the
-/// total reflection of grazing views along the smoother axis (reading up to 0.5 low), so R_ss
-/// is integrated per interface instead: a dielectric_side_grid of the interface's own views
-/// (rough_dielectric_albedo_grid's layout: the critical cosine on a row, azimuths crowded
-/// toward the smoother axis; here with the rows below it dense toward it as well), each node
-/// detail::dielectric_visible_albedo's reflected branch on below_columns x below_rows visible normals, plus
-/// below_margin (below_margin_strong at alpha_max / alpha_min >= 20), held on the heap (about
-/// 14 KB; copies copy it). Building takes 100 to 180 ms at -O2. With integrate_below_one the
-/// same grid serves every eta_s < 1 of an anisotropic interface: for a caller that needs
-/// R_ss close to its value from either side (at_without_margin), which the table, reading
-/// it up to 0.18 high there, does not give. Elsewhere (eta_s in [1 / 1.05, 3] otherwise, or equal alphas) exactly
-/// anisotropic_reflection_albedo. alpha_x, alpha_y >= 0, eta_s > 0 (unchecked).
+/// From the denser side (eta_s < 1, alpha_x != alpha_y, both > 0) the table errs most: near
+/// index match (1 / 1.05 < eta_s < 1), where its correction is extrapolated (scaled toward 0
+/// at eta_s = 1), it misses the total reflection of grazing views along the smoother axis
+/// (reading up to 0.5 low), and between 1 / 3 and 1 / 1.05 it reads from 0.03 low to 0.18
+/// high. So R_ss is integrated per interface there: a dielectric_side_grid of the
+/// interface's own views (rough_dielectric_albedo_grid's layout: the critical cosine on a
+/// row, azimuths crowded toward the smoother axis; here with the rows on both sides of it
+/// dense toward it as well), each node detail::dielectric_visible_albedo's reflected branch
+/// on below_columns x below_rows visible normals, plus below_margin (below_margin_strong at
+/// alpha_max / alpha_min >= 20), held on the heap (about 14 KB; copies copy it). Building
+/// takes 100 to 180 ms at -O2. at() reads the grid, at or above R_ss; at_without_margin()
+/// close to it from either side. Elsewhere (eta_s in [1, 3] otherwise, or equal alphas)
+/// exactly anisotropic_reflection_albedo. alpha_x, alpha_y >= 0, eta_s > 0 (unchecked).
 template <std::floating_point T>
 class anisotropic_reflection_albedo_grid {
 public:
@@ -167,11 +167,10 @@ public:
     }
     ~anisotropic_reflection_albedo_grid() { delete below_; }
 
-    anisotropic_reflection_albedo_grid(T alpha_x, T alpha_y, T eta_s, bool integrate_below_one = false)
+    anisotropic_reflection_albedo_grid(T alpha_x, T alpha_y, T eta_s)
         : table_(alpha_x, alpha_y, eta_s), alpha_x_(alpha_x), alpha_y_(alpha_y), eta_s_(eta_s) {
         const bool anisotropic_interface = alpha_x != alpha_y && alpha_x > T(0) && alpha_y > T(0);
-        if (anisotropic_interface && eta_s < T(1) &&
-            (integrate_below_one || eta_s > T(1) / T(dielectric_albedo_eta_min))) {
+        if (anisotropic_interface && eta_s < T(1)) {
             const double ax = double(alpha_x), ay = double(alpha_y), eta = double(eta_s);
             const ggx<double> d(unchecked, ax, ay);
             below_added_ = T(dielectric_side_grid<T>::strong(ax, ay) ? below_margin_strong : below_margin);
@@ -208,11 +207,11 @@ public:
         return glm::clamp(r, T(0), T(1));
     }
 
-    /// Whether R_ss is read from a grid of this interface's own views below an index ratio of
-    /// 1 (the class comment), which at_without_margin reads.
+    /// Whether R_ss is read from a grid of this interface's own views (below an index ratio
+    /// of 1, anisotropic; the class comment).
     [[nodiscard]] bool integrated_below_one() const noexcept { return below_ != nullptr; }
 
-    /// For integrated_below_one(): R_ss(w) without the margin the nodes hold, read by
+    /// With integrated_below_one(): R_ss(w) without the margin the nodes hold, read by
     /// dielectric_side_grid::at_or_below (chords that do not rise above R_ss where it is
     /// concave in mu below the critical cosine and convex above), so that what is left is
     /// the nodes' quadrature error, within about +-9e-3, and a low read where R_ss falls

@@ -262,11 +262,11 @@ enum class interface_albedo {
 ///     multiple_scattering_reflection, untinted) and is divided by that part's albedo
 ///     as well, 1 - R_ss(v) in all: there most views lie in the cone of total reflection,
 ///     where the transmittance alone is a small difference of two tables whose inverse
-///     would amplify their error. With a thin film over an anisotropic interface below 1
-///     that R_ss (and E_spec's (1 - thin_film_weight) R_ss) is integrated for the
-///     interface when the material is built (detail::anisotropic_reflection_albedo_grid
-///     below 1), not read from the table: without a film E_spec's R_ss cancels the
-///     table's error, with one it does not.
+///     would amplify their error. For an anisotropic interface that R_ss (as E_spec's) is
+///     integrated for the interface when the material is built
+///     (detail::anisotropic_reflection_albedo_grid below 1), and under a thin film, where
+///     E_spec is the film's share and no longer cancels R_ss's error, read without its
+///     margin.
 ///   * f_diffuse: shade::eon (base_weight base_color, base_diffuse_roughness).
 ///   * f_subsurface: shade::eon (subsurface_color, base_diffuse_roughness): the surface
 ///     part of subsurface scattering as a diffuse lobe; the interior is reported by
@@ -764,7 +764,7 @@ private:
             if (transmission_ && Tw > T(0)) {
                 w.transmission_view = transmission_->prepare(v, at);
                 const T e_s = w.transmission_view.albedo;
-                const T r_ss = transmission_reflection_bounded_
+                const T r_ss = transmission_reflection_without_margin_
                                    ? transmission_reflection_anisotropic_.at_without_margin(w.v_local)
                                : transmission_anisotropic_
                                    ? transmission_reflection_anisotropic_.at(w.v_local)
@@ -779,10 +779,9 @@ private:
                 // less than 1 - E_spec (largest channel) to carry, the share of the interface's
                 // single-scattering reflection R_ss that makes up the difference (class
                 // comment), so that the lobe is never scaled up. With a film (an anisotropic
-                // interface below 1: transmission_reflection_bounded_) E_spec is the film's
-                // share, not R_ss, and the lobe carries (1 - R_true) / (1 - R_ss) of what it
-                // is given: R_ss is then the interface's own grid without its margin, not
-                // the table, which reads it high there (by up to 0.18).
+                // interface below 1: transmission_reflection_without_margin_) E_spec is the
+                // film's share, not R_ss, and the lobe carries (1 - R_true) / (1 - R_ss) of
+                // what it is given: R_ss is then read without the grid's margin.
                 const T lost = T(1) - e_s;
                 const T carried = glm::max(e_s - r_ss, T(0)) +
                                   (interface_draws_ ? lost : transmission_->transmitted_share(false) * lost);
@@ -1308,7 +1307,7 @@ private:
     detail::anisotropic_reflection_albedo_grid<T> transmission_reflection_anisotropic_{}; // R_ss(v), anisotropic
     bool transmission_anisotropic_ = false;
     bool transmission_reflection_is_specular_ = false; // transmission_reflection_ = E_spec (build)
-    bool transmission_reflection_bounded_ = false;     // R_ss read at or below its value (view_at)
+    bool transmission_reflection_without_margin_ = false; // R_ss read without the grid's margin (view_at)
     bool coat_anisotropic_ = false;
     bool specular_anisotropic_ = false;
     T specular_eta_ = T(1.5);
@@ -1391,14 +1390,11 @@ void openpbr_surface<T>::build() {
         specular_alpha_ = iso(*base_distribution);
         specular_albedo_ = detail::reflection_albedo_row<T>(specular_alpha_, specular_eta_);
         specular_anisotropic_ = base_distribution->alpha_x() != base_distribution->alpha_y();
-        // Under a film of weight below 1 over an index ratio below 1, R_ss integrated for
-        // this interface: E_spec's (1 - thin_film_weight) R_ss then reads close to its value,
-        // where the table can read it far high (the transmission lobe, below, reads the same
-        // grid when its index is the same).
+        // Below an index ratio of 1 the grid integrates R_ss for this interface (100-180 ms);
+        // the transmission lobe, below, reads the same grid when its index is the same.
         if (specular_anisotropic_ && specular_eta_ != T(1))
             specular_albedo_anisotropic_ = detail::anisotropic_reflection_albedo_grid<T>(
-                base_distribution->alpha_x(), base_distribution->alpha_y(), specular_eta_,
-                film_weight > T(0) && film_weight < T(1) && specular_eta_ < T(1));
+                base_distribution->alpha_x(), base_distribution->alpha_y(), specular_eta_);
         if (film_dielectric_) {
             const T eta = specular_eta_;
             const thin_film_fresnel<T>& film = *film_dielectric_;
@@ -1552,15 +1548,15 @@ void openpbr_surface<T>::build() {
             interface_draws_ = eta < T(1);
             transmission_reflection_ = detail::reflection_albedo_row<T>(transmission_alpha_, eta);
             transmission_anisotropic_ = base_distribution->alpha_x() != base_distribution->alpha_y();
-            // With a film below an index ratio of 1 the transmission lobe is divided by a
-            // lower bound of R_ss (view_at), which needs R_ss integrated for this interface.
-            transmission_reflection_bounded_ = transmission_anisotropic_ && eta < T(1) && p.thin_film_weight > T(0);
-            if (transmission_reflection_bounded_ && specular_albedo_anisotropic_.integrated_below_one() &&
+            // With a film over an anisotropic interface below 1 the transmission lobe is
+            // divided by 1 - R_ss read without the grid's margin (view_at).
+            transmission_reflection_without_margin_ = transmission_anisotropic_ && eta < T(1) && p.thin_film_weight > T(0);
+            if (transmission_anisotropic_ && specular_albedo_anisotropic_.integrated_below_one() &&
                 std::abs(specular_eta_ - eta) <= T(8) * std::numeric_limits<T>::epsilon() * eta)
                 transmission_reflection_anisotropic_ = specular_albedo_anisotropic_; // the same interface
             else if (transmission_anisotropic_)
                 transmission_reflection_anisotropic_ = detail::anisotropic_reflection_albedo_grid<T>(
-                    base_distribution->alpha_x(), base_distribution->alpha_y(), eta, transmission_reflection_bounded_);
+                    base_distribution->alpha_x(), base_distribution->alpha_y(), eta);
             // R_ss at the view is the specular lobe's E_spec itself when both read the same
             // row and E_spec has no tint or film: one lookup serves both. eta'_s is
             // specular_ior up to rounding when uncoated at specular_weight 1
