@@ -552,6 +552,31 @@ TEST_CASE_TEMPLATE("dielectric reflection albedo: below an index ratio of 1 an a
     }
 }
 
+TEST_CASE_TEMPLATE("dielectric reflection albedo: the anisotropic grid below 1 reads finite values at its extremes", T, float,
+                   double) {
+    // At the smallest index ratio (1e-4: the critical cosine sqrt(1 - 1e-8) is 1 in float,
+    // and the rows above it would all sit at 1) and for directions with NaN or infinite
+    // components (a grid read must not turn NaN into a node index), at() and
+    // at_without_margin() read values in [0, 1].
+    for (const double eta : {1e-4, 0.5}) {
+        const d::anisotropic_reflection_albedo_grid<T> grid_below(T(0.3), T(0.1), T(eta));
+        REQUIRE(grid_below.integrated_below_one());
+        const T nan = std::numeric_limits<T>::quiet_NaN(), inf = std::numeric_limits<T>::infinity();
+        for (const vec3<T>& w : {vec3<T>(0, 0, 1), vec3<T>(T(0.6), T(0.8), 0), vec3<T>(T(0.6), 0, T(0.8)),
+                                 vec3<T>(nan, 0, nan), vec3<T>(inf, 1, T(0.5)), vec3<T>(inf, inf, inf),
+                                 vec3<T>(0, nan, 1)}) {
+            CAPTURE(eta);
+            CAPTURE(w.x);
+            CAPTURE(w.y);
+            CAPTURE(w.z);
+            for (const T r : {grid_below.at(w), grid_below.at_without_margin(w)}) {
+                CHECK(r >= T(0));
+                CHECK(r <= T(1));
+            }
+        }
+    }
+}
+
 TEST_CASE("dielectric reflection albedo: the side grid's read from below stays under a concave-then-convex function") {
     // dielectric_side_grid::at_or_below on a function of mu alone (the same at every
     // azimuth) shaped as R_ss of a side with total internal reflection: concave below the

@@ -129,7 +129,10 @@ public:
         azimuths_ = is_strong ? strong_azimuths : azimuths;
         const double added = is_strong ? strong_margin : margin;
         smoother_y_ = alpha_x > alpha_y;
-        mu_c_ = eta_s < 1.0 ? T(std::sqrt((1.0 - eta_s) * (1.0 + eta_s))) : T(0);
+        // The critical cosine's row; at most 1 - 1e-4, so that the rows above it keep
+        // distinct cosines in T where eta_s is so small that mu_c rounds to 1 (the nodes
+        // still hold the value at their own cosines).
+        mu_c_ = eta_s < 1.0 ? T(glm::min(std::sqrt((1.0 - eta_s) * (1.0 + eta_s)), 1.0 - 1e-4)) : T(0);
         rows_above_ = dense_at_critical ? rows_above_critical_dense : rows_above_critical;
         rows_ = mu_c_ > T(0) ? rows_below_critical + rows_above_ + 1 : rows_without_critical;
         const double log_q2 = double(log_q2_);
@@ -169,7 +172,7 @@ public:
     /// The value at the local direction w (n = +z, the tangent along +x): only |w.z| and w's
     /// azimuth are read, so w may point either way. Bilinear between the nodes, in [0, 1].
     [[nodiscard]] T at(const vec3<T>& w) const noexcept {
-        const T mu = glm::clamp(std::abs(w.z), T(0), T(1));
+        const T mu = unit_cosine(w);
         const T row = glm::min(mu_coordinate(mu), T(rows_ - 1));
         const int i = glm::min(int(row), rows_ - 2);
         const T t = row - T(i);
@@ -193,7 +196,7 @@ public:
     /// chord. Each row's value at w's azimuth is linear between its azimuth nodes, as in
     /// at(). In [0, 1].
     [[nodiscard]] T at_or_below(const vec3<T>& w) const noexcept {
-        const T mu = glm::clamp(std::abs(w.z), T(0), T(1));
+        const T mu = unit_cosine(w);
         const T row = glm::min(mu_coordinate(mu), T(rows_ - 1));
         const int i = glm::min(int(row), rows_ - 2);
         const T along = glm::min(azimuth_coordinate(w), T(azimuths_ - 1));
@@ -224,6 +227,13 @@ public:
     [[nodiscard]] T average() const noexcept { return average_; }
 
 private:
+    /// |w.z| clamped to [0, 1], NaN read as 0 (a grid read is then a node's value, never an
+    /// index from NaN).
+    [[nodiscard]] static T unit_cosine(const vec3<T>& w) noexcept {
+        const T mu = std::abs(w.z);
+        return mu <= T(1) ? mu : mu > T(1) ? T(1) : T(0);
+    }
+
     /// The row coordinate (0 to rows_ - 1) of mu.
     [[nodiscard]] T mu_coordinate(T mu) const noexcept {
         if (!(mu_c_ > T(0))) return T(rows_without_critical - 1) * std::cbrt(mu * mu);
@@ -266,7 +276,9 @@ private:
         // On the normal the azimuth is undefined and the value the same at every one: s = 1.
         const T cos2 = planar > T(0) ? xx / planar : T(1);
         const T s = smoother_y_ ? cos2 : T(1) - cos2;
-        return T(azimuth_warp(double(glm::clamp(s, T(0), T(1))), double(log_q2_))) * T(azimuths_ - 1);
+        // In [0, 1], NaN (infinite components) read as 0.
+        const T s_unit = s >= T(0) ? glm::min(s, T(1)) : T(0);
+        return T(azimuth_warp(double(s_unit), double(log_q2_))) * T(azimuths_ - 1);
     }
 
     T mu_c_ = 0;               ///< critical cosine, 0 when eta_s > 1
