@@ -143,12 +143,11 @@ public:
     anisotropic_reflection_albedo_grid() = default;
     anisotropic_reflection_albedo_grid(const anisotropic_reflection_albedo_grid& other)
         : table_(other.table_), views_(other.views_), delta_(other.delta_), alpha_x_(other.alpha_x_),
-          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), below_added_(other.below_added_), beyond_(other.beyond_),
+          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_),
           below_(other.below_ != nullptr ? new dielectric_side_grid<T>(*other.below_) : nullptr) {}
     anisotropic_reflection_albedo_grid(anisotropic_reflection_albedo_grid&& other) noexcept
         : table_(other.table_), views_(other.views_), delta_(other.delta_), alpha_x_(other.alpha_x_),
-          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), below_added_(other.below_added_), beyond_(other.beyond_),
-          below_(other.below_) {
+          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_), below_(other.below_) {
         other.below_ = nullptr;
     }
     anisotropic_reflection_albedo_grid& operator=(anisotropic_reflection_albedo_grid other) noexcept {
@@ -158,7 +157,6 @@ public:
         alpha_x_ = other.alpha_x_;
         alpha_y_ = other.alpha_y_;
         eta_s_ = other.eta_s_;
-        below_added_ = other.below_added_;
         beyond_ = other.beyond_;
         dielectric_side_grid<T>* const below = below_;
         below_ = other.below_;
@@ -173,7 +171,6 @@ public:
         if (anisotropic_interface && eta_s < T(1)) {
             const double ax = double(alpha_x), ay = double(alpha_y), eta = double(eta_s);
             const ggx<double> d(unchecked, ax, ay);
-            below_added_ = T(dielectric_side_grid<T>::strong(ax, ay) ? below_margin_strong : below_margin);
             below_ = new dielectric_side_grid<T>(ax, ay, eta, below_margin, below_margin_strong,
                                                  [&d, eta](const vec3<double>& v) {
                                                      return dielectric_visible_albedo(d, v, eta, below_columns, below_rows, false);
@@ -220,7 +217,7 @@ public:
     /// Otherwise at(w).
     [[nodiscard]] T at_without_margin(const vec3<T>& w) const noexcept {
         if (below_ == nullptr) return at(w);
-        return glm::max(below_->at_or_below(w) - below_added_, T(0));
+        return glm::max(below_->at_or_below(w) - below_->margin(), T(0));
     }
 
 private:
@@ -237,7 +234,6 @@ private:
     anisotropic_view_grid<T> views_{};
     std::array<T, anisotropic_view_grid<T>::size> delta_{};
     T alpha_x_ = 0, alpha_y_ = 0, eta_s_ = 1;
-    T below_added_ = 0; // the margin below_'s nodes hold
     bool beyond_ = false;
     dielectric_side_grid<T>* below_ = nullptr; // R_ss per view below 1 (anisotropic), or nullptr
 };

@@ -127,7 +127,8 @@ public:
         log_q2_ = T(2 * std::log(q));
         const bool is_strong = strong(alpha_x, alpha_y);
         azimuths_ = is_strong ? strong_azimuths : azimuths;
-        const double added = is_strong ? strong_margin : margin;
+        added_ = T(is_strong ? strong_margin : margin);
+        const double added = double(added_);
         smoother_y_ = alpha_x > alpha_y;
         // The critical cosine's row; at most 1 - 1e-4, so that the rows above it keep
         // distinct cosines in T where eta_s is so small that mu_c rounds to 1 (the nodes
@@ -172,17 +173,8 @@ public:
     /// The value at the local direction w (n = +z, the tangent along +x): only |w.z| and w's
     /// azimuth are read, so w may point either way. Bilinear between the nodes, in [0, 1].
     [[nodiscard]] T at(const vec3<T>& w) const noexcept {
-        const T mu = unit_cosine(w);
-        const T row = glm::min(mu_coordinate(mu), T(rows_ - 1));
-        const int i = glm::min(int(row), rows_ - 2);
-        const T t = row - T(i);
-        const T along = glm::min(azimuth_coordinate(w), T(azimuths_ - 1));
-        const int j = glm::min(int(along), azimuths_ - 2);
-        const T a = along - T(j);
-        const int n = azimuths_;
-        const auto node = [this, n](int r, int c) { return T(e_[r * n + c]); };
-        const T e = (T(1) - t) * ((T(1) - a) * node(i, j) + a * node(i, j + 1)) +
-                    t * ((T(1) - a) * node(i + 1, j) + a * node(i + 1, j + 1));
+        const cell c = cell_of(w);
+        const T e = (T(1) - c.t) * row_at(c, c.i) + c.t * row_at(c, c.i + 1);
         return glm::clamp(e, T(0), T(1));
     }
 
@@ -196,20 +188,13 @@ public:
     /// chord. Each row's value at w's azimuth is linear between its azimuth nodes, as in
     /// at(). In [0, 1].
     [[nodiscard]] T at_or_below(const vec3<T>& w) const noexcept {
-        const T mu = unit_cosine(w);
-        const T row = glm::min(mu_coordinate(mu), T(rows_ - 1));
-        const int i = glm::min(int(row), rows_ - 2);
-        const T along = glm::min(azimuth_coordinate(w), T(azimuths_ - 1));
-        const int j = glm::min(int(along), azimuths_ - 2);
-        const T a = along - T(j);
-        const auto value = [this, j, a](int r) {
-            return (T(1) - a) * T(e_[r * azimuths_ + j]) + a * T(e_[r * azimuths_ + j + 1]);
-        };
+        const cell c = cell_of(w);
+        const int i = c.i;
         // The line through rows r and r + 1, at mu.
-        const auto line = [this, &value, mu](int r) {
+        const auto line = [this, &c](int r) {
             const T m0 = T(row_mu(r)), m1 = T(row_mu(r + 1));
-            const T v0 = value(r), v1 = value(r + 1);
-            return v0 + (v1 - v0) * (mu - m0) / (m1 - m0);
+            const T v0 = row_at(c, r), v1 = row_at(c, r + 1);
+            return v0 + (v1 - v0) * (c.mu - m0) / (m1 - m0);
         };
         const T chord = line(i);
         T below = chord;
@@ -226,7 +211,29 @@ public:
     /// The cosine-weighted hemispherical average of at(): 2 int at(w) mu dw / (2 pi).
     [[nodiscard]] T average() const noexcept { return average_; }
 
+    /// What every node holds above its value (the constructor's margin, or strong_margin).
+    [[nodiscard]] T margin() const noexcept { return added_; }
+
 private:
+    /// Where a read falls: w's cosine mu, its row cell i (rows i and i + 1) and the weight t
+    /// of row i + 1, its azimuth cell j and the weight a of node j + 1.
+    struct cell {
+        T mu, t, a;
+        int i, j;
+    };
+    [[nodiscard]] cell cell_of(const vec3<T>& w) const noexcept {
+        const T mu = unit_cosine(w);
+        const T row = glm::min(mu_coordinate(mu), T(rows_ - 1));
+        const int i = glm::min(int(row), rows_ - 2);
+        const T along = glm::min(azimuth_coordinate(w), T(azimuths_ - 1));
+        const int j = glm::min(int(along), azimuths_ - 2);
+        return {mu, row - T(i), along - T(j), i, j};
+    }
+    /// Row r's value at the cell's azimuth, linear between its nodes j and j + 1.
+    [[nodiscard]] T row_at(const cell& c, int r) const noexcept {
+        return (T(1) - c.a) * T(e_[r * azimuths_ + c.j]) + c.a * T(e_[r * azimuths_ + c.j + 1]);
+    }
+
     /// |w.z| clamped to [0, 1], NaN read as 0 (a grid read is then a node's value, never an
     /// index from NaN).
     [[nodiscard]] static T unit_cosine(const vec3<T>& w) noexcept {
@@ -289,6 +296,7 @@ private:
     bool smoother_y_ = false;  ///< alpha_x > alpha_y: the smoother axis is y
     bool dense_at_critical_ = false; ///< rows dense toward mu_c from both sides (constructor)
     T average_ = 1;
+    T added_ = 0;              ///< the margin every node holds
     float e_[max_rows_dense * strong_azimuths]{}; ///< row by row, azimuths_ values each
 };
 

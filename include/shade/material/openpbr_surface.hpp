@@ -764,10 +764,9 @@ private:
             if (transmission_ && Tw > T(0)) {
                 w.transmission_view = transmission_->prepare(v, at);
                 const T e_s = w.transmission_view.albedo;
-                const T r_ss = transmission_reflection_without_margin_
-                                   ? transmission_reflection_anisotropic_.at_without_margin(w.v_local)
-                               : transmission_anisotropic_
-                                   ? transmission_reflection_anisotropic_.at(w.v_local)
+                const T r_ss = transmission_anisotropic_
+                                   ? (film_dielectric_ ? transmission_reflection_anisotropic_.at_without_margin(w.v_local)
+                                                       : transmission_reflection_anisotropic_.at(w.v_local))
                                : transmission_reflection_is_specular_ ? w.specular_albedo.x
                                                                       : transmission_reflection_.at(w.mu);
                 // The single-scattering part e_s - R_ss cannot be negative; where the two tables
@@ -778,10 +777,10 @@ private:
                 // part too (all of 1 - e_s instead of tau (1 - e_s)), and where that leaves it
                 // less than 1 - E_spec (largest channel) to carry, the share of the interface's
                 // single-scattering reflection R_ss that makes up the difference (class
-                // comment), so that the lobe is never scaled up. With a film (an anisotropic
-                // interface below 1: transmission_reflection_without_margin_) E_spec is the
+                // comment), so that the lobe is never scaled up. With a film E_spec is the
                 // film's share, not R_ss, and the lobe carries (1 - R_true) / (1 - R_ss) of
-                // what it is given: R_ss is then read without the grid's margin.
+                // what it is given: an anisotropic interface below 1 then reads R_ss without
+                // its grid's margin (at_without_margin; elsewhere the same as at()).
                 const T lost = T(1) - e_s;
                 const T carried = glm::max(e_s - r_ss, T(0)) +
                                   (interface_draws_ ? lost : transmission_->transmitted_share(false) * lost);
@@ -1307,7 +1306,6 @@ private:
     detail::anisotropic_reflection_albedo_grid<T> transmission_reflection_anisotropic_{}; // R_ss(v), anisotropic
     bool transmission_anisotropic_ = false;
     bool transmission_reflection_is_specular_ = false; // transmission_reflection_ = E_spec (build)
-    bool transmission_reflection_without_margin_ = false; // R_ss read without the grid's margin (view_at)
     bool coat_anisotropic_ = false;
     bool specular_anisotropic_ = false;
     T specular_eta_ = T(1.5);
@@ -1548,24 +1546,19 @@ void openpbr_surface<T>::build() {
             interface_draws_ = eta < T(1);
             transmission_reflection_ = detail::reflection_albedo_row<T>(transmission_alpha_, eta);
             transmission_anisotropic_ = base_distribution->alpha_x() != base_distribution->alpha_y();
-            // With a film over an anisotropic interface below 1 the transmission lobe is
-            // divided by 1 - R_ss read without the grid's margin (view_at).
-            transmission_reflection_without_margin_ = transmission_anisotropic_ && eta < T(1) && p.thin_film_weight > T(0);
-            if (transmission_anisotropic_ && specular_albedo_anisotropic_.integrated_below_one() &&
-                std::abs(specular_eta_ - eta) <= T(8) * std::numeric_limits<T>::epsilon() * eta)
+            // eta'_s is specular_ior up to rounding when uncoated at specular_weight 1
+            // (modulated_ior_ratio's round trip through F0): equal within 8 ulp here.
+            const bool same_index = std::abs(specular_eta_ - eta) <= T(8) * std::numeric_limits<T>::epsilon() * eta;
+            if (transmission_anisotropic_ && specular_albedo_anisotropic_.integrated_below_one() && same_index)
                 transmission_reflection_anisotropic_ = specular_albedo_anisotropic_; // the same interface
             else if (transmission_anisotropic_)
                 transmission_reflection_anisotropic_ = detail::anisotropic_reflection_albedo_grid<T>(
                     base_distribution->alpha_x(), base_distribution->alpha_y(), eta);
             // R_ss at the view is the specular lobe's E_spec itself when both read the same
-            // row and E_spec has no tint or film: one lookup serves both. eta'_s is
-            // specular_ior up to rounding when uncoated at specular_weight 1
-            // (modulated_ior_ratio's round trip through F0): equal within 8 ulp here.
-            transmission_reflection_is_specular_ =
-                specular_ && !specular_anisotropic_ && !transmission_anisotropic_ &&
-                specular_alpha_ == transmission_alpha_ &&
-                std::abs(specular_eta_ - eta) <= T(8) * std::numeric_limits<T>::epsilon() * eta &&
-                p.specular_color == rgb<T>(1) && !(film_weight > T(0));
+            // row and E_spec has no tint or film: one lookup serves both.
+            transmission_reflection_is_specular_ = specular_ && !specular_anisotropic_ && !transmission_anisotropic_ &&
+                                                   specular_alpha_ == transmission_alpha_ && same_index &&
+                                                   p.specular_color == rgb<T>(1) && !(film_weight > T(0));
         }
     }
 

@@ -186,11 +186,12 @@ struct bvh_tree {
     }
 };
 
-/// The size of the ranges that a parallel pass over n items is cut into: n / 8, so that a
-/// small build is shared out too, but at least `least` items (each range has its cost to
-/// hand out) and at most `most`.
-[[nodiscard]] constexpr std::size_t bvh_range_size(std::size_t n, std::size_t least, std::size_t most) noexcept {
-    const std::size_t t = n / 8 > least ? n / 8 : least;
+/// The size of the ranges that a parallel pass over n items is cut into: n / parts (8 by
+/// default), so that a small build is shared out too, but at least `least` items (each
+/// range has its cost to hand out) and at most `most`.
+[[nodiscard]] constexpr std::size_t bvh_range_size(std::size_t n, std::size_t least, std::size_t most,
+                                                   std::size_t parts = 8) noexcept {
+    const std::size_t t = n / parts > least ? n / parts : least;
     return t < most ? t : most;
 }
 
@@ -300,8 +301,7 @@ private:
     /// but no fewer than 256 (each task's bins and merges have their cost) and no more
     /// than task_size.
     [[nodiscard]] std::uint32_t task_for(std::uint32_t n) const noexcept {
-        const std::uint32_t t = n / 4 > 256 ? n / 4 : 256;
-        return t < task_size_ ? t : task_size_;
+        return static_cast<std::uint32_t>(bvh_range_size(n, 256, task_size_, 4));
     }
     /// The tasks of task_ primitives over n, and the range of task c from `first`.
     [[nodiscard]] std::size_t tasks(std::uint32_t n) const noexcept { return (n - 1) / task_ + 1; }
