@@ -453,7 +453,8 @@ TEST_CASE_TEMPLATE("dielectric reflection albedo: beyond eta_hat 3 an anisotropi
     // rougher alpha above 1, both axes rougher in turn, mu 0.1-0.95 and six azimuths, against
     // fresh 64^2 estimates of the model: read - fresh at least -4 standard errors (it reads at
     // or above, so a material's white furnace does not exceed 1) and at most 1e-2 (its
-    // margin 2e-3 plus the quadrature's error, measured within +5e-3). The table alone, its
+    // margin 2e-3 plus the quadrature's error, measured within +5e-3; the 24:1 interface at
+    // alpha 1.2 is on the grid of strong anisotropy, the next test's: up to +8e-3). The table alone, its
     // correction read at 3, errs by several per cent here (asserted: its largest |error| is
     // above 2e-2, so these points test the grid and not the table). At eta 2.4 and 1.05
     // the grid is the table, value for value (below 1 it integrates: the test below).
@@ -471,6 +472,39 @@ TEST_CASE_TEMPLATE("dielectric reflection albedo: beyond eta_hat 3 an anisotropi
             for (const double degrees : {0.0, 40.0, 90.0}) {
                 const vec3<T> w(view(mu, 0, degrees * shade::pi<double> / 180));
                 CHECK(extended.at(w) == plain.at(w));
+            }
+    }
+}
+
+TEST_CASE_TEMPLATE("dielectric reflection albedo: at strong anisotropy above 1 an interface's grid reads at or above direct estimates, along its smoother axis too",
+                   T, float, double) {
+    // From the rarer side at alpha_max / alpha_min >= 20 (and alpha_max >= 0.25) the
+    // correction table is interpolated across a feature a few degrees wide around the
+    // smoother axis at grazing views and reads up to 0.08 high there (asserted: the table
+    // alone errs by more than 0.03 at these points), and the correction beyond 3 on its 13
+    // azimuths read up to 0.05 low. detail::anisotropic_reflection_albedo_grid integrates
+    // R_ss per interface there: eta 1.05, 1.5 and 6, 100:1 at alpha_max 1.41 (roughness 1,
+    // anisotropy 0.99), both axes smoother in turn, 100:1 at 0.69 and 0.35, 50:1 at 1.41;
+    // mu 0.1-0.6 and azimuths crowded toward both axes, against fresh 64^2 estimates: read -
+    // fresh at least -4 standard errors and at most 1e-2 (its margin 3e-3 plus the rows'
+    // interpolation and the quadrature: measured within +9e-3 on probes of 300 views).
+    const grid_against_fresh found = check_grid_against_fresh<T>(
+        {1.05, 1.5, 6.0}, {{1.414, 0.01414}, {0.01414, 1.414}, {0.693, 0.00693}, {0.3535, 0.003535}, {1.414, 0.0283}},
+        {0.1, 0.15, 0.2, 0.3, 0.6}, {0.0, 1.0, 3.0, 30.0, 70.0, 85.0, 87.0, 88.5, 89.5, 90.0}, 907, 0.0, 1e-2);
+    MESSAGE("anisotropic grid at strong anisotropy above 1 - fresh: " << found.low << " to " << found.high
+                                                                      << "; the table alone: |error| up to "
+                                                                      << found.table_worst);
+    CHECK(found.table_worst > 3e-2);
+    // Below the anisotropy (19:1) or the roughness (alpha_max 0.2) at which it integrates,
+    // the grid is the table, value for value.
+    for (const std::array<double, 2> a : {std::array<double, 2>{0.95, 0.05}, std::array<double, 2>{0.2, 0.002}}) {
+        const d::anisotropic_reflection_albedo_grid<T> grid_or_table{T(a[0]), T(a[1]), T(1.5)};
+        const d::anisotropic_reflection_albedo<T> plain{T(a[0]), T(a[1]), T(1.5)};
+        CHECK(!grid_or_table.integrated());
+        for (const double mu : {0.1, 0.5, 1.0})
+            for (const double degrees : {0.0, 40.0, 90.0}) {
+                const vec3<T> w(view(mu, 0, degrees * shade::pi<double> / 180));
+                CHECK(grid_or_table.at(w) == plain.at(w));
             }
     }
 }

@@ -123,8 +123,19 @@ private:
 /// on below_columns x below_rows visible normals, plus below_margin (below_margin_strong at
 /// alpha_max / alpha_min >= 20), held on the heap (about 14 KB; copies copy it). Building
 /// takes 100 to 180 ms at -O2. at() reads the grid, at or above R_ss; at_without_margin()
-/// close to it from either side. Elsewhere (eta_s in [1, 3] otherwise, or equal alphas)
-/// exactly anisotropic_reflection_albedo. alpha_x, alpha_y >= 0, eta_s > 0 (unchecked).
+/// close to it from either side.
+///
+/// From the rarer side at strong anisotropy (eta_s > 1, alpha_max / alpha_min >= 20, the
+/// side grid's strong anisotropy, and alpha_max >= strong_alpha_min) the table errs high by
+/// up to 0.08 at grazing views within a few degrees of the smoother axis (its correction is
+/// interpolated across a feature as narrow as alpha_min / alpha_max), and the correction
+/// beyond 3, on the 13 azimuths of an anisotropic_view_grid, reads up to 0.05 low there. So
+/// R_ss is integrated per interface there too: a dielectric_side_grid (16 rows in mu, 73
+/// azimuths crowded toward the smoother axis), each node the reflected branch on
+/// above_cells^2 visible normals, plus above_margin (read - true from -1.6e-3 to +9e-3
+/// before it, docs/conventions.md); 20 to 50 ms at -O2. Elsewhere (eta_s in [1, 3]
+/// otherwise, or equal alphas) exactly anisotropic_reflection_albedo. alpha_x, alpha_y >= 0,
+/// eta_s > 0 (unchecked).
 template <std::floating_point T>
 class anisotropic_reflection_albedo_grid {
 public:
@@ -139,16 +150,34 @@ public:
     static constexpr double below_margin = 5e-3;
     /// below_margin at strong anisotropy (alpha_max / alpha_min >= 20).
     static constexpr double below_margin_strong = 1e-2;
+    /// Visible normals per side at each node above 1 at strong anisotropy (no total
+    /// reflection's edge to resolve there).
+    static constexpr int above_cells = 32;
+    /// What the reading above 1 at strong anisotropy adds to stay at or above the true albedo.
+    static constexpr double above_margin = 3e-3;
+    /// The least alpha_max at which the grid serves a strong anisotropy above 1: below it
+    /// the table errs less than the grid's rows (at most about 8e-3 against up to 9e-3).
+    static constexpr double strong_alpha_min = 0.25;
+
+    /// Whether an interface of alphas alpha_x, alpha_y and index ratio eta_s reads R_ss from
+    /// a grid of its own views (the class comment: below 1 when anisotropic, above 1 at
+    /// strong anisotropy and alpha_max >= strong_alpha_min).
+    [[nodiscard]] static bool integrates(T alpha_x, T alpha_y, T eta_s) noexcept {
+        if (!(alpha_x != alpha_y && alpha_x > T(0) && alpha_y > T(0))) return false;
+        if (eta_s < T(1)) return true;
+        return eta_s > T(1) && dielectric_side_grid<T>::strong(double(alpha_x), double(alpha_y)) &&
+               glm::max(alpha_x, alpha_y) >= T(strong_alpha_min);
+    }
 
     anisotropic_reflection_albedo_grid() = default;
     anisotropic_reflection_albedo_grid(const anisotropic_reflection_albedo_grid& other)
         : table_(other.table_), views_(other.views_), delta_(other.delta_), alpha_x_(other.alpha_x_),
           alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_),
-          below_(other.below_ != nullptr ? new dielectric_side_grid<T>(*other.below_) : nullptr) {}
+          grid_(other.grid_ != nullptr ? new dielectric_side_grid<T>(*other.grid_) : nullptr) {}
     anisotropic_reflection_albedo_grid(anisotropic_reflection_albedo_grid&& other) noexcept
         : table_(other.table_), views_(other.views_), delta_(other.delta_), alpha_x_(other.alpha_x_),
-          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_), below_(other.below_) {
-        other.below_ = nullptr;
+          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_), grid_(other.grid_) {
+        other.grid_ = nullptr;
     }
     anisotropic_reflection_albedo_grid& operator=(anisotropic_reflection_albedo_grid other) noexcept {
         table_ = other.table_;
@@ -158,24 +187,27 @@ public:
         alpha_y_ = other.alpha_y_;
         eta_s_ = other.eta_s_;
         beyond_ = other.beyond_;
-        dielectric_side_grid<T>* const below = below_;
-        below_ = other.below_;
-        other.below_ = below;
+        dielectric_side_grid<T>* const grid = grid_;
+        grid_ = other.grid_;
+        other.grid_ = grid;
         return *this;
     }
-    ~anisotropic_reflection_albedo_grid() { delete below_; }
+    ~anisotropic_reflection_albedo_grid() { delete grid_; }
 
     anisotropic_reflection_albedo_grid(T alpha_x, T alpha_y, T eta_s)
         : table_(alpha_x, alpha_y, eta_s), alpha_x_(alpha_x), alpha_y_(alpha_y), eta_s_(eta_s) {
         const bool anisotropic_interface = alpha_x != alpha_y && alpha_x > T(0) && alpha_y > T(0);
-        if (anisotropic_interface && eta_s < T(1)) {
+        if (integrates(alpha_x, alpha_y, eta_s)) {
             const double ax = double(alpha_x), ay = double(alpha_y), eta = double(eta_s);
             const ggx<double> d(unchecked, ax, ay);
-            below_ = new dielectric_side_grid<T>(ax, ay, eta, below_margin, below_margin_strong,
-                                                 [&d, eta](const vec3<double>& v) {
-                                                     return dielectric_visible_albedo(d, v, eta, below_columns, below_rows, false);
-                                                 },
-                                                 true);
+            const bool below = eta_s < T(1);
+            const int columns = below ? below_columns : above_cells, rows = below ? below_rows : above_cells;
+            grid_ = new dielectric_side_grid<T>(ax, ay, eta, below ? below_margin : above_margin,
+                                                below ? below_margin_strong : above_margin,
+                                                [&d, eta, columns, rows](const vec3<double>& v) {
+                                                    return dielectric_visible_albedo(d, v, eta, columns, rows, false);
+                                                },
+                                                below);
             return;
         }
         beyond_ = eta_s > T(dielectric_albedo_eta_max) && anisotropic_interface;
@@ -193,7 +225,7 @@ public:
     /// R_ss(w) for the unit local direction w on the view's side (only its azimuth and |w.z|
     /// are used). Dimensionless, in [0, 1].
     [[nodiscard]] T at(const vec3<T>& w) const noexcept {
-        if (below_ != nullptr) return below_->at(w);
+        if (grid_ != nullptr) return grid_->at(w);
         if (!beyond_) return table_.at(w);
         const T mu = glm::min(std::abs(w.z), T(1));
         const T s2 = w.x * w.x + w.y * w.y;
@@ -204,9 +236,13 @@ public:
         return glm::clamp(r, T(0), T(1));
     }
 
-    /// Whether R_ss is read from a grid of this interface's own views (below an index ratio
-    /// of 1, anisotropic; the class comment).
-    [[nodiscard]] bool integrated_below_one() const noexcept { return below_ != nullptr; }
+    /// Whether R_ss is read from a grid of this interface's own views (integrates(); the
+    /// class comment).
+    [[nodiscard]] bool integrated() const noexcept { return grid_ != nullptr; }
+
+    /// Whether R_ss is read from a grid of this interface's own views below an index ratio
+    /// of 1 (anisotropic; the class comment).
+    [[nodiscard]] bool integrated_below_one() const noexcept { return grid_ != nullptr && eta_s_ < T(1); }
 
     /// With integrated_below_one(): R_ss(w) without the margin the nodes hold, read by
     /// dielectric_side_grid::at_or_below (chords that do not rise above R_ss where it is
@@ -216,8 +252,8 @@ public:
     /// about 0.05; docs/conventions.md has the measured ranges). Dimensionless, in [0, 1].
     /// Otherwise at(w).
     [[nodiscard]] T at_without_margin(const vec3<T>& w) const noexcept {
-        if (below_ == nullptr) return at(w);
-        return glm::max(below_->at_or_below(w) - below_->margin(), T(0));
+        if (!integrated_below_one()) return at(w);
+        return glm::max(grid_->at_or_below(w) - grid_->margin(), T(0));
     }
 
 private:
@@ -235,7 +271,7 @@ private:
     std::array<T, anisotropic_view_grid<T>::size> delta_{};
     T alpha_x_ = 0, alpha_y_ = 0, eta_s_ = 1;
     bool beyond_ = false;
-    dielectric_side_grid<T>* below_ = nullptr; // R_ss per view below 1 (anisotropic), or nullptr
+    dielectric_side_grid<T>* grid_ = nullptr; // R_ss per view where integrates(), or nullptr
 };
 
 } // namespace detail

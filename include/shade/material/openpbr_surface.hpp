@@ -241,8 +241,9 @@ enum class interface_albedo {
 ///     exact Fresnel of the modulated index eta'_s, openpbr::modulated_ior_ratio of
 ///     openpbr::specular_ior_ratio; with a thin film); E_spec its albedo:
 ///     specular_color times dielectric_reflection_albedo at eta'_s (anisotropic: at the
-///     view's azimuth, from detail::anisotropic_reflection_albedo_grid, whose correction
-///     above a ratio of 3 is integrated when the material is built) plus, with a film,
+///     view's azimuth, from detail::anisotropic_reflection_albedo_grid, which integrates
+///     R_ss for the interface when the material is built below a ratio of 1, above it at
+///     strong anisotropy, and its correction above 3) plus, with a film,
 ///     thin_film_weight times the integral of F_film - F (F the exact dielectric Fresnel at
 ///     eta'_s) against the lobe's measure of c = v·h (shade/brdf/microfacet/cosine_weights.hpp,
 ///     summed once per material; an anisotropic lobe per view at the roughness along the view's azimuth, normalised to
@@ -1388,8 +1389,9 @@ void openpbr_surface<T>::build() {
         specular_alpha_ = iso(*base_distribution);
         specular_albedo_ = detail::reflection_albedo_row<T>(specular_alpha_, specular_eta_);
         specular_anisotropic_ = base_distribution->alpha_x() != base_distribution->alpha_y();
-        // Below an index ratio of 1 the grid integrates R_ss for this interface (100-180 ms);
-        // the transmission lobe, below, reads the same grid when its index is the same.
+        // Below an index ratio of 1, and above it at strong anisotropy, the grid integrates
+        // R_ss for this interface (100-180 ms below, 20-50 ms above; its class comment); the
+        // transmission lobe, below, reads the same grid when its index is the same.
         if (specular_anisotropic_ && specular_eta_ != T(1))
             specular_albedo_anisotropic_ = detail::anisotropic_reflection_albedo_grid<T>(
                 base_distribution->alpha_x(), base_distribution->alpha_y(), specular_eta_);
@@ -1549,7 +1551,7 @@ void openpbr_surface<T>::build() {
             // eta'_s is specular_ior up to rounding when uncoated at specular_weight 1
             // (modulated_ior_ratio's round trip through F0): equal within 8 ulp here.
             const bool same_index = std::abs(specular_eta_ - eta) <= T(8) * std::numeric_limits<T>::epsilon() * eta;
-            if (transmission_anisotropic_ && specular_albedo_anisotropic_.integrated_below_one() && same_index)
+            if (transmission_anisotropic_ && specular_albedo_anisotropic_.integrated() && same_index)
                 transmission_reflection_anisotropic_ = specular_albedo_anisotropic_; // the same interface
             else if (transmission_anisotropic_)
                 transmission_reflection_anisotropic_ = detail::anisotropic_reflection_albedo_grid<T>(
