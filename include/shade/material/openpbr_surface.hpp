@@ -36,6 +36,7 @@
 #include <shade/brdf/thin_film.hpp>
 #include <shade/bsdf/bsdf.hpp>
 #include <shade/bsdf/compensated_rough_dielectric.hpp>
+#include <shade/bsdf/dielectric_albedo_table.hpp>
 #include <shade/bsdf/detail/delta.hpp>
 #include <shade/bsdf/detail/dielectric_albedo_row.hpp>
 #include <shade/bsdf/detail/lobe_pair.hpp>
@@ -199,7 +200,9 @@ private:
 enum class interface_albedo {
     /// The tables (the isotropic table plus its anisotropic correction): nothing to build,
     /// so materials may be built per shading point; R + T reads 0.94 to 1.002 at strong
-    /// anisotropy seen from the denser side (docs/properties.md).
+    /// anisotropy seen from the denser side (docs/properties.md). Near index match
+    /// (specular_ior within a factor 1.05 of 1, not index-matched) the grid serves instead,
+    /// the tables holding nothing there.
     tables,
     /// A shade::rough_dielectric_albedo_grid of the interface, built with the material
     /// (0.3 to 0.6 s, shared by the material's copies): R + T in [0.99, 1.001] at 2:1, 10:1
@@ -1534,10 +1537,17 @@ void openpbr_surface<T>::build() {
             sheet_.emplace(unchecked, *base_distribution, schlick<T>(unchecked, rgb<T>(1)));
         } else if (!index_matched_) {
             const T interface_eta = glm::clamp(p.specular_ior, dielectric_eta_min<T>, dielectric_eta_max<T>);
-            if (albedo_ == openpbr::interface_albedo::grid && base_distribution->alpha_x() != base_distribution->alpha_y()) {
+            // Near index match (eta_hat below the total-albedo tables' first index, 1.05)
+            // the tables read E_s at 1.05, far from this interface's (the white furnace of
+            // rough glass read 0.95 to 1.10 at specular_ior 0.97 to 1.03): the grid serves
+            // there whatever the mode (about 20 ms isotropic).
+            const T eta_hat = interface_eta > T(1) ? interface_eta : T(1) / interface_eta;
+            const bool near_match = eta_hat < T(detail::dielectric_albedo_eta_min);
+            if ((albedo_ == openpbr::interface_albedo::grid && base_distribution->alpha_x() != base_distribution->alpha_y()) ||
+                near_match) {
                 // E_s from a grid of this interface (compensated_rough_dielectric's
                 // per-interface mode), which holds R + T where the tables' anisotropic
-                // correction does not.
+                // correction does not, and near index match.
                 transmission_grid_ = detail::shared_rough_dielectric_albedo_grid<T>(*base_distribution, interface_eta);
                 transmission_.emplace(*base_distribution, interface_eta, *transmission_grid_.get());
             } else {
