@@ -203,7 +203,11 @@ private:
             }
             return false;
         };
-        detail::bvh_traverse<detail::bvh_order::sorted, true>(tree_, r, r.t_max, leaf);
+        // Nearest child first, the others unsorted: sorting three or more entered children
+        // by distance (so that later pops come in order too) costs more branches than the
+        // nodes it would prune; a stacked entry beyond the nearest hit found is still
+        // skipped when popped.
+        detail::bvh_traverse<detail::bvh_order::nearest, true>(tree_, r, r.t_max, leaf);
         return best;
     }
 

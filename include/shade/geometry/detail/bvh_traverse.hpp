@@ -542,8 +542,8 @@ template <bvh_order Order, bool Validate, std::size_t LeafBytes, class Ray, std:
                 // Three or more: stack them all, then (sorted) sort them so that the
                 // nearest is on top and pop it, or (nearest) take the nearest off the stack
                 // and fill its place with the top entry: a linear scan, cheaper than the
-                // sort, which pays for closest hits (a pop beyond the hit is pruned) but
-                // not for any-hit rays.
+                // sort. The sort also orders the later pops, which prunes more only where
+                // a hit is found before them (a pop beyond the nearest hit is skipped).
                 const std::size_t base = top;
                 stack[top++] = {node.child[i0], t_enter[i0]};
                 stack[top++] = {node.child[i1], t_enter[i1]};
