@@ -250,9 +250,11 @@ public:
     /// the nodes' quadrature error, within about +-9e-3, and a low read where R_ss falls
     /// across the critical cosine faster than the rows resolve (surfaces with an alpha below
     /// about 0.05; docs/conventions.md has the measured ranges). Dimensionless, in [0, 1].
-    /// Otherwise at(w).
+    /// Integrated above 1 (strong anisotropy): at(w) less the margin (read - true from
+    /// -1.6e-3 to +9e-3 before the margin, the class comment). Otherwise at(w).
     [[nodiscard]] T at_without_margin(const vec3<T>& w) const noexcept {
-        if (!integrated_below_one()) return at(w);
+        if (grid_ == nullptr) return at(w);
+        if (!integrated_below_one()) return glm::max(grid_->at(w) - grid_->margin(), T(0));
         return glm::max(grid_->at_or_below(w) - grid_->margin(), T(0));
     }
 

@@ -769,8 +769,9 @@ private:
                 w.transmission_view = transmission_->prepare(v, at);
                 const T e_s = w.transmission_view.albedo;
                 const T r_ss = transmission_anisotropic_
-                                   ? (film_dielectric_ ? transmission_reflection_anisotropic_.at_without_margin(w.v_local)
-                                                       : transmission_reflection_anisotropic_.at(w.v_local))
+                                   ? (film_dielectric_ || !transmission_reflection_shared_
+                                          ? transmission_reflection_anisotropic_.at_without_margin(w.v_local)
+                                          : transmission_reflection_anisotropic_.at(w.v_local))
                                : transmission_reflection_is_specular_ ? w.specular_albedo.x
                                                                       : transmission_reflection_.at(w.mu);
                 // The single-scattering part e_s - R_ss cannot be negative; where the two tables
@@ -782,9 +783,11 @@ private:
                 // less than 1 - E_spec (largest channel) to carry, the share of the interface's
                 // single-scattering reflection R_ss that makes up the difference (class
                 // comment), so that the lobe is never scaled up. With a film E_spec is the
-                // film's share, not R_ss, and the lobe carries (1 - R_true) / (1 - R_ss) of
-                // what it is given: an anisotropic interface below 1 then reads R_ss without
-                // its grid's margin (at_without_margin; elsewhere the same as at()).
+                // film's share, not R_ss, and at another index than the transmission's (a
+                // coat's TIR fix, specular_weight) it is another interface's: the lobe then
+                // carries (1 - R_true) / (1 - R_ss) of what it is given, and an anisotropic
+                // interface reads R_ss without its grid's margin (at_without_margin; where no
+                // grid integrates, the same as at()).
                 const T lost = T(1) - e_s;
                 const T carried = glm::max(e_s - r_ss, T(0)) +
                                   (interface_draws_ ? lost : transmission_->transmitted_share(false) * lost);
@@ -1308,6 +1311,7 @@ private:
     detail::anisotropic_reflection_albedo_grid<T> coat_albedo_anisotropic_{};         // E_coat(v), anisotropic coat
     detail::anisotropic_reflection_albedo_grid<T> specular_albedo_anisotropic_{};     // R_ss(v) at eta'_s, anisotropic
     detail::anisotropic_reflection_albedo_grid<T> transmission_reflection_anisotropic_{}; // R_ss(v), anisotropic
+    bool transmission_reflection_shared_ = false; // E_spec reads R_ss at the transmission's index (same_index)
     bool transmission_anisotropic_ = false;
     bool transmission_reflection_is_specular_ = false; // transmission_reflection_ = E_spec (build)
     bool coat_anisotropic_ = false;
@@ -1561,6 +1565,7 @@ void openpbr_surface<T>::build() {
             // eta'_s is specular_ior up to rounding when uncoated at specular_weight 1
             // (modulated_ior_ratio's round trip through F0): equal within 8 ulp here.
             const bool same_index = std::abs(specular_eta_ - eta) <= T(8) * std::numeric_limits<T>::epsilon() * eta;
+            transmission_reflection_shared_ = same_index;
             if (transmission_anisotropic_ && specular_albedo_anisotropic_.integrated() && same_index)
                 transmission_reflection_anisotropic_ = specular_albedo_anisotropic_; // the same interface
             else if (transmission_anisotropic_)
