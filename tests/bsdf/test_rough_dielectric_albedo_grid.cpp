@@ -21,6 +21,7 @@
 
 #include <shade/brdf/microfacet/ggx.hpp>
 #include <shade/bsdf/compensated_rough_dielectric.hpp>
+#include <shade/bsdf/dielectric_anisotropic_reflection_albedo.hpp>
 #include <shade/bsdf/rough_dielectric_albedo_grid.hpp>
 #include <shade/check/doctest.hpp>
 #include <shade/check/sampling.hpp>
@@ -270,4 +271,76 @@ TEST_CASE_TEMPLATE("rough_dielectric_albedo_grid: bad eta throws; a model given 
     // Table mode has no grid.
     const compensated<T> tables{distribution, T(1.5)};
     CHECK(tables.albedo_grid() == nullptr);
+}
+
+TEST_CASE_TEMPLATE("rough_dielectric_albedo_grid: one side integrated with R_ss in one pass; the model reads the tables on "
+                   "the other",
+                   T, float, double) {
+    // detail::anisotropic_reflection_albedo_grid(..., with_total) fills E_s = R + T of the
+    // denser side on the nodes of its R_ss grid, from the same visible normals (40^2); a grid
+    // of that side alone then serves compensated_rough_dielectric, which reads the tables on
+    // the other side. The white furnace from the grid's side, 1 + E_true(v) - E_read(v)
+    // (table_furnace, 96^2 strata), is held to [0.99, 1.001] widened by 4 standard errors; the
+    // lobe returns 1 - E_s(v) from both sides (each side's E_s,avg the average of its own
+    // reads); R_ss reads the same with and without E_s.
+    const auto at = flat_frame<T>();
+    struct lobe {
+        double a_x, a_y, eta; // eta = n_inside / n_outside < 1: the outside is the denser side
+    };
+    double low = 2, high = 0;
+    for (const lobe& r : {lobe{0.3, 0.03, 0.5}, lobe{0.1, 0.01, 0.4}, lobe{1.2e-4, 1.0, 0.66}, lobe{0.0409, 1.2e-4, 0.608},
+                          lobe{0.6, 0.3, 0.9}}) {
+        CAPTURE(r.a_x);
+        CAPTURE(r.a_y);
+        CAPTURE(r.eta);
+        const shade::ggx<T> distribution(T(r.a_x), T(r.a_y));
+        const shade::detail::anisotropic_reflection_albedo_grid<T> with_total(T(r.a_x), T(r.a_y), T(r.eta), true);
+        const shade::detail::anisotropic_reflection_albedo_grid<T> alone(T(r.a_x), T(r.a_y), T(r.eta));
+        REQUIRE(with_total.total_albedo() != nullptr);
+        CHECK(alone.total_albedo() == nullptr);
+        const shade::rough_dielectric_albedo_grid<T> grid(distribution, T(r.eta), false, *with_total.total_albedo());
+        CHECK(grid.integrated(false));
+        CHECK_FALSE(grid.integrated(true));
+        CHECK(grid.average(true) == T(1));
+        CHECK(grid.albedo(true, view<T>(-0.5, 0.0)) == T(1));
+        const compensated<T> model{distribution, T(r.eta), grid};
+        const compensated<T> tables{distribution, T(r.eta)};
+        for (const double mu : {0.1, 0.2, 0.35, 0.7, 1.0})
+            for (const double phi : {0.0, 25.0, 50.0, 77.0, 90.0}) {
+                if (mu == 1.0 && phi > 0) continue;
+                CAPTURE(mu);
+                CAPTURE(phi);
+                const vec3<T> v = view<T>(mu, phi);
+                CHECK(with_total.at(v) == alone.at(v));
+                CHECK(model.single_scattering_albedo(v, at) == grid.albedo(false, v));
+                CHECK(model.single_scattering_albedo(-v, at) == tables.single_scattering_albedo(-v, at));
+                const furnace e = table_furnace(model, v, 96);
+                const double total = e.total();
+                CAPTURE(total);
+                CHECK(e.error < 8e-4);
+                CHECK(total >= 0.99 - 4 * e.error);
+                CHECK(total <= 1.001 + 4 * e.error);
+                low = std::min(low, total);
+                high = std::max(high, total);
+            }
+        for (const double mu : {0.2, -0.2, 0.6, -0.6}) {
+            const vec3<T> v = view<T>(mu, 40.0);
+            const double lost = 1 - double(model.single_scattering_albedo(v, at));
+            CAPTURE(mu);
+            CAPTURE(lost);
+            CHECK(std::abs(multiple_scattering_albedo(model, v) - lost) <= 4e-4);
+        }
+    }
+    MESSAGE("one-sided grid from R_ss's pass, R + T from the denser side: " << low << " to " << high);
+    // The one-sided constructor checks eta as the other does.
+    const shade::detail::anisotropic_reflection_albedo_grid<T> side(T(0.3), T(0.03), T(0.5), true);
+    for (const T eta : {T(1), T(0), std::numeric_limits<T>::quiet_NaN()}) {
+        CAPTURE(eta);
+        try {
+            const shade::rough_dielectric_albedo_grid<T> grid(shade::ggx<T>(T(0.3), T(0.03)), eta, false, *side.total_albedo());
+            FAIL("no exception");
+        } catch (const shade::invalid_parameter& e) {
+            CHECK(e.parameter() == "eta");
+        }
+    }
 }

@@ -43,6 +43,13 @@ namespace detail {
 /// only amplify the float rounding of the table.
 inline constexpr double dielectric_compensation_min_loss = 1e-6;
 
+/// Below this 1 - E_s,avg (the tables' isotropic average plus the anisotropic correction's) an
+/// anisotropic interface integrates E_s,avg from its clamped reads instead
+/// (compensated_rough_dielectric::clamped_average): the reads that the clamp to 1 lowers
+/// are then a large part of the loss. Above it they are a small part, and the integral
+/// (several times the cost of the rest of the construction) is not paid.
+inline constexpr double dielectric_clamped_average_below = 0.05;
+
 /// The albedo tables of the compensated rough dielectric over a distribution type, and its
 /// two roughnesses; defined for ggx and beckmann (Beckmann's m read as alpha, as its
 /// generator does): e on grid for eta_hat up to 3, e_beyond on beyond_grid above (the
@@ -148,7 +155,9 @@ struct dielectric_albedo_tables_of<beckmann<T>> {
 /// Per-interface mode: built with a shade::rough_dielectric_albedo_grid of its own
 /// distribution and eta, the model reads E_s(w) and E_s,avg from that grid (integrated for
 /// this interface when the grid was built) instead of the tables, with the formulas above
-/// unchanged. The grid
+/// unchanged; from a grid of one side only, on that side (the other reads the tables: each
+/// side's E_s,avg stays the average of the E_s(w) it reads, so f_ms still returns
+/// 1 - E_s(v)). The grid
 /// needs no interpolation over the interface's parameters, so it holds R + T near 1 where the
 /// anisotropic correction cannot (strong anisotropy, seen from the denser side; measured
 /// ranges in docs/properties.md). The model keeps a pointer to the grid: the grid must
@@ -447,8 +456,16 @@ private:
                     const T delta_average =
                         detail::dielectric_anisotropic_delta_average(tables::delta_average, anisotropic_cell_, side_[s].cell.side);
                     side_[s].e_avg = glm::clamp(side_[s].e_avg + delta_average, T(0), T(1));
+                    // albedo() clamps E_s + Delta_s to 1, which the sum of averages above does
+                    // not: where the interface loses little, the reads above 1 it leaves out
+                    // are most of the loss (a nearly smooth anisotropic interface read
+                    // E_s,avg = 1 and switched the compensation off, while grazing views read
+                    // E_s 0.94). There the average is integrated from the clamped reads.
+                    if (!(grid_ != nullptr && grid_->integrated(s == 1)) &&
+                        T(1) - side_[s].e_avg < T(detail::dielectric_clamped_average_below))
+                        side_[s].e_avg = clamped_average(s);
                 }
-            if (grid_ != nullptr) side_[s].e_avg = grid_->average(s == 1);
+            if (grid_ != nullptr && grid_->integrated(s == 1)) side_[s].e_avg = grid_->average(s == 1);
         }
         const T loss[2] = {T(1) - side_[0].e_avg, T(1) - side_[1].e_avg};
         if (!(loss[0] > T(detail::dielectric_compensation_min_loss)) ||
@@ -498,17 +515,69 @@ private:
     }
 
     /// E_s(w) for the local direction w in medium s (only |w.z| and the azimuth are read):
-    /// the grid's read in per-interface mode; else the isotropic table, plus Delta_s(w) when
+    /// the grid's read in per-interface mode (on a side the grid integrates); else the
+    /// isotropic table, plus Delta_s(w) when
     /// anisotropic, clamped to [0, 1] (near a
     /// smooth interface the tables' noise can carry E_s + Delta_s just past 1, and f_ms >= 0
     /// needs 1 - E_s >= 0).
     [[nodiscard]] T albedo(std::size_t s, const vec3<T>& w) const noexcept {
-        if (grid_ != nullptr) return grid_->albedo(s == 1, w);
+        if (grid_ != nullptr && grid_->integrated(s == 1)) return grid_->albedo(s == 1, w);
         const T mu = std::abs(w.z);
         T e = side_[s].row.at(mu) + side_[s].lift;
         if constexpr (tables::anisotropic)
             if (anisotropic_) e += detail::dielectric_anisotropic_delta(tables::delta, anisotropic_cell_, side_[s].cell.side, w.x, w.y, mu);
         return glm::clamp(e, T(0), T(1));
+    }
+
+    /// The cosine-weighted hemispherical average of albedo(s, w) as it reads, clamp included:
+    /// (1 / pi) int E_s(w) |n·w| dw = int_0^1 g'(u) int_0^1 4 x^3 E_s(x, u) dx du, with
+    /// x = sqrt(mu) and u the azimuth coordinate of the anisotropic correction (2 phi / pi =
+    /// g(u) = u (1 + u) / 2 from the smoother axis, dielectric_anisotropic_u), over one
+    /// quadrant (E_s is even in both axes): 2-point Gauss-Legendre on every cell of the
+    /// correction's x and u nodes (Abramowitz, Stegun 1964, "Handbook of Mathematical
+    /// Functions", 25.4.29), where Delta_s is a cubic in x and linear in u before the clamp.
+    /// The reads are albedo()'s, with Delta_s from dielectric_anisotropic_delta_nodes.
+    [[nodiscard]] T clamped_average(std::size_t s) const noexcept {
+        constexpr std::size_t nx = detail::dielectric_anisotropic_mu_nodes, nu = detail::dielectric_anisotropic_azimuth_nodes;
+        constexpr double gauss[2] = {0.5 - 0.28867513459481287, 0.5 + 0.28867513459481287}; // (1 -+ 1/sqrt 3) / 2
+        constexpr std::size_t nq = 2 * (nx - 1); // x points
+        // Delta_s on the correction's nodes (albedo()'s reads, the blend over the interface's
+        // parameters done once), and the isotropic part at each x point (no azimuth).
+        double nodes[nu * nx];
+        detail::dielectric_anisotropic_delta_nodes(tables::delta, anisotropic_cell_, side_[s].cell.side, nodes);
+        double isotropic[nq];
+        detail::spline_taps<double> taps[nq];
+        double weight[nq];
+        for (std::size_t q = 0; q < nq; ++q) {
+            const std::size_t k = q / 2;
+            const double tx = gauss[q % 2];
+            const double x = (double(k) + tx) / double(nx - 1);
+            isotropic[q] = double(side_[s].row.at(T(x * x)) + side_[s].lift);
+            taps[q] = detail::spline_taps<double>(k, tx, nx);
+            // 4 x^3 dx over half the cell (each Gauss node weighs half its cell).
+            weight[q] = 0.5 * 4.0 * x * x * x / double(nx - 1);
+        }
+        double sum = 0;
+        for (std::size_t i = 0; i + 1 < nu; ++i)
+            for (const double tu : gauss) {
+                const double u = (double(i) + tu) / double(nu - 1);
+                // g'(u) du over half the cell.
+                const double g_prime = 0.5 * 0.5 * (1.0 + 2.0 * u) / double(nu - 1);
+                const double* row0 = nodes + i * nx;
+                const double* row1 = row0 + nx;
+                double row_sum = 0;
+                for (std::size_t q = 0; q < nq; ++q) {
+                    double d0 = 0, d1 = 0;
+                    for (int a = 0; a < 4; ++a) {
+                        d0 += taps[q].weight[a] * row0[taps[q].node[a]];
+                        d1 += taps[q].weight[a] * row1[taps[q].node[a]];
+                    }
+                    const double e = glm::clamp(isotropic[q] + d0 + tu * (d1 - d0), 0.0, 1.0);
+                    row_sum += weight[q] * e;
+                }
+                sum += g_prime * row_sum;
+            }
+        return glm::clamp(T(sum), T(0), T(1));
     }
 
     /// R_ss for the local view v in medium s (shade::dielectric_reflection_albedo at

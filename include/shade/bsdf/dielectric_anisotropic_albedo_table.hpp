@@ -200,6 +200,31 @@ template <std::floating_point T>
     return sum;
 }
 
+/// Delta_s on the correction's own (u, x) nodes for the interface located by `cell`, side s:
+/// the lookup's blend over eta, ratio and roughness done once, out[i_u * nx + i_x]
+/// (dielectric_anisotropic_azimuth_nodes x dielectric_anisotropic_mu_nodes values), so that
+/// dielectric_anisotropic_delta at any w equals the Catmull-Rom spline in x of these values,
+/// linear in u (for a caller that reads many views of one interface).
+template <std::floating_point T>
+inline void dielectric_anisotropic_delta_nodes(const float* delta, const dielectric_anisotropic_cell<T>& cell,
+                                               std::size_t side, double* out) noexcept {
+    constexpr std::size_t nx = dielectric_anisotropic_mu_nodes, nu = dielectric_anisotropic_azimuth_nodes;
+    for (std::size_t k = 0; k < nu * nx; ++k) out[k] = 0;
+    for (int a = 0; a < 4; ++a) {
+        if (cell.e.weight[a] == T(0)) continue;
+        for (int b = 0; b < 4; ++b) {
+            if (cell.z.weight[b] == T(0)) continue;
+            for (int c = 0; c < 4; ++c) {
+                if (cell.y.weight[c] == T(0) || cell.y.node[c] == 0) continue; // y = 0 holds 0
+                const double w = double(cell.e.weight[a]) * double(cell.z.weight[b]) * double(cell.y.weight[c]);
+                const float* rows =
+                    delta + dielectric_anisotropic_row_index(side, cell.e.node[a], cell.z.node[b], cell.y.node[c], 0) * nx;
+                for (std::size_t k = 0; k < nu * nx; ++k) out[k] += w * double(rows[k]);
+            }
+        }
+    }
+}
+
 /// The cosine average 2 integral_0^1 Delta mu dmu = 4 integral_0^1 Delta(x) x^3 dx of one
 /// row of x nodes, read as dielectric_anisotropic_delta reads it (Catmull-Rom in x):
 /// 5-point Gauss-Legendre per cell (Abramowitz, Stegun 1964, "Handbook of Mathematical

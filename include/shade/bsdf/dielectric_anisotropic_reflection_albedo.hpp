@@ -9,6 +9,7 @@
 #include <cmath>
 #include <concepts>
 #include <cstddef>
+#include <utility>
 
 #include <glm/common.hpp>
 
@@ -173,11 +174,14 @@ public:
     anisotropic_reflection_albedo_grid(const anisotropic_reflection_albedo_grid& other)
         : table_(other.table_), views_(other.views_), delta_(other.delta_), alpha_x_(other.alpha_x_),
           alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_),
-          grid_(other.grid_ != nullptr ? new dielectric_side_grid<T>(*other.grid_) : nullptr) {}
+          grid_(other.grid_ != nullptr ? new dielectric_side_grid<T>(*other.grid_) : nullptr),
+          albedo_(other.albedo_ != nullptr ? new dielectric_side_grid<T>(*other.albedo_) : nullptr) {}
     anisotropic_reflection_albedo_grid(anisotropic_reflection_albedo_grid&& other) noexcept
         : table_(other.table_), views_(other.views_), delta_(other.delta_), alpha_x_(other.alpha_x_),
-          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_), grid_(other.grid_) {
+          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_), grid_(other.grid_),
+          albedo_(other.albedo_) {
         other.grid_ = nullptr;
+        other.albedo_ = nullptr;
     }
     anisotropic_reflection_albedo_grid& operator=(anisotropic_reflection_albedo_grid other) noexcept {
         table_ = other.table_;
@@ -190,11 +194,22 @@ public:
         dielectric_side_grid<T>* const grid = grid_;
         grid_ = other.grid_;
         other.grid_ = grid;
+        dielectric_side_grid<T>* const albedo = albedo_;
+        albedo_ = other.albedo_;
+        other.albedo_ = albedo;
         return *this;
     }
-    ~anisotropic_reflection_albedo_grid() { delete grid_; }
+    ~anisotropic_reflection_albedo_grid() {
+        delete grid_;
+        delete albedo_;
+    }
 
-    anisotropic_reflection_albedo_grid(T alpha_x, T alpha_y, T eta_s)
+    /// R_ss of the interface of alphas alpha_x, alpha_y and index ratio eta_s (the class
+    /// comment). With `with_total`, where the interface integrates R_ss below 1
+    /// (integrates() and eta_s < 1), the same pass also integrates the side's total
+    /// single-scattering albedo E_s = R + T on the same nodes, plus
+    /// rough_dielectric_albedo_grid_margin (_strong at strong anisotropy): total_albedo().
+    anisotropic_reflection_albedo_grid(T alpha_x, T alpha_y, T eta_s, bool with_total = false)
         : table_(alpha_x, alpha_y, eta_s), alpha_x_(alpha_x), alpha_y_(alpha_y), eta_s_(eta_s) {
         const bool anisotropic_interface = alpha_x != alpha_y && alpha_x > T(0) && alpha_y > T(0);
         if (integrates(alpha_x, alpha_y, eta_s)) {
@@ -202,6 +217,20 @@ public:
             const ggx<double> d(unchecked, ax, ay);
             const bool below = eta_s < T(1);
             const int columns = below ? below_columns : above_cells, rows = below ? below_rows : above_cells;
+            if (below && with_total) {
+                auto grids = dielectric_side_grid<T>::pair(
+                    ax, ay, eta, below_margin, below_margin_strong, rough_dielectric_albedo_grid_margin,
+                    rough_dielectric_albedo_grid_margin_strong,
+                    [&d, eta](const vec3<double>& v) {
+                        const dielectric_visible_albedos e =
+                            dielectric_visible_albedo_sums<true>(d, v, eta, below_columns, below_rows);
+                        return std::pair<double, double>(e.reflected, e.total);
+                    },
+                    true);
+                grid_ = new dielectric_side_grid<T>(grids.first);
+                albedo_ = new dielectric_side_grid<T>(grids.second);
+                return;
+            }
             grid_ = new dielectric_side_grid<T>(ax, ay, eta, below ? below_margin : above_margin,
                                                 below ? below_margin_strong : above_margin,
                                                 [&d, eta, columns, rows](const vec3<double>& v) {
@@ -240,6 +269,11 @@ public:
     /// class comment).
     [[nodiscard]] bool integrated() const noexcept { return grid_ != nullptr; }
 
+    /// The side's total single-scattering albedo E_s = R + T on the grid's nodes, integrated
+    /// in the same pass as R_ss (the constructor's with_total), or nullptr. For
+    /// rough_dielectric_albedo_grid's one-sided constructor.
+    [[nodiscard]] const dielectric_side_grid<T>* total_albedo() const noexcept { return albedo_; }
+
     /// Whether R_ss is read from a grid of this interface's own views below an index ratio
     /// of 1 (anisotropic; the class comment).
     [[nodiscard]] bool integrated_below_one() const noexcept { return grid_ != nullptr && eta_s_ < T(1); }
@@ -274,6 +308,7 @@ private:
     T alpha_x_ = 0, alpha_y_ = 0, eta_s_ = 1;
     bool beyond_ = false;
     dielectric_side_grid<T>* grid_ = nullptr; // R_ss per view where integrates(), or nullptr
+    dielectric_side_grid<T>* albedo_ = nullptr; // E_s = R + T on the same views (with_total), or nullptr
 };
 
 } // namespace detail

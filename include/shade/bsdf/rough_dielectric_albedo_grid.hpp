@@ -5,7 +5,10 @@
 
 #include <cmath>
 #include <concepts>
+#include <cstddef>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -40,10 +43,23 @@ namespace detail {
 /// angle u_x, rows in u_y). With `transmitted` false the refracted branch is left out: the
 /// reflection albedo R_ss(v) alone. Dimensionless, in [0, 1].
 [[nodiscard]] inline double dielectric_visible_albedo(const ggx<double>& distribution, const vec3<double>& v,
-                                                      double eta_s, int columns, int rows, bool transmitted) noexcept {
+                                                      double eta_s, int columns, int rows, bool transmitted) noexcept;
+
+/// The two albedos of dielectric_visible_albedo from one pass over the same visible normals:
+/// the reflection albedo R_ss(v) and the total R + T.
+struct dielectric_visible_albedos {
+    double reflected = 0; ///< R_ss(v)
+    double total = 0;     ///< R_ss(v) + T_ss(v)
+};
+
+/// dielectric_visible_albedo's sums, the refracted branch only when Transmitted.
+template <bool Transmitted>
+[[nodiscard]] inline dielectric_visible_albedos dielectric_visible_albedo_sums(const ggx<double>& distribution,
+                                                                              const vec3<double>& v, double eta_s,
+                                                                              int columns, int rows) noexcept {
     const double masking_v = 1.0 + distribution.Lambda(v); // 1 / G1(v)
     const vec3<double> v_stretched = distribution.stretch(v);
-    double sum = 0.0;
+    double reflected = 0.0, transmitted = 0.0;
     for (int i = 0; i < columns; ++i) {
         // u = ((i + 1/2) / columns, (j + 1/2) / rows): the angle 2 pi u_x is the column's.
         const double phi = 2.0 * pi<double> * (double(i) + 0.5) / double(columns);
@@ -56,15 +72,24 @@ namespace detail {
             const double F = F_dielectric(v_dot_m, eta_s);
             if (F > 0.0) {
                 const vec3<double> l = 2.0 * v_dot_m * m - v;
-                if (l.z > 0.0) sum += F * masking_v / (masking_v + distribution.Lambda(l));
+                if (l.z > 0.0) reflected += F * masking_v / (masking_v + distribution.Lambda(l));
             }
-            if (transmitted && F < 1.0) {
-                const std::optional<vec3<double>> t = refract(v, m, eta_s);
-                if (t && t->z < 0.0) sum += (1.0 - F) * masking_v / (masking_v + distribution.Lambda(*t));
+            if constexpr (Transmitted) {
+                if (F < 1.0) {
+                    const std::optional<vec3<double>> t = refract(v, m, eta_s);
+                    if (t && t->z < 0.0) transmitted += (1.0 - F) * masking_v / (masking_v + distribution.Lambda(*t));
+                }
             }
         }
     }
-    return sum / (double(columns) * double(rows));
+    const double cells = double(columns) * double(rows);
+    return {reflected / cells, (reflected + transmitted) / cells};
+}
+
+inline double dielectric_visible_albedo(const ggx<double>& distribution, const vec3<double>& v, double eta_s,
+                                        int columns, int rows, bool transmitted) noexcept {
+    return transmitted ? dielectric_visible_albedo_sums<true>(distribution, v, eta_s, columns, rows).total
+                       : dielectric_visible_albedo_sums<false>(distribution, v, eta_s, columns, rows).reflected;
 }
 
 /// dielectric_visible_albedo on cells x cells squares.
@@ -169,6 +194,32 @@ public:
             }
         }
         average_ = T(glm::clamp(2.0 * sum / (double(mu_steps) * phi_steps), 0.0, 1.0));
+    }
+
+    /// Two grids of the same side and layout from one pass over the nodes: values(v) returns
+    /// a std::pair of the two values at the node's view v, the first grid holding the first
+    /// plus margin (strong_margin at strong anisotropy), the second the second plus
+    /// second_margin (second_strong_margin); otherwise as the constructor above.
+    template <class Values>
+    [[nodiscard]] static std::pair<dielectric_side_grid, dielectric_side_grid>
+    pair(double alpha_x, double alpha_y, double eta_s, double margin, double strong_margin, double second_margin,
+         double second_strong_margin, const Values& values, bool dense_at_critical = false) {
+        // The second grid's constructor visits the nodes in the first's order (the layout is
+        // the same): it reads back the second values the first pass kept.
+        std::vector<double> second;
+        dielectric_side_grid first(
+            alpha_x, alpha_y, eta_s, margin, strong_margin,
+            [&values, &second](const vec3<double>& v) {
+                const auto both = values(v);
+                second.push_back(double(both.second));
+                return double(both.first);
+            },
+            dense_at_critical);
+        std::size_t k = 0;
+        dielectric_side_grid other(
+            alpha_x, alpha_y, eta_s, second_margin, second_strong_margin,
+            [&second, &k](const vec3<double>&) { return k < second.size() ? second[k++] : 0.0; }, dense_at_critical);
+        return {first, other};
     }
 
     /// The value at the local direction w (n = +z, the tangent along +x): only |w.z| and w's
@@ -362,6 +413,26 @@ public:
         }
     }
 
+    /// The grid of rough_dielectric(distribution, eta) on one side only, the side `inside`
+    /// (false: outside) given as `side` (its values E_s on that side's views, as the
+    /// constructor above integrates them; shade's materials fill it in the same pass as the
+    /// side's reflection albedo, detail::anisotropic_reflection_albedo_grid). The other side
+    /// is not integrated: compensated_rough_dielectric reads its tables there (integrated()).
+    /// Throws shade::invalid_parameter naming "eta" as the constructor above.
+    rough_dielectric_albedo_grid(const ggx<T>& distribution, T eta, bool inside, const detail::dielectric_side_grid<T>& side)
+        : distribution_(distribution), eta_(require_in_range("eta", eta, dielectric_eta_min<T>, dielectric_eta_max<T>)) {
+        if (eta == T(1))
+            throw invalid_parameter("eta", "must not be 1 (an index-matched interface is a delta: smooth_dielectric)",
+                                    detail::to_text(eta));
+        side_[inside ? 1 : 0] = side;
+        integrated_[inside ? 1 : 0] = true;
+        integrated_[inside ? 0 : 1] = false;
+    }
+
+    /// Whether E_s of medium `inside` (false: outside) is integrated on the grid: both sides
+    /// unless the grid was built for one side only.
+    [[nodiscard]] bool integrated(bool inside) const noexcept { return integrated_[inside ? 1 : 0]; }
+
     /// The distribution the grid was built for.
     [[nodiscard]] constexpr const ggx<T>& distribution() const noexcept { return distribution_; }
     /// The relative index n_inside / n_outside the grid was built for.
@@ -375,16 +446,23 @@ public:
 
     /// E_s(w) for the local direction w (n = +z, the tangent along +x) in medium `inside`
     /// (false: outside); only |w.z| and w's azimuth are read, so w may point either way.
-    /// Dimensionless, in [0, 1]; the grid's margin included.
-    [[nodiscard]] T albedo(bool inside, const vec3<T>& w) const noexcept { return side_[inside ? 1 : 0].at(w); }
+    /// Dimensionless, in [0, 1]; the grid's margin included. 1 on a side that is not
+    /// integrated().
+    [[nodiscard]] T albedo(bool inside, const vec3<T>& w) const noexcept {
+        return integrated_[inside ? 1 : 0] ? side_[inside ? 1 : 0].at(w) : T(1);
+    }
 
-    /// E_s,avg of medium `inside`: the cosine-weighted hemispherical average of albedo().
-    [[nodiscard]] T average(bool inside) const noexcept { return side_[inside ? 1 : 0].average(); }
+    /// E_s,avg of medium `inside`: the cosine-weighted hemispherical average of albedo() (1 on
+    /// a side that is not integrated()).
+    [[nodiscard]] T average(bool inside) const noexcept {
+        return integrated_[inside ? 1 : 0] ? side_[inside ? 1 : 0].average() : T(1);
+    }
 
 private:
     ggx<T> distribution_;
     T eta_;
     detail::dielectric_side_grid<T> side_[2]{};
+    bool integrated_[2] = {true, true};
 };
 
 } // namespace shade
