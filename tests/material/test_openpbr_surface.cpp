@@ -1287,7 +1287,7 @@ TEST_CASE("openpbr_surface: white furnace of anisotropic glass below an index ra
     MESSAGE("anisotropic glass below an index ratio of 1, tables mode, white furnace: " << band.low << " to " << band.high);
 }
 
-TEST_CASE("openpbr_surface: white furnace of anisotropic glass with a thin film below an index ratio of 1 never exceeds 1.001") {
+TEST_CASE("openpbr_surface: white furnace of anisotropic glass with a thin film below an index ratio of 1") {
     // Glass denser outside than in (transmission_weight 1) under a thin film, anisotropic:
     // E_spec is the film's share (not R_ss), so the transmission lobe, divided by 1 - R_ss
     // at v, keeps its albedo 1 only where that R_ss is the interface's own; read from the
@@ -1298,10 +1298,16 @@ TEST_CASE("openpbr_surface: white furnace of anisotropic glass with a thin film 
     // 0.517, mu 0.6, phi 1.2; all predicted from the lobes' albedos, the first sampled at
     // 1.034). Each view here read above 1.001 that way; with R_ss integrated for the
     // interface (anisotropic_reflection_albedo_grid below 1, read without its margin) none
-    // may: at most 1.001 + 4 standard errors of furnace_stratified (48^2 u
-    // strata; measured 0.980 to 0.991). Below the band: the film's share reads high by its
-    // margins and E_s's tables by theirs, which the table's high R_ss had offset; asserted at
-    // least 0.97.
+    // may: at most 1.001 + 4 standard errors of furnace_stratified (48^2 u strata). Below:
+    // the film's share is integrated with R_ss in the grid's pass (D, its difference from
+    // R_ss), and E_s of the outside read from the same pass (the tables mode's one-sided
+    // grid), so the band's 0.99 holds within the estimates' error (measured 0.9875 to 0.9962,
+    // the lowest the scan's two materials below; 0.980 to 0.991 with the share read from the
+    // isotropic reference plus its anisotropic correction and E_s from the tables). With it
+    // the random scan's materials (issue #32): film over glass at
+    // anisotropy 1 and specular_ior 0.725 with subsurface and a little metal (0.898 at mu 0.5),
+    // and a film of weight 1 over glass at specular_ior 0.426, anisotropy 0.14 (0.978 at the
+    // normal).
     using T = double;
     const auto at = check_test::model_point<T>();
     struct film_glass {
@@ -1314,7 +1320,11 @@ TEST_CASE("openpbr_surface: white furnace of anisotropic glass with a thin film 
                                film_glass{T(0.51), T(0.97), T(0.432), T(0.96), T(0.84), T(1.39), 0.8, 0.4},
                                film_glass{T(0.51), T(0.97), T(0.432), T(0.96), T(0.84), T(1.39), 0.8, 0.0},
                                film_glass{T(0.702), T(0.47), T(0.517), T(1), T(0.66), T(1.76), 0.6, 1.2},
-                               film_glass{T(0.702), T(0.47), T(0.517), T(1), T(0.66), T(1.76), 0.8, 0.8}}) {
+                               film_glass{T(0.702), T(0.47), T(0.517), T(1), T(0.66), T(1.76), 0.8, 0.8},
+                               film_glass{T(0.72), T(1), T(0.725), T(0.85), T(0.525), T(1.35), 0.5, 0.91},
+                               film_glass{T(0.72), T(1), T(0.725), T(0.85), T(0.525), T(1.35), 0.2, 1.2},
+                               film_glass{T(0.3), T(0.14), T(0.426), T(1), T(0.774), T(2.1), 1.0, 0.0},
+                               film_glass{T(0.3), T(0.14), T(0.426), T(1), T(0.774), T(2.1), 0.5, 0.6}}) {
         params<T> p = white<T>();
         p.specular_roughness = g.roughness;
         p.specular_roughness_anisotropy = g.anisotropy;
@@ -1329,7 +1339,7 @@ TEST_CASE("openpbr_surface: white furnace of anisotropic glass with a thin film 
              " mu ", g.mu, " phi ", g.phi, ": ", reading.first, " +- ", reading.second);
         CHECK(reading.second < 0.01);
         CHECK(reading.first <= 1.001 + 4 * reading.second);
-        CHECK(reading.first >= 0.97 - 4 * reading.second);
+        CHECK(reading.first >= 0.99 - 4 * reading.second);
         low = std::min(low, reading.first);
         high = std::max(high, reading.first);
     }
@@ -1629,14 +1639,17 @@ TEST_CASE_TEMPLATE("openpbr_surface: a thin film over a base of index below 1 ne
 // furnace of anisotropic glass under a thin film below an index ratio of 1 (below).
 TEST_CASE_TEMPLATE("openpbr_surface: an anisotropic lobe's thin film over a base of index below 1 never reads low", T,
                    float, double) {
-    // The same kink for an anisotropic lobe, whose share is the reference at alpha_v plus
-    // film_mean_, both on the nodes' interpolation, which cuts the kink off (E_R read up to
-    // 0.13 low over random such films at roughness 0.1-1, and 0.42 below 0.15, without the
-    // isotropic rows' corrections read at alpha_v and film_mean_'s lift). E_R read - true >=
-    // -1e-3 at the critical cosine, beside it and away from it, at azimuths from the rougher
-    // axis to the smoother; what it reads high is bounded as measured (next to mu_c the
-    // corrections bridge a narrow lobe's step from above and a node's lift reaches across
-    // its cells: up to 0.19 over 180 random films at roughness 0.1-1, 0.12 here).
+    // The same kink for an anisotropic lobe. Its R_ss is integrated per interface below 1
+    // (detail::anisotropic_reflection_albedo_grid), and the film's share with it in the same
+    // pass, D(v) = int (F_film - F) G2 / G1 on the grid's nodes (rows dense toward the
+    // critical cosine from both sides, where D steps; 0 in the cone of total reflection).
+    // E_R read - true >= -1e-3 at the critical cosine, beside it and away from it, at
+    // azimuths from the rougher axis to the smoother, anisotropy 0.5 to 1; high by at most
+    // 3e-2: the grid's margins (5e-3, 1e-2 at strong anisotropy; D's 2e-3) and, at
+    // anisotropy 1 just below the critical cosine, R_ss's step between two rows (measured
+    // -6e-4 to 2.5e-2, 1.5e-2 below anisotropy 1. The share read from the isotropic
+    // reference at alpha_v plus its anisotropic correction, lifted around the kink, read up
+    // to 0.12 high here and 0.19 over 180 random films, and 0.13 low before the lift).
     const double tol = std::is_same_v<T, float> ? 2e-5 : 0.0;
     // Films of weight 1: there E_R is the share alone (the true E_R by the lobe's own
     // quadrature of F(eta'_s) as well, film_reader's r_ss_by_quadrature).
@@ -1646,7 +1659,7 @@ TEST_CASE_TEMPLATE("openpbr_surface: an anisotropic lobe's thin film over a base
     for (const auto& fl : films) {
         const double mu_c = std::sqrt(1 - double(fl.base_ior) * double(fl.base_ior));
         for (const T r : {T(0.3), T(0.6), T(1)}) {
-            for (const T a : {T(0.5), T(0.9)}) {
+            for (const T a : {T(0.5), T(0.9), T(1)}) {
                 const film_test::film_reader<T> reader(fl, r, a);
                 for (const double mu : {0.1, 0.3, mu_c - 0.02, mu_c, mu_c + 0.02, 0.9, 1.0}) {
                     if (!(mu >= 0.05 && mu <= 1)) continue;
@@ -1658,7 +1671,7 @@ TEST_CASE_TEMPLATE("openpbr_surface: an anisotropic lobe's thin film over a base
                                  " anisotropy ", double(a), " mu ", mu, " (mu_c ", mu_c, ") phi ", phi, " channel ", k,
                                  ": E_R read - true ", error[k]);
                             CHECK(error[k] >= -1e-3 - tol);
-                            CHECK(error[k] <= 0.25 + tol);
+                            CHECK(error[k] <= 3e-2 + tol);
                             lowest = std::min(lowest, error[k]);
                             highest = std::max(highest, error[k]);
                         }
@@ -1809,7 +1822,8 @@ TEST_CASE_TEMPLATE("openpbr_surface: a thin film's share on anisotropic lobes ne
             for (const T a : {T(0.5), T(0.9), T(1)}) {
                 for (const double mu : {0.1, 0.3, 1.0}) {
                     for (const double phi : {0.0, 1.2, 1.5708}) {
-                        const rgb<double> error = film_test::film_albedo_error(fl, r, a, mu, phi, 96);
+                        const film_test::film_reader<T> reader(fl, r, a);
+                        const rgb<double> error = reader.error(mu, phi, 96, reader.integrates_r_ss());
                         for (int k = 0; k < 3; ++k) {
                             INFO("thickness ", double(fl.thickness_um), " film ior ", double(fl.ior), " base ior ",
                                  double(fl.base_ior), " roughness ", double(r), " anisotropy ", double(a), " mu ", mu,

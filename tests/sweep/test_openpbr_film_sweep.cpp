@@ -51,7 +51,8 @@ TEST_CASE("openpbr_surface: a thin film's share of E_spec never reads low, acros
 
 TEST_CASE("openpbr_surface: a thin film's share of E_spec on anisotropic lobes never reads low (sweep)") {
     // film_test::film_reader (the read against the anisotropic lobe's own 96^2-cell quadrature
-    // of v·h with F_film at each cell's cosine) over film index 1.02-3, 0.05-3 um, specular_ior
+    // of v·h with F_film at each cell's cosine; R_ss by the same quadrature where the
+    // material integrates it, strong anisotropy here) over film index 1.02-3, 0.05-3 um, specular_ior
     // 1.33 and 2.2, roughness 0.3-1, anisotropy 0.5-1 (alpha_y / alpha_x 3 to 1e4), mu 0.1-1
     // and azimuths 0 to pi/2, every channel: never above the white furnace's 1.001 is
     // E_R read - true >= -1e-3; the high side is held to the 3e-2 of
@@ -66,7 +67,7 @@ TEST_CASE("openpbr_surface: a thin film's share of E_spec on anisotropic lobes n
                         const film_test::film_reader<T> reader({1, thickness, ior, base}, r, a);
                         for (const double mu : {0.1, 0.3, 1.0}) {
                             for (const double phi : {0.0, 1.0, 1.5708}) {
-                                const shade::rgb<double> error = reader.error(mu, phi, 96);
+                                const shade::rgb<double> error = reader.error(mu, phi, 96, reader.integrates_r_ss());
                                 for (int k = 0; k < 3; ++k) {
                                     INFO("base ", base, " film ior ", ior, " thickness ", thickness, " roughness ", r,
                                          " anisotropy ", a, " mu ", mu, " phi ", phi, " channel ", k,

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <concepts>
 #include <cstddef>
-#include <utility>
+#include <type_traits>
 
 #include <glm/common.hpp>
 
@@ -149,6 +149,11 @@ public:
     static constexpr int below_rows = 40; ///< (below_columns)
     /// What the reading below 1 adds to stay at or above the true albedo.
     static constexpr double below_margin = 5e-3;
+    /// What the differences D_k add to stay at or above their true values.
+    static constexpr double difference_margin = 2e-3;
+    /// The tag of the constructor without another Fresnel term.
+    struct no_other_fresnel_t {};
+    static constexpr no_other_fresnel_t no_other_fresnel{};
     /// below_margin at strong anisotropy (alpha_max / alpha_min >= 20).
     static constexpr double below_margin_strong = 1e-2;
     /// Visible normals per side at each node above 1 at strong anisotropy (no total
@@ -175,13 +180,15 @@ public:
         : table_(other.table_), views_(other.views_), delta_(other.delta_), alpha_x_(other.alpha_x_),
           alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_),
           grid_(other.grid_ != nullptr ? new dielectric_side_grid<T>(*other.grid_) : nullptr),
-          albedo_(other.albedo_ != nullptr ? new dielectric_side_grid<T>(*other.albedo_) : nullptr) {}
+          albedo_(other.albedo_ != nullptr ? new dielectric_side_grid<T>(*other.albedo_) : nullptr),
+          difference_(other.difference_ != nullptr ? new differences(*other.difference_) : nullptr) {}
     anisotropic_reflection_albedo_grid(anisotropic_reflection_albedo_grid&& other) noexcept
         : table_(other.table_), views_(other.views_), delta_(other.delta_), alpha_x_(other.alpha_x_),
           alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_), grid_(other.grid_),
-          albedo_(other.albedo_) {
+          albedo_(other.albedo_), difference_(other.difference_) {
         other.grid_ = nullptr;
         other.albedo_ = nullptr;
+        other.difference_ = nullptr;
     }
     anisotropic_reflection_albedo_grid& operator=(anisotropic_reflection_albedo_grid other) noexcept {
         table_ = other.table_;
@@ -197,11 +204,15 @@ public:
         dielectric_side_grid<T>* const albedo = albedo_;
         albedo_ = other.albedo_;
         other.albedo_ = albedo;
+        differences* const difference = difference_;
+        difference_ = other.difference_;
+        other.difference_ = difference;
         return *this;
     }
     ~anisotropic_reflection_albedo_grid() {
         delete grid_;
         delete albedo_;
+        delete difference_;
     }
 
     /// R_ss of the interface of alphas alpha_x, alpha_y and index ratio eta_s (the class
@@ -210,6 +221,17 @@ public:
     /// single-scattering albedo E_s = R + T on the same nodes, plus
     /// rough_dielectric_albedo_grid_margin (_strong at strong anisotropy): total_albedo().
     anisotropic_reflection_albedo_grid(T alpha_x, T alpha_y, T eta_s, bool with_total = false)
+        : anisotropic_reflection_albedo_grid(alpha_x, alpha_y, eta_s, with_total, no_other_fresnel) {}
+
+    /// As above; where the interface integrates R_ss (integrates()), `other` (a callable
+    /// c -> std::array<double, 3>, another Fresnel term F'(c) per channel, c = v·m; or
+    /// no_other_fresnel) makes the same pass also integrate, per channel, the difference of
+    /// the reflection albedos with F' and with the interface's own F on the same visible
+    /// normals, D_k(v) = E_m[(F'_k(v·m) - F(v·m)) G2(v, l) / G1(v)] (detail::
+    /// dielectric_visible_albedo_sums' reflect), plus difference_margin: difference(). The
+    /// grid's rows are then dense above 1 too (dielectric_side_grid's dense_at_critical).
+    template <class Other>
+    anisotropic_reflection_albedo_grid(T alpha_x, T alpha_y, T eta_s, bool with_total, const Other& other)
         : table_(alpha_x, alpha_y, eta_s), alpha_x_(alpha_x), alpha_y_(alpha_y), eta_s_(eta_s) {
         const bool anisotropic_interface = alpha_x != alpha_y && alpha_x > T(0) && alpha_y > T(0);
         if (integrates(alpha_x, alpha_y, eta_s)) {
@@ -217,18 +239,47 @@ public:
             const ggx<double> d(unchecked, ax, ay);
             const bool below = eta_s < T(1);
             const int columns = below ? below_columns : above_cells, rows = below ? below_rows : above_cells;
+            if constexpr (!std::is_same_v<Other, no_other_fresnel_t>) {
+                // R_ss, E_s (when asked for below 1) and the three differences, in one pass, on
+                // dense rows above 1 as well (46 rather than 16: a thick film's share has
+                // fringes in mu).
+                const bool total = below && with_total;
+                const double margin = below ? below_margin : above_margin;
+                const double strong = below ? below_margin_strong : above_margin;
+                const double e_margin = rough_dielectric_albedo_grid_margin;
+                const double e_strong = rough_dielectric_albedo_grid_margin_strong;
+                const auto grids = dielectric_side_grid<T>::template many<5>(
+                    ax, ay, eta, {margin, e_margin, difference_margin, difference_margin, difference_margin},
+                    {strong, e_strong, difference_margin, difference_margin, difference_margin},
+                    [&d, &other, eta, columns, rows, total](const vec3<double>& v) {
+                        std::array<double, 3> diff{};
+                        const auto add = [&other, &diff](double c, double F, double g) {
+                            const std::array<double, 3> f = other(c);
+                            for (std::size_t k = 0; k < 3; ++k) diff[k] += (f[k] - F) * g;
+                        };
+                        const dielectric_visible_albedos e =
+                            total ? dielectric_visible_albedo_sums<true>(d, v, eta, columns, rows, add)
+                                  : dielectric_visible_albedo_sums<false>(d, v, eta, columns, rows, add);
+                        return std::array<double, 5>{e.reflected, e.total, diff[0], diff[1], diff[2]};
+                    },
+                    true);
+                grid_ = new dielectric_side_grid<T>(grids[0]);
+                if (total) albedo_ = new dielectric_side_grid<T>(grids[1]);
+                difference_ = new differences{grids[2], grids[3], grids[4]};
+                return;
+            }
             if (below && with_total) {
-                auto grids = dielectric_side_grid<T>::pair(
-                    ax, ay, eta, below_margin, below_margin_strong, rough_dielectric_albedo_grid_margin,
-                    rough_dielectric_albedo_grid_margin_strong,
+                const auto grids = dielectric_side_grid<T>::template many<2>(
+                    ax, ay, eta, {below_margin, rough_dielectric_albedo_grid_margin},
+                    {below_margin_strong, rough_dielectric_albedo_grid_margin_strong},
                     [&d, eta](const vec3<double>& v) {
                         const dielectric_visible_albedos e =
                             dielectric_visible_albedo_sums<true>(d, v, eta, below_columns, below_rows);
-                        return std::pair<double, double>(e.reflected, e.total);
+                        return std::array<double, 2>{e.reflected, e.total};
                     },
                     true);
-                grid_ = new dielectric_side_grid<T>(grids.first);
-                albedo_ = new dielectric_side_grid<T>(grids.second);
+                grid_ = new dielectric_side_grid<T>(grids[0]);
+                albedo_ = new dielectric_side_grid<T>(grids[1]);
                 return;
             }
             grid_ = new dielectric_side_grid<T>(ax, ay, eta, below ? below_margin : above_margin,
@@ -268,6 +319,16 @@ public:
     /// Whether R_ss is read from a grid of this interface's own views (integrates(); the
     /// class comment).
     [[nodiscard]] bool integrated() const noexcept { return grid_ != nullptr; }
+
+    /// D_k(w) (the constructor with `other`) for channel k at the unit local direction w,
+    /// read as at() reads R_ss, margin included: dimensionless, in [-1, 1]. 0 without `other`
+    /// (has_difference() false).
+    [[nodiscard]] T difference(std::size_t k, const vec3<T>& w) const noexcept {
+        return difference_ != nullptr ? (*difference_)[k].at_signed(w) : T(0);
+    }
+
+    /// Whether the grid holds the differences D_k (the constructor with `other`).
+    [[nodiscard]] bool has_difference() const noexcept { return difference_ != nullptr; }
 
     /// The side's total single-scattering albedo E_s = R + T on the grid's nodes, integrated
     /// in the same pass as R_ss (the constructor's with_total), or nullptr. For
@@ -309,6 +370,8 @@ private:
     bool beyond_ = false;
     dielectric_side_grid<T>* grid_ = nullptr; // R_ss per view where integrates(), or nullptr
     dielectric_side_grid<T>* albedo_ = nullptr; // E_s = R + T on the same views (with_total), or nullptr
+    using differences = std::array<dielectric_side_grid<T>, 3>;
+    differences* difference_ = nullptr; // D_k on the same views (the constructor with `other`), or nullptr
 };
 
 } // namespace detail

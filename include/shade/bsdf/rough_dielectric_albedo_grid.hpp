@@ -3,11 +3,11 @@
 // dielectric interface, integrated on a grid of views when it is built (both sides), for
 // shade::compensated_rough_dielectric's per-interface mode.
 
+#include <array>
 #include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <optional>
-#include <utility>
 #include <vector>
 
 #include <glm/common.hpp>
@@ -52,13 +52,20 @@ struct dielectric_visible_albedos {
     double total = 0;     ///< R_ss(v) + T_ss(v)
 };
 
-/// dielectric_visible_albedo's sums, the refracted branch only when Transmitted.
-template <bool Transmitted>
+/// dielectric_visible_albedo's sums, the refracted branch only when Transmitted; also calls
+/// reflect(c, F, g) for every visible normal whose mirror direction lies above the surface:
+/// c = v·m, F = F_dielectric(c, eta_s), and g = G2(v, l) / G1(v) divided by the number of
+/// cells, the reflected branch's weight before its Fresnel factor (so that a caller summing
+/// F'(c) g integrates the reflection albedo with another Fresnel term F' on the same visible
+/// normals).
+template <bool Transmitted, class Reflect>
 [[nodiscard]] inline dielectric_visible_albedos dielectric_visible_albedo_sums(const ggx<double>& distribution,
                                                                               const vec3<double>& v, double eta_s,
-                                                                              int columns, int rows) noexcept {
+                                                                              int columns, int rows,
+                                                                              Reflect&& reflect) noexcept {
     const double masking_v = 1.0 + distribution.Lambda(v); // 1 / G1(v)
     const vec3<double> v_stretched = distribution.stretch(v);
+    const double cells = double(columns) * double(rows);
     double reflected = 0.0, transmitted = 0.0;
     for (int i = 0; i < columns; ++i) {
         // u = ((i + 1/2) / columns, (j + 1/2) / rows): the angle 2 pi u_x is the column's.
@@ -70,9 +77,11 @@ template <bool Transmitted>
             const double v_dot_m = glm::dot(v, m);
             if (!(v_dot_m > 0.0)) continue;
             const double F = F_dielectric(v_dot_m, eta_s);
-            if (F > 0.0) {
-                const vec3<double> l = 2.0 * v_dot_m * m - v;
-                if (l.z > 0.0) reflected += F * masking_v / (masking_v + distribution.Lambda(l));
+            const vec3<double> l = 2.0 * v_dot_m * m - v;
+            if (l.z > 0.0) {
+                const double g = masking_v / (masking_v + distribution.Lambda(l));
+                reflected += F * g;
+                reflect(v_dot_m, F, g / cells);
             }
             if constexpr (Transmitted) {
                 if (F < 1.0) {
@@ -82,8 +91,16 @@ template <bool Transmitted>
             }
         }
     }
-    const double cells = double(columns) * double(rows);
     return {reflected / cells, (reflected + transmitted) / cells};
+}
+
+/// dielectric_visible_albedo's sums, the refracted branch only when Transmitted.
+template <bool Transmitted>
+[[nodiscard]] inline dielectric_visible_albedos dielectric_visible_albedo_sums(const ggx<double>& distribution,
+                                                                              const vec3<double>& v, double eta_s,
+                                                                              int columns, int rows) noexcept {
+    return dielectric_visible_albedo_sums<Transmitted>(distribution, v, eta_s, columns, rows,
+                                                       [](double, double, double) {});
 }
 
 inline double dielectric_visible_albedo(const ggx<double>& distribution, const vec3<double>& v, double eta_s,
@@ -125,6 +142,7 @@ public:
     static constexpr int max_rows = 37;              ///< rows on a side with total internal reflection
     static constexpr int max_rows_dense = 49;        ///< the same with dense_at_critical
     static constexpr int rows_without_critical = 16; ///< rows on a side without it
+    static constexpr int rows_without_critical_dense = 46; ///< the same with dense_at_critical
     static constexpr int rows_below_critical = 24;   ///< intervals from grazing to the critical cosine
     static constexpr int rows_above_critical = 12;   ///< intervals from the critical cosine to the normal
     static constexpr int rows_above_critical_dense = 24; ///< the same with dense_at_critical
@@ -144,7 +162,9 @@ public:
     /// instead of mu_c x^1.5 (x = i / 24), and rows_above_critical_dense rows above it at
     /// mu_c + (1 - mu_c) y^1.5 (y = (i - 24) / 24) instead of 12 evenly spaced ones: dense
     /// toward the critical cosine from both sides as well as toward grazing, for a value that
-    /// steps there (the reflection albedo alone: R + T does not).
+    /// steps there (the reflection albedo alone: R + T does not); on a side without total
+    /// internal reflection (eta_s >= 1), rows_without_critical_dense rows at x^1.5 instead of
+    /// 16, for a value with fine structure in mu (a thin film's share of the albedo).
     template <class Value>
     dielectric_side_grid(double alpha_x, double alpha_y, double eta_s, double margin, double strong_margin,
                          const Value& value, bool dense_at_critical = false)
@@ -161,7 +181,8 @@ public:
         // still hold the value at their own cosines).
         mu_c_ = eta_s < 1.0 ? T(glm::min(std::sqrt((1.0 - eta_s) * (1.0 + eta_s)), 1.0 - 1e-4)) : T(0);
         rows_above_ = dense_at_critical ? rows_above_critical_dense : rows_above_critical;
-        rows_ = mu_c_ > T(0) ? rows_below_critical + rows_above_ + 1 : rows_without_critical;
+        plain_rows_ = dense_at_critical ? rows_without_critical_dense : rows_without_critical;
+        rows_ = mu_c_ > T(0) ? rows_below_critical + rows_above_ + 1 : plain_rows_;
         const double log_q2 = double(log_q2_);
         for (int j = 0; j < azimuths_; ++j) {
             // The s whose warp is j / (azimuths_ - 1), by bisection (the warp is increasing).
@@ -196,30 +217,33 @@ public:
         average_ = T(glm::clamp(2.0 * sum / (double(mu_steps) * phi_steps), 0.0, 1.0));
     }
 
-    /// Two grids of the same side and layout from one pass over the nodes: values(v) returns
-    /// a std::pair of the two values at the node's view v, the first grid holding the first
-    /// plus margin (strong_margin at strong anisotropy), the second the second plus
-    /// second_margin (second_strong_margin); otherwise as the constructor above.
-    template <class Values>
-    [[nodiscard]] static std::pair<dielectric_side_grid, dielectric_side_grid>
-    pair(double alpha_x, double alpha_y, double eta_s, double margin, double strong_margin, double second_margin,
-         double second_strong_margin, const Values& values, bool dense_at_critical = false) {
-        // The second grid's constructor visits the nodes in the first's order (the layout is
-        // the same): it reads back the second values the first pass kept.
-        std::vector<double> second;
-        dielectric_side_grid first(
-            alpha_x, alpha_y, eta_s, margin, strong_margin,
-            [&values, &second](const vec3<double>& v) {
-                const auto both = values(v);
-                second.push_back(double(both.second));
-                return double(both.first);
+    /// N grids of the same side and layout from one pass over the nodes: values(v) returns a
+    /// std::array<double, N> of the values at the node's view v, grid k holding value k plus
+    /// margin[k] (strong_margin[k] at strong anisotropy); otherwise as the constructor above.
+    template <std::size_t N, class Values>
+    [[nodiscard]] static std::array<dielectric_side_grid, N>
+    many(double alpha_x, double alpha_y, double eta_s, const std::array<double, N>& margin,
+         const std::array<double, N>& strong_margin, const Values& values, bool dense_at_critical = false) {
+        static_assert(N >= 1);
+        // The other grids' constructors visit the nodes in the first's order (the layout is the
+        // same): they read back the values the first pass kept.
+        std::vector<std::array<double, N>> kept;
+        std::array<dielectric_side_grid, N> out{};
+        out[0] = dielectric_side_grid(
+            alpha_x, alpha_y, eta_s, margin[0], strong_margin[0],
+            [&values, &kept](const vec3<double>& v) {
+                kept.push_back(values(v));
+                return kept.back()[0];
             },
             dense_at_critical);
-        std::size_t k = 0;
-        dielectric_side_grid other(
-            alpha_x, alpha_y, eta_s, second_margin, second_strong_margin,
-            [&second, &k](const vec3<double>&) { return k < second.size() ? second[k++] : 0.0; }, dense_at_critical);
-        return {first, other};
+        for (std::size_t k = 1; k < N; ++k) {
+            std::size_t next = 0;
+            out[k] = dielectric_side_grid(
+                alpha_x, alpha_y, eta_s, margin[k], strong_margin[k],
+                [&kept, &next, k](const vec3<double>&) { return next < kept.size() ? kept[next++][k] : 0.0; },
+                dense_at_critical);
+        }
+        return out;
     }
 
     /// The value at the local direction w (n = +z, the tangent along +x): only |w.z| and w's
@@ -228,6 +252,14 @@ public:
         const cell c = cell_of(w);
         const T e = (T(1) - c.t) * row_at(c, c.i) + c.t * row_at(c, c.i + 1);
         return glm::clamp(e, T(0), T(1));
+    }
+
+    /// at(w) for a value that may be negative (a difference of two albedos): the same bilinear
+    /// read, clamped to [-1, 1] instead.
+    [[nodiscard]] T at_signed(const vec3<T>& w) const noexcept {
+        const cell c = cell_of(w);
+        const T e = (T(1) - c.t) * row_at(c, c.i) + c.t * row_at(c, c.i + 1);
+        return glm::clamp(e, T(-1), T(1));
     }
 
     /// A read of the value at w that is at or below the nodes' own function (their margin
@@ -295,7 +327,7 @@ private:
 
     /// The row coordinate (0 to rows_ - 1) of mu.
     [[nodiscard]] T mu_coordinate(T mu) const noexcept {
-        if (!(mu_c_ > T(0))) return T(rows_without_critical - 1) * std::cbrt(mu * mu);
+        if (!(mu_c_ > T(0))) return T(plain_rows_ - 1) * std::cbrt(mu * mu);
         if (mu <= mu_c_) {
             if (!dense_at_critical_) return T(rows_below_critical) * std::cbrt(sqr(mu / mu_c_));
             // The inverse of the smoothstep 3 x^2 - 2 x^3 = y on [0, 1].
@@ -309,7 +341,7 @@ private:
     /// mu of row i.
     [[nodiscard]] double row_mu(int i) const noexcept {
         if (!(mu_c_ > T(0))) {
-            const double x = double(i) / double(rows_without_critical - 1);
+            const double x = double(i) / double(plain_rows_ - 1);
             return x * std::sqrt(x);
         }
         const double mu_c = double(mu_c_);
@@ -342,6 +374,7 @@ private:
 
     T mu_c_ = 0;               ///< critical cosine, 0 when eta_s > 1
     int rows_ = rows_without_critical;
+    int plain_rows_ = rows_without_critical; ///< rows without a critical cosine (16, or 46 when dense)
     int rows_above_ = rows_above_critical; ///< intervals from mu_c to the normal
     int azimuths_ = azimuths;  ///< azimuth nodes per row (isotropic_azimuths, or strong_azimuths at strong anisotropy)
     T log_q2_ = 0;             ///< 2 log q, the azimuth spacing's parameter

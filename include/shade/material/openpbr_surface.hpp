@@ -18,6 +18,7 @@
 #include <optional>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -258,7 +259,11 @@ enum class interface_albedo {
 ///     its own albedo with F = 1), raised by the node sum's largest shortfall over the
 ///     specification's films (detail/thin_film_margin_data.hpp), so that it reads high,
 ///     never low; for eta'_s < 1, whose F has a total-reflection kink finer than the
-///     nodes, F_film's integral minus the table's R_ss.
+///     nodes, F_film's integral minus the table's R_ss. Where the anisotropic lobe's R_ss is
+///     integrated per interface (below 1, or above 1 at strong anisotropy), the film's part
+///     is integrated in the same pass instead: the integral of F_film - F against the same
+///     visible normals at the same view nodes (detail::anisotropic_reflection_albedo_grid's
+///     difference()).
 ///   * f_transmission: the transmitted part of shade::compensated_rough_dielectric at the
 ///     index specular_ior (anisotropic with openpbr::interface_albedo::grid: in its
 ///     per-interface mode, a shade::rough_dielectric_albedo_grid built with the material,
@@ -722,8 +727,13 @@ private:
             // Below an index ratio of 1 the row sums F_film alone (film_alone_) and the
             // table's R_ss, which holds F's total-reflection kink, is subtracted here.
             // An anisotropic lobe: anisotropic_film_share at the view's azimuth.
+            // With film_on_grid_, D(v) of the same pass as R_ss (margins included).
             const rgb<T> film_part =
                 !specular_ ? film_dielectric_->F(mu) - rgb<T>(e_dielectric)
+                : film_on_grid_ && w_local != vec3<T>(0)
+                    ? rgb<T>(specular_albedo_anisotropic_.difference(0, w_local),
+                             specular_albedo_anisotropic_.difference(1, w_local),
+                             specular_albedo_anisotropic_.difference(2, w_local))
                 : specular_anisotropic_ && w_local != vec3<T>(0)
                     ? anisotropic_film_share(w_local) - rgb<T>(film_alone_ ? e_dielectric : T(0))
                     : film_albedo_.at(mu) - rgb<T>(film_alone_ ? e_dielectric : T(0));
@@ -775,7 +785,7 @@ private:
                 w.transmission_view = transmission_->prepare(v, at);
                 const T e_s = w.transmission_view.albedo;
                 const T r_ss = transmission_anisotropic_
-                                   ? (film_dielectric_ || !transmission_reflection_shared_
+                                   ? ((film_dielectric_ && !film_on_grid_) || !transmission_reflection_shared_
                                           ? transmission_reflection_anisotropic_.at_without_margin(w.v_local)
                                           : transmission_reflection_anisotropic_.at(w.v_local))
                                : transmission_reflection_is_specular_ ? w.specular_albedo.x
@@ -1297,6 +1307,11 @@ private:
     static constexpr std::size_t film_kink_alpha_rows = 3;
     std::array<std::array<rgb<T>, detail::cosine_weight_nodes>, film_kink_alpha_rows> film_kink_rows_{};
     T film_kink_alpha_first_ = 0, film_kink_log_step_ = 0;
+    // The film's share of an anisotropic lobe whose R_ss is integrated per interface is
+    // integrated in the same pass (specular_albedo_anisotropic_.difference); F_film is read
+    // there from this many cosine intervals, linearly.
+    static constexpr std::size_t film_fresnel_nodes = 4096;
+    bool film_on_grid_ = false;
     T film_alpha_x_ = 0, film_alpha_y_ = 0;                         // the specular lobe's roughnesses (anisotropic)
     detail::anisotropic_albedo_cell<T> film_cell_{};                // its cell in the anisotropic tables
     bool film_cell_in_range_ = true;                                // its anisotropy within those tables' range
@@ -1421,10 +1436,35 @@ void openpbr_surface<T>::build() {
         // Below an index ratio of 1, and above it at strong anisotropy, the grid integrates
         // R_ss for this interface (100-180 ms below, 20-50 ms above; its class comment); the
         // transmission lobe, below, reads the same grid when its index is the same.
-        if (specular_anisotropic_ && specular_eta_ != T(1))
-            specular_albedo_anisotropic_ = detail::anisotropic_reflection_albedo_grid<T>(
-                base_distribution->alpha_x(), base_distribution->alpha_y(), specular_eta_,
-                transmission_total_grid && same_index);
+        // With a thin film on such a grid, the same pass integrates the film's share too:
+        // D(v) = int (F_film - F) G2 / G1 over the same visible normals (the grid's rows dense
+        // in mu, for a thick film's fringes), F_film read from a table of film_fresnel_nodes
+        // + 1 cosines (the film's F per call would cost several times the pass), so that
+        // E_spec = tint (R_ss + w D) (specular_albedo).
+        if (specular_anisotropic_ && specular_eta_ != T(1)) {
+            const T ax = base_distribution->alpha_x(), ay = base_distribution->alpha_y();
+            const bool total = transmission_total_grid && same_index;
+            if (film_dielectric_ && detail::anisotropic_reflection_albedo_grid<T>::integrates(ax, ay, specular_eta_)) {
+                std::vector<std::array<double, 3>> film_table(film_fresnel_nodes + 1);
+                for (std::size_t i = 0; i <= film_fresnel_nodes; ++i) {
+                    const rgb<T> f = film_dielectric_->F(T(double(i) / double(film_fresnel_nodes)));
+                    film_table[i] = {double(f.x), double(f.y), double(f.z)};
+                }
+                const auto film_fresnel = [&film_table](double c) {
+                    const double x = glm::clamp(c, 0.0, 1.0) * double(film_fresnel_nodes);
+                    const std::size_t i = glm::min(std::size_t(x), film_fresnel_nodes - 1);
+                    const double t = x - double(i);
+                    std::array<double, 3> f{};
+                    for (std::size_t k = 0; k < 3; ++k) f[k] = film_table[i][k] + t * (film_table[i + 1][k] - film_table[i][k]);
+                    return f;
+                };
+                specular_albedo_anisotropic_ =
+                    detail::anisotropic_reflection_albedo_grid<T>(ax, ay, specular_eta_, total, film_fresnel);
+                film_on_grid_ = true;
+            } else {
+                specular_albedo_anisotropic_ = detail::anisotropic_reflection_albedo_grid<T>(ax, ay, specular_eta_, total);
+            }
+        }
         if (film_dielectric_) {
             const T eta = specular_eta_;
             const thin_film_fresnel<T>& film = *film_dielectric_;
@@ -1462,7 +1502,7 @@ void openpbr_surface<T>::build() {
                 kink_margin.fill(film_kink_margin);
                 film_albedo_.raise(kink_margin);
             }
-            if (specular_anisotropic_) {
+            if (specular_anisotropic_ && !film_on_grid_) {
                 film_alpha_x_ = base_distribution->alpha_x();
                 film_alpha_y_ = base_distribution->alpha_y();
                 const auto reference = [&](T mu, T cos2_phi) {
