@@ -1346,6 +1346,44 @@ TEST_CASE("openpbr_surface: white furnace of anisotropic glass with a thin film 
     MESSAGE("anisotropic thin-film glass below an index ratio of 1, white furnace: " << low << " to " << high);
 }
 
+TEST_CASE("openpbr_surface: white furnace of a thin film over an anisotropic base at specular_weight 0") {
+    // specular_weight 0 switches the base's own reflection off (eta'_s = 1), not the film's:
+    // the specular lobe reflects F_film alone. Anisotropic, its share is integrated on a grid
+    // of the lobe's views as where R_ss is integrated (D alone, R_ss = 0); read as the
+    // isotropic reference at alpha_v plus film_mean_, a random scan's material (issue #32:
+    // thin-walled, roughness 0.1, anisotropy 0.68, specular_ior 0.518, transmission 0.61,
+    // film 0.81 of 0.78 um at index 1.08) read 0.985 at mu 0.2. Issue #32's band, widened by
+    // 4 standard errors of furnace_stratified (48^2 u strata).
+    using T = double;
+    const auto at = check_test::model_point<T>();
+    furnace_band band;
+    for (const bool thin : {true, false}) {
+        for (const T anisotropy : {T(0.68), T(0.95)}) {
+            params<T> p = white<T>();
+            p.specular_weight = T(0);
+            p.specular_roughness = T(0.1);
+            p.specular_roughness_anisotropy = anisotropy;
+            p.specular_ior = T(0.518);
+            p.transmission_weight = T(0.61);
+            p.thin_film_weight = T(0.81);
+            p.thin_film_thickness = T(0.78);
+            p.thin_film_ior = T(1.08);
+            p.base_diffuse_roughness = T(0.25);
+            p.geometry_thin_walled = thin;
+            const surface<T> m(p);
+            for (const double mu : {0.2, 0.5, 1.0}) {
+                const auto reading =
+                    furnace_stratified(m, view_at_cosine(at, mu, 1.37), at, thin ? 1.0 : 0.518, 48, 32, 4);
+                INFO("thin-walled ", thin, " anisotropy ", double(anisotropy), " mu ", mu, ": ", reading.first, " +- ",
+                     reading.second);
+                CHECK(reading.second < 0.01);
+                band.check(reading);
+            }
+        }
+    }
+    MESSAGE("thin film over an anisotropic base at specular_weight 0, white furnace: " << band.low << " to " << band.high);
+}
+
 TEST_CASE("openpbr_surface: with interface_albedo::grid, copies share the grid and outlive the material that built it") {
     // The transmission lobe points to a grid on the heap that the material's copies share;
     // a copy (made by copy construction, copy assignment or move) evaluates as the original

@@ -1441,10 +1441,15 @@ void openpbr_surface<T>::build() {
         // in mu, for a thick film's fringes), F_film read from a table of film_fresnel_nodes
         // + 1 cosines (the film's F per call would cost several times the pass), so that
         // E_spec = tint (R_ss + w D) (specular_albedo).
-        if (specular_anisotropic_ && specular_eta_ != T(1)) {
-            const T ax = base_distribution->alpha_x(), ay = base_distribution->alpha_y();
+        // At eta'_s = 1 (specular_weight 0) the lobe reflects through the film alone: the grid
+        // then holds D alone (R_ss = 0).
+        const T ax = base_distribution->alpha_x(), ay = base_distribution->alpha_y();
+        const bool film_grid = film_dielectric_ && specular_anisotropic_ &&
+                               (specular_eta_ == T(1) ||
+                                detail::anisotropic_reflection_albedo_grid<T>::integrates(ax, ay, specular_eta_));
+        if (specular_anisotropic_ && (specular_eta_ != T(1) || film_grid)) {
             const bool total = transmission_total_grid && same_index;
-            if (film_dielectric_ && detail::anisotropic_reflection_albedo_grid<T>::integrates(ax, ay, specular_eta_)) {
+            if (film_grid) {
                 std::vector<std::array<double, 3>> film_table(film_fresnel_nodes + 1);
                 for (std::size_t i = 0; i <= film_fresnel_nodes; ++i) {
                     const rgb<T> f = film_dielectric_->F(T(double(i) / double(film_fresnel_nodes)));
