@@ -52,13 +52,11 @@ public:
           spec_(shade::ggx<T>(alpha_.t, alpha_b_),
                 shade::openpbr::surface_fresnel<T>::dielectric(eta_, shade::rgb<T>(1), fl.weight, film_)) {}
 
-    /// Whether the material integrates R_ss of this anisotropic lobe per interface
-    /// (detail::anisotropic_reflection_albedo_grid::integrates: below an index ratio of 1, or
-    /// above it at strong anisotropy), and with it the film's share: the true E_R then wants
-    /// R_ss by quadrature too (error's r_ss_by_quadrature), not the table's.
-    [[nodiscard]] bool integrates_r_ss() const {
-        return a_ != T(0) && shade::detail::anisotropic_reflection_albedo_grid<T>::integrates(alpha_.t, alpha_b_, eta_);
-    }
+    /// Whether the material integrates R_ss of this lobe per interface: an anisotropic lobe
+    /// with a film does (detail::anisotropic_reflection_albedo_grid with the film's Fresnel
+    /// term), and the film's share with it; the true E_R then wants R_ss by quadrature too
+    /// (error's r_ss_by_quadrature), not the table's.
+    [[nodiscard]] bool integrates_r_ss() const { return a_ != T(0) && fl_.weight > T(0) && alpha_.t != alpha_b_; }
 
     /// E_R read - true at the view of cosine mu and azimuth phi, strata^2 cells. With
     /// r_ss_by_quadrature, R_ss is integrated on the same cells too (F(eta'_s) at each cell's

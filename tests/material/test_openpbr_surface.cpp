@@ -1846,10 +1846,12 @@ TEST_CASE_TEMPLATE("openpbr_surface: a thin film's share on anisotropic lobes ne
     // 0.25 um over 1.33, roughness 1, anisotropy 0.9, mu 0.1 along the tangent; -1.6e-1 at
     // anisotropy 1, index 1.05, 3 um, across it) and after it, before its margin (index
     // 1.05 at 1-3 um, mu 0.1-0.3, phi 1.2-pi/2, where the grid's margin stays 1.4e-2). The
-    // high side (the furnace's low end) is asserted at 3e-2 (the largest here, 2.4e-2, is a
-    // film of index 1.05, whose isotropic margin is large) and, for the films of index 1.2
-    // and above, at 1.5e-2 (measured 1.3e-2: the grid's margin of 5e-3 and the isotropic
-    // film margin). float: f's rounding adds 2e-5.
+    // high side (the furnace's low end): every anisotropic lobe with a film now integrates
+    // R_ss and the film's share on a grid of its views (the true R_ss then by quadrature,
+    // film_reader::integrates_r_ss), measured +4.2e-3 to +9.0e-3 (the margins of R_ss, 3e-3,
+    // and of the share, 2e-3); asserted at 1.5e-2 for every film (the share read from the
+    // isotropic reference plus film_mean_ reached 2.4e-2 at index 1.05 and 1.3e-2 at index
+    // 1.2 and above, asserted at 3e-2 and 1.5e-2). float: f's rounding adds 2e-5.
     const double tol = std::is_same_v<T, float> ? 2e-5 : 0.0;
     const std::vector<film_point<T>> films = {{1, T(0.25), T(3), T(1.33)}, {1, T(3), T(1.05), T(1.5)},
                                               {1, T(1), T(1.05), T(1.5)},   {1, T(0.5), T(1.2), T(1.5)},
@@ -1867,7 +1869,7 @@ TEST_CASE_TEMPLATE("openpbr_surface: a thin film's share on anisotropic lobes ne
                                  double(fl.base_ior), " roughness ", double(r), " anisotropy ", double(a), " mu ", mu,
                                  " phi ", phi, " channel ", k, ": E_R read - true ", error[k]);
                             CHECK(error[k] >= -1e-3 - tol);
-                            CHECK(error[k] <= 3e-2 + tol);
+                            CHECK(error[k] <= 1.5e-2 + tol);
                             if (fl.ior >= T(1.2)) {
                                 CHECK(error[k] <= 1.5e-2 + tol);
                                 highest_from_1_2 = std::max(highest_from_1_2, error[k]);

@@ -55,8 +55,9 @@ TEST_CASE("openpbr_surface: a thin film's share of E_spec on anisotropic lobes n
     // material integrates it, strong anisotropy here) over film index 1.02-3, 0.05-3 um, specular_ior
     // 1.33 and 2.2, roughness 0.3-1, anisotropy 0.5-1 (alpha_y / alpha_x 3 to 1e4), mu 0.1-1
     // and azimuths 0 to pi/2, every channel: never above the white furnace's 1.001 is
-    // E_R read - true >= -1e-3; the high side is held to the 3e-2 of
-    // tests/material/test_openpbr_surface.cpp.
+    // E_R read - true >= -1e-3; the high side is held to the 1.5e-2 of
+    // tests/material/test_openpbr_surface.cpp (measured +2.3e-3 to +1.03e-2 with the film's
+    // share integrated on the lobe's grid; 2.6e-2 with the isotropic reference plus film_mean_).
     using T = double;
     double lowest = 1, highest = -1;
     for (const T base : {T(1.33), T(2.2)}) {
@@ -73,7 +74,7 @@ TEST_CASE("openpbr_surface: a thin film's share of E_spec on anisotropic lobes n
                                          " anisotropy ", a, " mu ", mu, " phi ", phi, " channel ", k,
                                          ": E_R read - true ", error[k]);
                                     CHECK(error[k] >= -1e-3);
-                                    CHECK(error[k] <= 3e-2);
+                                    CHECK(error[k] <= 1.5e-2);
                                     lowest = std::min(lowest, error[k]);
                                     highest = std::max(highest, error[k]);
                                 }

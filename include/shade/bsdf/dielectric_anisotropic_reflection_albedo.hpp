@@ -230,14 +230,14 @@ public:
     /// normals, D_k(v) = E_m[(F'_k(v·m) - F(v·m)) G2(v, l) / G1(v)] (detail::
     /// dielectric_visible_albedo_sums' reflect), plus difference_margin: difference(). The
     /// grid's rows are then dense above 1 too (dielectric_side_grid's dense_at_critical).
-    /// At eta_s = 1 (no interface: R_ss = 0) an anisotropic interface with `other` integrates
-    /// too, for D alone (a thin film over a base whose own reflection is switched off).
+    /// With `other` every anisotropic interface integrates (R_ss too, also where integrates()
+    /// is false: above 1 below strong anisotropy, and at eta_s = 1, where R_ss = 0).
     template <class Other>
     anisotropic_reflection_albedo_grid(T alpha_x, T alpha_y, T eta_s, bool with_total, const Other& other)
         : table_(alpha_x, alpha_y, eta_s), alpha_x_(alpha_x), alpha_y_(alpha_y), eta_s_(eta_s) {
         const bool anisotropic_interface = alpha_x != alpha_y && alpha_x > T(0) && alpha_y > T(0);
-        const bool other_at_one = !std::is_same_v<Other, no_other_fresnel_t> && eta_s == T(1) && anisotropic_interface;
-        if (integrates(alpha_x, alpha_y, eta_s) || other_at_one) {
+        const bool with_other = !std::is_same_v<Other, no_other_fresnel_t> && anisotropic_interface;
+        if (integrates(alpha_x, alpha_y, eta_s) || with_other) {
             const double ax = double(alpha_x), ay = double(alpha_y), eta = double(eta_s);
             const ggx<double> d(unchecked, ax, ay);
             const bool below = eta_s < T(1);

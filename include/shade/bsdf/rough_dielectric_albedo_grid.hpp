@@ -8,7 +8,6 @@
 #include <concepts>
 #include <cstddef>
 #include <optional>
-#include <vector>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -226,21 +225,30 @@ public:
          const std::array<double, N>& strong_margin, const Values& values, bool dense_at_critical = false) {
         static_assert(N >= 1);
         // The other grids' constructors visit the nodes in the first's order (the layout is the
-        // same): they read back the values the first pass kept.
-        std::vector<std::array<double, N>> kept;
+        // same): they read back the values the first pass kept (on the heap: up to
+        // max_rows_dense x strong_azimuths nodes of N - 1 values; no <vector> in this header).
+        struct kept_values {
+            double* data = new double[std::size_t(max_rows_dense) * std::size_t(strong_azimuths) * (N - 1 + (N == 1))];
+            ~kept_values() { delete[] data; }
+        } kept;
+        std::size_t count = 0;
         std::array<dielectric_side_grid, N> out{};
         out[0] = dielectric_side_grid(
             alpha_x, alpha_y, eta_s, margin[0], strong_margin[0],
-            [&values, &kept](const vec3<double>& v) {
-                kept.push_back(values(v));
-                return kept.back()[0];
+            [&values, &kept, &count](const vec3<double>& v) {
+                const std::array<double, N> all = values(v);
+                for (std::size_t k = 1; k < N; ++k) kept.data[count * (N - 1) + (k - 1)] = all[k];
+                ++count;
+                return all[0];
             },
             dense_at_critical);
         for (std::size_t k = 1; k < N; ++k) {
             std::size_t next = 0;
             out[k] = dielectric_side_grid(
                 alpha_x, alpha_y, eta_s, margin[k], strong_margin[k],
-                [&kept, &next, k](const vec3<double>&) { return next < kept.size() ? kept[next++][k] : 0.0; },
+                [&kept, &next, count, k](const vec3<double>&) {
+                    return next < count ? kept.data[(next++) * (N - 1) + (k - 1)] : 0.0;
+                },
                 dense_at_critical);
         }
         return out;

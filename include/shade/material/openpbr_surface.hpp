@@ -259,10 +259,10 @@ enum class interface_albedo {
 ///     its own albedo with F = 1), raised by the node sum's largest shortfall over the
 ///     specification's films (detail/thin_film_margin_data.hpp), so that it reads high,
 ///     never low; for eta'_s < 1, whose F has a total-reflection kink finer than the
-///     nodes, F_film's integral minus the table's R_ss. Where the anisotropic lobe's R_ss is
-///     integrated per interface (below 1, or above 1 at strong anisotropy), the film's part
-///     is integrated in the same pass instead: the integral of F_film - F against the same
-///     visible normals at the same view nodes (detail::anisotropic_reflection_albedo_grid's
+///     nodes, F_film's integral minus the table's R_ss. An anisotropic lobe with a film
+///     integrates its R_ss per interface and the film's part in the same pass instead: the
+///     integral of F_film - F against the same visible normals at the same view nodes
+///     (detail::anisotropic_reflection_albedo_grid with the film's Fresnel term,
 ///     difference()).
 ///   * f_transmission: the transmitted part of shade::compensated_rough_dielectric at the
 ///     index specular_ior (anisotropic with openpbr::interface_albedo::grid: in its
@@ -1441,12 +1441,10 @@ void openpbr_surface<T>::build() {
         // in mu, for a thick film's fringes), F_film read from a table of film_fresnel_nodes
         // + 1 cosines (the film's F per call would cost several times the pass), so that
         // E_spec = tint (R_ss + w D) (specular_albedo).
-        // At eta'_s = 1 (specular_weight 0) the lobe reflects through the film alone: the grid
-        // then holds D alone (R_ss = 0).
+        // Every anisotropic lobe with a film builds it (at eta'_s = 1, specular_weight 0, the
+        // lobe reflects through the film alone: the grid holds D alone, R_ss = 0).
         const T ax = base_distribution->alpha_x(), ay = base_distribution->alpha_y();
-        const bool film_grid = film_dielectric_ && specular_anisotropic_ &&
-                               (specular_eta_ == T(1) ||
-                                detail::anisotropic_reflection_albedo_grid<T>::integrates(ax, ay, specular_eta_));
+        const bool film_grid = film_dielectric_ && specular_anisotropic_;
         if (specular_anisotropic_ && (specular_eta_ != T(1) || film_grid)) {
             const bool total = transmission_total_grid && same_index;
             if (film_grid) {

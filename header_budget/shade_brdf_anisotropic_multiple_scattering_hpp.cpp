@@ -1,0 +1,1 @@
+#include <shade/brdf/anisotropic_multiple_scattering.hpp>

@@ -1,0 +1,1 @@
+#include <shade/brdf/any_brdf.hpp>

@@ -1,0 +1,1 @@
+#include <shade/brdf/ashikhmin_shirley.hpp>

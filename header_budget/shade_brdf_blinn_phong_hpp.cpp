@@ -1,0 +1,1 @@
+#include <shade/brdf/blinn_phong.hpp>

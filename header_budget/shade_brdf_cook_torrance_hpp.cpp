@@ -1,0 +1,1 @@
+#include <shade/brdf/cook_torrance.hpp>

@@ -1,0 +1,1 @@
+#include <shade/brdf/coupled_plastic.hpp>

@@ -1,0 +1,1 @@
+#include <shade/brdf/detail/eon_sampling.hpp>

@@ -1,0 +1,1 @@
+#include <shade/brdf/detail/power_lobe.hpp>

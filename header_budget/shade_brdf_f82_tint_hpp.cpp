@@ -1,0 +1,1 @@
+#include <shade/brdf/f82_tint.hpp>

@@ -1,0 +1,1 @@
+#include <shade/brdf/ggx_dielectric_coating.hpp>

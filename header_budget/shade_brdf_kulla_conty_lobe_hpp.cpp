@@ -1,0 +1,1 @@
+#include <shade/brdf/kulla_conty_lobe.hpp>

@@ -1,0 +1,1 @@
+#include <shade/brdf/microfacet/anisotropic_albedo_table.hpp>

@@ -1,0 +1,1 @@
+#include <shade/brdf/microfacet/cosine_weights.hpp>

@@ -1,0 +1,1 @@
+#include <shade/brdf/microfacet/detail/albedo_data.hpp>

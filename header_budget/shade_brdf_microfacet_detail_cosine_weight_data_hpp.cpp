@@ -1,0 +1,1 @@
+#include <shade/brdf/microfacet/detail/cosine_weight_data.hpp>

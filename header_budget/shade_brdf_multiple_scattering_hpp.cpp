@@ -1,0 +1,1 @@
+#include <shade/brdf/multiple_scattering.hpp>

@@ -1,0 +1,1 @@
+#include <shade/brdf/oren_nayar.hpp>

@@ -1,0 +1,1 @@
+#include <shade/brdf/sheen.hpp>

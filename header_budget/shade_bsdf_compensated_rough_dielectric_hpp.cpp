@@ -1,0 +1,1 @@
+#include <shade/bsdf/compensated_rough_dielectric.hpp>

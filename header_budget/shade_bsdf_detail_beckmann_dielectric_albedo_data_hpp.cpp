@@ -1,0 +1,1 @@
+#include <shade/bsdf/detail/beckmann_dielectric_albedo_data.hpp>

@@ -1,0 +1,1 @@
+#include <shade/bsdf/detail/dielectric_albedo_data.hpp>

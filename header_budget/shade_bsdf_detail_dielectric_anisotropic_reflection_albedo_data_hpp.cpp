@@ -1,0 +1,1 @@
+#include <shade/bsdf/detail/dielectric_anisotropic_reflection_albedo_data.hpp>

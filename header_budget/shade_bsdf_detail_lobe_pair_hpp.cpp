@@ -1,0 +1,1 @@
+#include <shade/bsdf/detail/lobe_pair.hpp>

@@ -1,0 +1,1 @@
+#include <shade/bsdf/dielectric_albedo_table.hpp>

@@ -1,0 +1,1 @@
+#include <shade/bsdf/dielectric_anisotropic_reflection_albedo.hpp>

@@ -1,0 +1,1 @@
+#include <shade/bsdf/dielectric_reflection_albedo.hpp>

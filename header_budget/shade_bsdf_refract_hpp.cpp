@@ -1,0 +1,1 @@
+#include <shade/bsdf/refract.hpp>

@@ -1,0 +1,1 @@
+#include <shade/bsdf/rough_dielectric_albedo_grid.hpp>

@@ -1,0 +1,1 @@
+#include <shade/bsdf/smooth_dielectric.hpp>

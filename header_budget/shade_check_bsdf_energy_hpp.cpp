@@ -1,0 +1,1 @@
+#include <shade/check/bsdf_energy.hpp>

@@ -1,0 +1,1 @@
+#include <shade/check/chi2.hpp>

@@ -1,0 +1,1 @@
+#include <shade/check/detail/model_ref.hpp>

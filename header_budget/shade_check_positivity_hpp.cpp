@@ -1,0 +1,1 @@
+#include <shade/check/positivity.hpp>

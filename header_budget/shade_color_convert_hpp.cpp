@@ -1,0 +1,1 @@
+#include <shade/color/convert.hpp>

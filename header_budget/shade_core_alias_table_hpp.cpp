@@ -1,0 +1,1 @@
+#include <shade/core/alias_table.hpp>

@@ -1,0 +1,1 @@
+#include <shade/core/error.hpp>

@@ -1,0 +1,1 @@
+#include <shade/core/scalar.hpp>

@@ -1,0 +1,1 @@
+#include <shade/geometry/detail/bvh_build.hpp>

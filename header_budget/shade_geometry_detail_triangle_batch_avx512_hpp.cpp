@@ -1,0 +1,1 @@
+#include <shade/geometry/detail/triangle_batch_avx512.hpp>

@@ -1,0 +1,1 @@
+#include <shade/geometry/spawn.hpp>

@@ -1,0 +1,1 @@
+#include <shade/geometry/triangle_batch.hpp>

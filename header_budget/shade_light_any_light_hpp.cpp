@@ -1,0 +1,1 @@
+#include <shade/light/any_light.hpp>

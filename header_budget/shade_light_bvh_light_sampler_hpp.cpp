@@ -1,0 +1,1 @@
+#include <shade/light/bvh_light_sampler.hpp>

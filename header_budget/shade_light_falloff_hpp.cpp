@@ -1,0 +1,1 @@
+#include <shade/light/falloff.hpp>

@@ -1,0 +1,1 @@
+#include <shade/light/sample_context.hpp>

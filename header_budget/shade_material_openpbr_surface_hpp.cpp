@@ -1,0 +1,1 @@
+#include <shade/material/openpbr_surface.hpp>

@@ -1,0 +1,1 @@
+#include <shade/shading/shader.hpp>

@@ -1,0 +1,1 @@
+#include <shade/shading/sum_over_lights.hpp>
