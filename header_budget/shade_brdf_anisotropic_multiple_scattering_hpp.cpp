@@ -1,1 +1,0 @@
-#include <shade/brdf/anisotropic_multiple_scattering.hpp>

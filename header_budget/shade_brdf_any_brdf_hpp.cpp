@@ -1,1 +1,0 @@
-#include <shade/brdf/any_brdf.hpp>

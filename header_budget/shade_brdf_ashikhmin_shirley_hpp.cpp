@@ -1,1 +1,0 @@
-#include <shade/brdf/ashikhmin_shirley.hpp>

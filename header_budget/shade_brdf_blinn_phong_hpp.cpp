@@ -1,1 +1,0 @@
-#include <shade/brdf/blinn_phong.hpp>

@@ -1,1 +1,0 @@
-#include <shade/brdf/cook_torrance.hpp>

@@ -1,1 +1,0 @@
-#include <shade/brdf/detail/directions.hpp>

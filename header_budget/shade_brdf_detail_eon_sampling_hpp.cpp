@@ -1,1 +1,0 @@
-#include <shade/brdf/detail/eon_sampling.hpp>

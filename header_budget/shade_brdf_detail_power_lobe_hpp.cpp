@@ -1,1 +1,0 @@
-#include <shade/brdf/detail/power_lobe.hpp>

@@ -1,1 +1,0 @@
-#include <shade/brdf/f82_tint.hpp>

@@ -1,1 +1,0 @@
-#include <shade/brdf/ggx_dielectric_coating.hpp>

@@ -1,1 +1,0 @@
-#include <shade/brdf/kulla_conty_lobe.hpp>

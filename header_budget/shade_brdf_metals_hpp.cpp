@@ -1,1 +1,0 @@
-#include <shade/brdf/metals.hpp>

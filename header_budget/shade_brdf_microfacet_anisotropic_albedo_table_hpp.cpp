@@ -1,1 +1,0 @@
-#include <shade/brdf/microfacet/anisotropic_albedo_table.hpp>

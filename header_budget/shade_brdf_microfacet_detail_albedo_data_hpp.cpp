@@ -1,1 +1,0 @@
-#include <shade/brdf/microfacet/detail/albedo_data.hpp>

@@ -1,1 +1,0 @@
-#include <shade/brdf/microfacet/detail/anisotropic_albedo_data.hpp>

@@ -1,1 +1,0 @@
-#include <shade/brdf/microfacet/detail/anisotropic_strong_albedo_data.hpp>

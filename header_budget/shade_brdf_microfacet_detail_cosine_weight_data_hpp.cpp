@@ -1,1 +1,0 @@
-#include <shade/brdf/microfacet/detail/cosine_weight_data.hpp>

@@ -1,1 +1,0 @@
-#include <shade/brdf/microfacet/detail/thin_film_margin_data.hpp>

@@ -1,1 +1,0 @@
-#include <shade/brdf/multiple_scattering.hpp>

@@ -1,1 +1,0 @@
-#include <shade/brdf/oren_nayar.hpp>

@@ -1,1 +1,0 @@
-#include <shade/brdf/thin_film.hpp>

@@ -1,1 +1,0 @@
-#include <shade/bsdf/compensated_rough_dielectric.hpp>

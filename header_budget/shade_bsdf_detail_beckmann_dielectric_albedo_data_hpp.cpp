@@ -1,1 +1,0 @@
-#include <shade/bsdf/detail/beckmann_dielectric_albedo_data.hpp>

@@ -1,1 +1,0 @@
-#include <shade/bsdf/detail/dielectric_albedo_row.hpp>

@@ -1,1 +1,0 @@
-#include <shade/bsdf/detail/dielectric_reflection_albedo_data.hpp>

@@ -1,1 +1,0 @@
-#include <shade/bsdf/detail/lobe_pair.hpp>

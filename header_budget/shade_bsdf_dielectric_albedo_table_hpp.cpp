@@ -1,1 +1,0 @@
-#include <shade/bsdf/dielectric_albedo_table.hpp>

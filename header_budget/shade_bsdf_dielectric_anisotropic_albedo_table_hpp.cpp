@@ -1,1 +1,0 @@
-#include <shade/bsdf/dielectric_anisotropic_albedo_table.hpp>

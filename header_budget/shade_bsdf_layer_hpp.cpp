@@ -1,1 +1,0 @@
-#include <shade/bsdf/layer.hpp>

@@ -1,1 +1,0 @@
-#include <shade/bsdf/smooth_conductor.hpp>

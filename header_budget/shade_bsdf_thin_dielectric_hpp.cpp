@@ -1,1 +1,0 @@
-#include <shade/bsdf/thin_dielectric.hpp>

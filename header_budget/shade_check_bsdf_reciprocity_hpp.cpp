@@ -1,1 +1,0 @@
-#include <shade/check/bsdf_reciprocity.hpp>

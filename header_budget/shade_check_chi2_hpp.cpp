@@ -1,1 +1,0 @@
-#include <shade/check/chi2.hpp>

@@ -1,1 +1,0 @@
-#include <shade/check/detail/model_ref.hpp>

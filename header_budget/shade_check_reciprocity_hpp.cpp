@@ -1,1 +1,0 @@
-#include <shade/check/reciprocity.hpp>

@@ -1,1 +1,0 @@
-#include <shade/color/convert.hpp>

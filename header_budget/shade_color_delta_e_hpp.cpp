@@ -1,1 +1,0 @@
-#include <shade/color/delta_e.hpp>

@@ -1,1 +1,0 @@
-#include <shade/core/alias_table.hpp>

@@ -1,1 +1,0 @@
-#include <shade/core/spherical_triangle.hpp>

@@ -1,1 +1,0 @@
-#include <shade/core/types.hpp>

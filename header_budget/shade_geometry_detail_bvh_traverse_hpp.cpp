@@ -1,1 +1,0 @@
-#include <shade/geometry/detail/bvh_traverse.hpp>

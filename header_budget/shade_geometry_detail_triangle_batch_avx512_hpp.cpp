@@ -1,1 +1,0 @@
-#include <shade/geometry/detail/triangle_batch_avx512.hpp>

@@ -1,1 +1,0 @@
-#include <shade/geometry/triangle_bvh.hpp>

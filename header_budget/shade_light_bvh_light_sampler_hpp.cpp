@@ -1,1 +1,0 @@
-#include <shade/light/bvh_light_sampler.hpp>

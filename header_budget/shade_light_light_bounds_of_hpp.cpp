@@ -1,1 +1,0 @@
-#include <shade/light/light_bounds_of.hpp>

@@ -1,1 +1,0 @@
-#include <shade/light/spot.hpp>

@@ -1,1 +1,0 @@
-#include <shade/light/triangle.hpp>

@@ -1,1 +1,0 @@
-#include <shade/material/openpbr_surface.hpp>

@@ -1,1 +1,0 @@
-#include <shade/shade.hpp>

@@ -1,1 +1,0 @@
-#include <shade/shading/sum_over_lights.hpp>
