@@ -3,7 +3,8 @@
 // and any agree with a brute-force loop over every primitive on
 // random rays over random meshes; a closed mesh behind the watertight test lets no ray
 // through shared edges or vertices escape; degenerate inputs (empty, one triangle, all
-// coplanar, NaN vertices).
+// coplanar, NaN vertices). The tests of hits run under each eight-wide walk the CPU can
+// take (for_each_walk: with AVX-512, its walk and the AVX one).
 
 #include <cmath>
 #include <cstdint>
@@ -33,6 +34,23 @@ using v3 = shade::vec3<T>;
 // Both node widths (eight is four where this build or CPU lacks AVX; the test of
 // shade::bvh_width below checks which).
 constexpr shade::bvh_width widths[] = {shade::bvh_width::four, shade::bvh_width::eight};
+
+// Runs body under each eight-wide walk traversal can take here: where the build has the
+// walk compiled for AVX-512 and the CPU runs it (g++ builds without -mavx512f on such
+// CPUs), once with it (the default) and once with the walk compiled for AVX that other
+// CPUs take; elsewhere once.
+template <class F>
+void for_each_walk(const F& body) {
+    struct restore {
+        ~restore() { shade::detail::bvh_avx512_walk = true; }
+    } guard;
+    for (const bool avx512 : {true, false}) {
+        if (avx512 && !shade::detail::bvh_avx512_walk_available()) continue;
+        CAPTURE(avx512);
+        shade::detail::bvh_avx512_walk = avx512;
+        body();
+    }
+}
 
 template <class T>
 v3<T> in_cube(shade::rng& g, T half) {
@@ -183,37 +201,39 @@ std::vector<shade::triangle<T>> closed_sphere(int levels) {
 } // namespace
 
 TEST_CASE_TEMPLATE("triangle_bvh: closest and any agree with brute force on random meshes", T, float, double) {
-    shade::rng g(42);
-    tally count;
-    // Sizes around the leaf and node widths, and larger meshes of small and large triangles.
-    for (const std::size_t n : {std::size_t(2), std::size_t(5), std::size_t(17), std::size_t(300), std::size_t(3000)}) {
-        const auto tris = random_mesh<T>(g, n, n > 1000 ? T(0.2) : T(1));
-        const auto rays = random_rays<T>(g, 400);
-        for (const shade::bvh_width width : widths) {
-            CAPTURE(width);
-            check_against_brute_force(shade::triangle_bvh<T>(tris, width), std::span<const shade::triangle<T>>(tris),
-                                      rays, count);
-            check_against_brute_force(shade::triangle_bvh<T, shade::watertight>(tris, width),
-                                      std::span<const shade::triangle<T>>(tris), rays, count);
+    for_each_walk([&] {
+        shade::rng g(42);
+        tally count;
+        // Sizes around the leaf and node widths, and larger meshes of small and large triangles.
+        for (const std::size_t n : {std::size_t(2), std::size_t(5), std::size_t(17), std::size_t(300), std::size_t(3000)}) {
+            const auto tris = random_mesh<T>(g, n, n > 1000 ? T(0.2) : T(1));
+            const auto rays = random_rays<T>(g, 400);
+            for (const shade::bvh_width width : widths) {
+                CAPTURE(width);
+                check_against_brute_force(shade::triangle_bvh<T>(tris, width), std::span<const shade::triangle<T>>(tris),
+                                          rays, count);
+                check_against_brute_force(shade::triangle_bvh<T, shade::watertight>(tris, width),
+                                          std::span<const shade::triangle<T>>(tris), rays, count);
+            }
         }
-    }
-    CHECK(count.hits > 200); // both outcomes exercised
-    CHECK(count.hits < count.rays);
-    // Back-face culling reaches the leaves: a closed sphere seen from inside has only
-    // back faces toward the origin.
-    const auto sphere = closed_sphere<T>(2);
-    const shade::triangle_bvh<T> accel(sphere);
-    const shade::ray<T> inside{{0, 0, 0}, {0.3, 0.2, 1}};
-    CHECK(accel.closest(inside));
-    CHECK_FALSE(accel.closest(inside, shade::culling::back_faces));
-    CHECK(accel.find_closest(inside));
-    CHECK_FALSE(accel.find_closest(inside, shade::culling::back_faces));
-    // From outside only front faces face the ray: the same hit with culling as without.
-    const shade::ray<T> outside{{0.1, 0.2, -3}, {0, 0, 1}};
-    check_lean_query(accel, outside, shade::culling::back_faces);
-    REQUIRE(accel.find_closest(outside, shade::culling::back_faces));
-    CHECK(accel.find_closest(outside, shade::culling::back_faces)->hit.front_face);
-    CHECK_FALSE(accel.any(inside, shade::culling::back_faces));
+        CHECK(count.hits > 200); // both outcomes exercised
+        CHECK(count.hits < count.rays);
+        // Back-face culling reaches the leaves: a closed sphere seen from inside has only
+        // back faces toward the origin.
+        const auto sphere = closed_sphere<T>(2);
+        const shade::triangle_bvh<T> accel(sphere);
+        const shade::ray<T> inside{{0, 0, 0}, {0.3, 0.2, 1}};
+        CHECK(accel.closest(inside));
+        CHECK_FALSE(accel.closest(inside, shade::culling::back_faces));
+        CHECK(accel.find_closest(inside));
+        CHECK_FALSE(accel.find_closest(inside, shade::culling::back_faces));
+        // From outside only front faces face the ray: the same hit with culling as without.
+        const shade::ray<T> outside{{0.1, 0.2, -3}, {0, 0, 1}};
+        check_lean_query(accel, outside, shade::culling::back_faces);
+        REQUIRE(accel.find_closest(outside, shade::culling::back_faces));
+        CHECK(accel.find_closest(outside, shade::culling::back_faces)->hit.front_face);
+        CHECK_FALSE(accel.any(inside, shade::culling::back_faces));
+    });
 }
 
 // Rays from inside a closed sphere mesh toward its vertices and points on its edges (the
@@ -221,28 +241,30 @@ TEST_CASE_TEMPLATE("triangle_bvh: closest and any agree with brute force on rand
 // watertight test behind the hierarchy, as they do without it.
 TEST_CASE_TEMPLATE("triangle_bvh<watertight>: no ray escapes a closed mesh through shared edges or vertices", T,
                    float, double) {
-    const auto tris = closed_sphere<T>(3); // 1280 triangles
-    const shade::triangle_bvh<T, shade::watertight> accel(tris, shade::bvh_width::four);
-    const shade::triangle_bvh<T, shade::watertight> wide(tris, shade::bvh_width::eight);
-    shade::rng g(3);
-    std::size_t rays = 0, escaped = 0, escaped_wide = 0, escaped_brute = 0;
-    for (const auto& tri : tris) {
-        const v3<T> origin = in_cube<T>(g, T(0.3)); // inside the sphere, off-centre
-        const v3<T> targets[] = {tri.v0, tri.v1, (tri.v0 + tri.v1) * T(0.5), tri.v0 + (tri.v2 - tri.v0) * T(0.25)};
-        for (const v3<T>& target : targets) {
-            const shade::ray<T> r{origin, target - origin};
-            ++rays;
-            escaped += !accel.closest(r).has_value();
-            escaped += !accel.any(r);
-            escaped_wide += !wide.closest(r).has_value();
-            escaped_wide += !wide.any(r);
-            escaped_brute += !brute_force<shade::watertight>(r, std::span<const shade::triangle<T>>(tris));
+    for_each_walk([&] {
+        const auto tris = closed_sphere<T>(3); // 1280 triangles
+        const shade::triangle_bvh<T, shade::watertight> accel(tris, shade::bvh_width::four);
+        const shade::triangle_bvh<T, shade::watertight> wide(tris, shade::bvh_width::eight);
+        shade::rng g(3);
+        std::size_t rays = 0, escaped = 0, escaped_wide = 0, escaped_brute = 0;
+        for (const auto& tri : tris) {
+            const v3<T> origin = in_cube<T>(g, T(0.3)); // inside the sphere, off-centre
+            const v3<T> targets[] = {tri.v0, tri.v1, (tri.v0 + tri.v1) * T(0.5), tri.v0 + (tri.v2 - tri.v0) * T(0.25)};
+            for (const v3<T>& target : targets) {
+                const shade::ray<T> r{origin, target - origin};
+                ++rays;
+                escaped += !accel.closest(r).has_value();
+                escaped += !accel.any(r);
+                escaped_wide += !wide.closest(r).has_value();
+                escaped_wide += !wide.any(r);
+                escaped_brute += !brute_force<shade::watertight>(r, std::span<const shade::triangle<T>>(tris));
+            }
         }
-    }
-    CHECK(rays == 4 * tris.size());
-    CHECK(escaped_brute == 0);
-    CHECK(escaped == 0);
-    CHECK(escaped_wide == 0);
+        CHECK(rays == 4 * tris.size());
+        CHECK(escaped_brute == 0);
+        CHECK(escaped == 0);
+        CHECK(escaped_wide == 0);
+    });
 }
 
 TEST_CASE_TEMPLATE("triangle_bvh: degenerate inputs", T, float, double) {
@@ -342,119 +364,123 @@ TEST_CASE_TEMPLATE("triangle_bvh: degenerate inputs", T, float, double) {
 // from one with a zero direction; the invalid rays hit nothing and the valid ones (some
 // scaled) hit as the triangle test does, at both widths.
 TEST_CASE_TEMPLATE("triangle_bvh: a ray's validity as ray::valid() decides it", T, float, double) {
-    using lim = std::numeric_limits<T>;
-    const T values[] = {T(0), -T(0), T(1), T(-2.5), lim::denorm_min(), -lim::min(), lim::max(),
-                        lim::lowest(), lim::infinity(), -lim::infinity(), lim::quiet_NaN(),
-                        T(0x1p-125), T(-0x1p+125), T(0x1p+126)}; // the bounds of the unscaled range and beyond
-    const auto slot = [](shade::ray<T>& r, int k) -> T& {
-        return k < 3 ? r.origin[k] : k < 6 ? r.direction[k - 3] : k == 6 ? r.t_min : r.t_max;
-    };
-    // The one triangle of the plane z = 0 around the origin's column: hit by valid rays
-    // pointing down from (0, 0, 1), whatever else changes.
-    const std::vector<shade::triangle<T>> tris{{{-10, -10, 0}, {10, -10, 0}, {0, 10, 0}}};
-    const shade::triangle_bvh<T> four(tris, shade::bvh_width::four);
-    const shade::triangle_bvh<T> eight(tris, shade::bvh_width::eight);
-    const shade::ray<T> bases[] = {{{0, 0, 1}, {0, 0, -1}, T(0), lim::infinity()},
-                                   {{0, 0, 1}, {0, 0, 0}, T(0), T(2)}};
-    // The walk alone (bvh_traverse validating), over one leaf of the triangle's box: an
-    // invalid ray reaches no leaf.
-    std::vector<shade::detail::bvh_prim_ref> refs{shade::detail::make_prim_ref(shade::bounds(tris[0]), 0)};
-    auto refs8 = refs;
-    const auto tree4 = shade::detail::bvh_builder(1, 1).build(refs, 4);
-    const auto tree8 = shade::detail::bvh_builder(1, 1).build(refs8, shade::detail::bvh_node_width(8));
-    std::size_t valid = 0, invalid = 0, scaled = 0, hits = 0;
-    for (const shade::ray<T>& base : bases)
-        for (int i = 0; i < 8; ++i)
-            for (int j = i; j < 8; ++j)
-                for (const T a : values)
-                    for (const T b : values) {
-                        shade::ray<T> r = base;
-                        slot(r, i) = a;
-                        slot(r, j) = b; // i == j: one number changed
-                        CAPTURE(i);
-                        CAPTURE(j);
-                        CAPTURE(a);
-                        CAPTURE(b);
-                        const bool expected = r.valid();
-                        REQUIRE(shade::detail::bvh_ray_valid(r) == expected);
-                        const bool needs_scaling = shade::detail::bvh_ray_scale<T>::needed(r.direction);
-                        REQUIRE(shade::detail::bvh_scale_needed(r.direction) == needs_scaling);
-#if defined(__GNUC__) && defined(__x86_64__)
-                        if constexpr (std::is_same_v<T, float>)
-                            if (shade::detail::cpu_has_avx())
-                                REQUIRE(shade::detail::bvh_ray_plain8(r) == (expected && !needs_scaling));
-#endif
-                        (expected ? valid : invalid) += 1;
-                        scaled += expected && needs_scaling;
-                        const auto loop = brute_force<shade::moller_trumbore>(r, std::span<const shade::triangle<T>>(tris));
-                        hits += loop.has_value();
-                        for (const auto* tree : {&tree4, &tree8}) {
-                            std::size_t leaves = 0;
-                            shade::detail::bvh_traverse<shade::detail::bvh_order::sorted, true>(
-                                *tree, r, r.t_max, [&](std::uint32_t, std::uint32_t, auto) { return ++leaves, false; });
-                            if (!expected) CHECK(leaves == 0);
-                            if (expected && loop) CHECK(leaves == 1); // a hit lies in the box
-                        }
-                        for (const auto* accel : {&four, &eight}) {
-                            if (!expected) {
-                                CHECK_FALSE(accel->closest(r));
-                                CHECK_FALSE(accel->find_closest(r));
-                                CHECK_FALSE(accel->any(r));
-                                continue;
+    for_each_walk([&] {
+        using lim = std::numeric_limits<T>;
+        const T values[] = {T(0), -T(0), T(1), T(-2.5), lim::denorm_min(), -lim::min(), lim::max(),
+                            lim::lowest(), lim::infinity(), -lim::infinity(), lim::quiet_NaN(),
+                            T(0x1p-125), T(-0x1p+125), T(0x1p+126)}; // the bounds of the unscaled range and beyond
+        const auto slot = [](shade::ray<T>& r, int k) -> T& {
+            return k < 3 ? r.origin[k] : k < 6 ? r.direction[k - 3] : k == 6 ? r.t_min : r.t_max;
+        };
+        // The one triangle of the plane z = 0 around the origin's column: hit by valid rays
+        // pointing down from (0, 0, 1), whatever else changes.
+        const std::vector<shade::triangle<T>> tris{{{-10, -10, 0}, {10, -10, 0}, {0, 10, 0}}};
+        const shade::triangle_bvh<T> four(tris, shade::bvh_width::four);
+        const shade::triangle_bvh<T> eight(tris, shade::bvh_width::eight);
+        const shade::ray<T> bases[] = {{{0, 0, 1}, {0, 0, -1}, T(0), lim::infinity()},
+                                       {{0, 0, 1}, {0, 0, 0}, T(0), T(2)}};
+        // The walk alone (bvh_traverse validating), over one leaf of the triangle's box: an
+        // invalid ray reaches no leaf.
+        std::vector<shade::detail::bvh_prim_ref> refs{shade::detail::make_prim_ref(shade::bounds(tris[0]), 0)};
+        auto refs8 = refs;
+        const auto tree4 = shade::detail::bvh_builder(1, 1).build(refs, 4);
+        const auto tree8 = shade::detail::bvh_builder(1, 1).build(refs8, shade::detail::bvh_node_width(8));
+        std::size_t valid = 0, invalid = 0, scaled = 0, hits = 0;
+        for (const shade::ray<T>& base : bases)
+            for (int i = 0; i < 8; ++i)
+                for (int j = i; j < 8; ++j)
+                    for (const T a : values)
+                        for (const T b : values) {
+                            shade::ray<T> r = base;
+                            slot(r, i) = a;
+                            slot(r, j) = b; // i == j: one number changed
+                            CAPTURE(i);
+                            CAPTURE(j);
+                            CAPTURE(a);
+                            CAPTURE(b);
+                            const bool expected = r.valid();
+                            REQUIRE(shade::detail::bvh_ray_valid(r) == expected);
+                            const bool needs_scaling = shade::detail::bvh_ray_scale<T>::needed(r.direction);
+                            REQUIRE(shade::detail::bvh_scale_needed(r.direction) == needs_scaling);
+    #if defined(__GNUC__) && defined(__x86_64__)
+                            if constexpr (std::is_same_v<T, float>)
+                                if (shade::detail::cpu_has_avx())
+                                    REQUIRE(shade::detail::bvh_ray_plain8(r) == (expected && !needs_scaling));
+    #endif
+                            (expected ? valid : invalid) += 1;
+                            scaled += expected && needs_scaling;
+                            const auto loop = brute_force<shade::moller_trumbore>(r, std::span<const shade::triangle<T>>(tris));
+                            hits += loop.has_value();
+                            for (const auto* tree : {&tree4, &tree8}) {
+                                std::size_t leaves = 0;
+                                shade::detail::bvh_traverse<shade::detail::bvh_order::sorted, true>(
+                                    *tree, r, r.t_max, [&](std::uint32_t, std::uint32_t, auto) { return ++leaves, false; });
+                                if (!expected) CHECK(leaves == 0);
+                                if (expected && loop) CHECK(leaves == 1); // a hit lies in the box
                             }
-                            check_lean_query(*accel, r);
-                            CHECK(accel->any(r) == loop.has_value());
-                            const auto h = accel->closest(r);
-                            REQUIRE(h.has_value() == loop.has_value());
-                            if (h) CHECK(h->hit.t == loop->second.t);
+                            for (const auto* accel : {&four, &eight}) {
+                                if (!expected) {
+                                    CHECK_FALSE(accel->closest(r));
+                                    CHECK_FALSE(accel->find_closest(r));
+                                    CHECK_FALSE(accel->any(r));
+                                    continue;
+                                }
+                                check_lean_query(*accel, r);
+                                CHECK(accel->any(r) == loop.has_value());
+                                const auto h = accel->closest(r);
+                                REQUIRE(h.has_value() == loop.has_value());
+                                if (h) CHECK(h->hit.t == loop->second.t);
+                            }
                         }
-                    }
-    // Both answers occur many times (each base with one number changed to 1 alone gives
-    // valid rays from the valid base and, through the direction, from the zero one), and
-    // valid rays that need scaling, and hits, too.
-    CHECK(valid > 1000);
-    CHECK(invalid > 1000);
-    CHECK(scaled > 100);
-    CHECK(hits > 100);
+        // Both answers occur many times (each base with one number changed to 1 alone gives
+        // valid rays from the valid base and, through the direction, from the zero one), and
+        // valid rays that need scaling, and hits, too.
+        CHECK(valid > 1000);
+        CHECK(invalid > 1000);
+        CHECK(scaled > 100);
+        CHECK(hits > 100);
+    });
 }
 
 TEST_CASE_TEMPLATE("primitive_bvh and bvh: spheres against brute force", T, float, double) {
-    shade::rng g(5);
-    std::vector<shade::sphere<T>> spheres;
-    for (int i = 0; i < 500; ++i) spheres.emplace_back(in_cube<T>(g, T(5)), T(0.05) + T(0.3) * g.uniform<T>());
-    std::vector<shade::aabb<T>> boxes;
-    for (const auto& s : spheres) boxes.push_back(shade::bounds(s));
-    for (const shade::bvh_width width : widths) {
-        CAPTURE(width);
-        const shade::primitive_bvh<shade::sphere<T>> accel(spheres, width);
-        const shade::bvh<T> tree(boxes, width);
-        CHECK(tree.size() == spheres.size());
-        std::size_t hits = 0;
-        for (int k = 0; k < 2000; ++k) {
-            const shade::ray<T> r{in_cube<T>(g, T(7)), in_cube<T>(g, T(1))};
-            std::optional<std::pair<std::uint32_t, shade::hit<T>>> best;
-            for (std::uint32_t i = 0; i < spheres.size(); ++i)
-                if (auto h = shade::intersect(r, spheres[i]); h && (!best || h->t < best->second.t)) best = {i, *h};
-            const auto got = accel.closest(r);
-            const auto via_tree = tree.closest(r, [&](std::uint32_t i, const shade::ray<T>& rr) {
-                return shade::intersect(rr, spheres[i]);
-            });
-            REQUIRE(got.has_value() == best.has_value());
-            REQUIRE(via_tree.has_value() == best.has_value());
-            CHECK(accel.any(r) == best.has_value());
-            CHECK(tree.any(r, [&](std::uint32_t i, const shade::ray<T>& rr) { return shade::intersect(rr, spheres[i]).has_value(); }) ==
-                  best.has_value());
-            if (!best) continue;
-            ++hits;
-            CHECK(got->hit.t == best->second.t);
-            CHECK(got->primitive == best->first);
-            CHECK(via_tree->hit.t == best->second.t);
+    for_each_walk([&] {
+        shade::rng g(5);
+        std::vector<shade::sphere<T>> spheres;
+        for (int i = 0; i < 500; ++i) spheres.emplace_back(in_cube<T>(g, T(5)), T(0.05) + T(0.3) * g.uniform<T>());
+        std::vector<shade::aabb<T>> boxes;
+        for (const auto& s : spheres) boxes.push_back(shade::bounds(s));
+        for (const shade::bvh_width width : widths) {
+            CAPTURE(width);
+            const shade::primitive_bvh<shade::sphere<T>> accel(spheres, width);
+            const shade::bvh<T> tree(boxes, width);
+            CHECK(tree.size() == spheres.size());
+            std::size_t hits = 0;
+            for (int k = 0; k < 2000; ++k) {
+                const shade::ray<T> r{in_cube<T>(g, T(7)), in_cube<T>(g, T(1))};
+                std::optional<std::pair<std::uint32_t, shade::hit<T>>> best;
+                for (std::uint32_t i = 0; i < spheres.size(); ++i)
+                    if (auto h = shade::intersect(r, spheres[i]); h && (!best || h->t < best->second.t)) best = {i, *h};
+                const auto got = accel.closest(r);
+                const auto via_tree = tree.closest(r, [&](std::uint32_t i, const shade::ray<T>& rr) {
+                    return shade::intersect(rr, spheres[i]);
+                });
+                REQUIRE(got.has_value() == best.has_value());
+                REQUIRE(via_tree.has_value() == best.has_value());
+                CHECK(accel.any(r) == best.has_value());
+                CHECK(tree.any(r, [&](std::uint32_t i, const shade::ray<T>& rr) { return shade::intersect(rr, spheres[i]).has_value(); }) ==
+                      best.has_value());
+                if (!best) continue;
+                ++hits;
+                CHECK(got->hit.t == best->second.t);
+                CHECK(got->primitive == best->first);
+                CHECK(via_tree->hit.t == best->second.t);
+            }
+            CHECK(hits > 100);
+            CHECK(hits < 1900);
         }
-        CHECK(hits > 100);
-        CHECK(hits < 1900);
-    }
-    std::vector<shade::aabb<T>> bad_boxes{shade::aabb<T>{}};
-    CHECK_THROWS_AS(shade::bvh<T>{std::span<const shade::aabb<T>>(bad_boxes)}, shade::invalid_parameter);
+        std::vector<shade::aabb<T>> bad_boxes{shade::aabb<T>{}};
+        CHECK_THROWS_AS(shade::bvh<T>{std::span<const shade::aabb<T>>(bad_boxes)}, shade::invalid_parameter);
+    });
 }
 
 // An unused child slot of a node has an empty box (+inf, -inf). A double ray whose
@@ -478,67 +504,71 @@ struct t_only {
 // enlargement the float walk misses about one ray in nine). A hierarchy over that box and
 // seven others far away, at both widths: any() and closest() must reach it.
 TEST_CASE_TEMPLATE("bvh: the walk's box test never misses a ray through a box corner", T, float, double) {
-    shade::rng g(11);
-    const int n = 20000;
-    for (const shade::bvh_width width : widths) {
-        CAPTURE(width);
-        int missed = 0;
-        for (int i = 0; i < n; ++i) {
-            // Dyadic corner, direction and t with few bits (float sizes in both types: the
-            // node's float planes then hold the box exactly), so o = corner - t d is exact.
-            shade::vec3<T> corner, d;
-            for (int k = 0; k < 3; ++k) {
-                corner[k] = T((std::floor(g.uniform<double>() * 512) - 256) / 64);
-                T dk = T((std::floor(g.uniform<double>() * 7) + 1) / 8);
-                if (g.uniform<double>() < 0.5) dk = -dk;
-                d[k] = dk;
+    for_each_walk([&] {
+        shade::rng g(11);
+        const int n = 20000;
+        for (const shade::bvh_width width : widths) {
+            CAPTURE(width);
+            int missed = 0;
+            for (int i = 0; i < n; ++i) {
+                // Dyadic corner, direction and t with few bits (float sizes in both types: the
+                // node's float planes then hold the box exactly), so o = corner - t d is exact.
+                shade::vec3<T> corner, d;
+                for (int k = 0; k < 3; ++k) {
+                    corner[k] = T((std::floor(g.uniform<double>() * 512) - 256) / 64);
+                    T dk = T((std::floor(g.uniform<double>() * 7) + 1) / 8);
+                    if (g.uniform<double>() < 0.5) dk = -dk;
+                    d[k] = dk;
+                }
+                const T t = T((std::floor(g.uniform<double>() * 64) + 1) / 256.0);
+                const shade::vec3<T> o = corner - t * d;
+                std::vector<shade::aabb<T>> boxes(8);
+                for (int k = 0; k < 3; ++k) {
+                    const bool enters = k == 0 || (k == 2 && g.uniform<double>() < 0.5);
+                    const bool above = enters == (d[k] > 0);
+                    boxes[0].lo[k] = above ? corner[k] : corner[k] - T(1);
+                    boxes[0].hi[k] = above ? corner[k] + T(1) : corner[k];
+                }
+                for (std::size_t b = 1; b < boxes.size(); ++b) {
+                    boxes[b].lo = shade::vec3<T>(T(100 + 10 * int(b)));
+                    boxes[b].hi = boxes[b].lo + shade::vec3<T>(1);
+                }
+                const shade::bvh<T> accel(boxes, width);
+                const shade::ray<T> r{o, d};
+                const auto first = [](std::uint32_t p, const shade::ray<T>&) { return p == 0; };
+                const auto h = accel.closest(r, [&](std::uint32_t p, const shade::ray<T>& s) {
+                    return p == 0 && t >= s.t_min && t <= s.t_max ? std::optional<t_only<T>>(t_only<T>{t}) : std::nullopt;
+                });
+                if (!accel.any(r, first) || !h) ++missed;
             }
-            const T t = T((std::floor(g.uniform<double>() * 64) + 1) / 256.0);
-            const shade::vec3<T> o = corner - t * d;
-            std::vector<shade::aabb<T>> boxes(8);
-            for (int k = 0; k < 3; ++k) {
-                const bool enters = k == 0 || (k == 2 && g.uniform<double>() < 0.5);
-                const bool above = enters == (d[k] > 0);
-                boxes[0].lo[k] = above ? corner[k] : corner[k] - T(1);
-                boxes[0].hi[k] = above ? corner[k] + T(1) : corner[k];
-            }
-            for (std::size_t b = 1; b < boxes.size(); ++b) {
-                boxes[b].lo = shade::vec3<T>(T(100 + 10 * int(b)));
-                boxes[b].hi = boxes[b].lo + shade::vec3<T>(1);
-            }
-            const shade::bvh<T> accel(boxes, width);
-            const shade::ray<T> r{o, d};
-            const auto first = [](std::uint32_t p, const shade::ray<T>&) { return p == 0; };
-            const auto h = accel.closest(r, [&](std::uint32_t p, const shade::ray<T>& s) {
-                return p == 0 && t >= s.t_min && t <= s.t_max ? std::optional<t_only<T>>(t_only<T>{t}) : std::nullopt;
-            });
-            if (!accel.any(r, first) || !h) ++missed;
+            CHECK(missed == 0);
         }
-        CHECK(missed == 0);
-    }
+    });
 }
 
 TEST_CASE("bvh: a ray entering an unused child slot visits nothing") {
-    const std::vector<shade::sphere<double>> spheres{
-        shade::sphere<double>({0.0, 0.0, -0x1p-8}, 0x1.1004001004003p+977),
-        shade::sphere<double>({0x1p-7, 0x1p-8, -0.0}, 0x1.8p-6)};
-    shade::ray<double> r{{0, 0, 0}, {-0x1.014107194c1d2p+977, 0x1.57015ecc657c2p+975, 0x1.57015ecc657c2p+973}};
-    r.t_max = 0x1.001004003ffffp-1019;
-    std::optional<std::pair<std::uint32_t, double>> nearest;
-    for (std::uint32_t i = 0; i < spheres.size(); ++i)
-        if (auto h = shade::intersect(r, spheres[i]); h && (!nearest || h->t < nearest->second))
-            nearest = {i, h->t};
-    for (const shade::bvh_width width : widths) {
-        CAPTURE(width);
-        const shade::primitive_bvh<shade::sphere<double>> accel(spheres, width);
-        const auto h = accel.closest(r);
-        REQUIRE(h.has_value() == nearest.has_value());
-        if (h) {
-            CHECK(h->primitive == nearest->first);
-            CHECK(h->hit.t == nearest->second);
+    for_each_walk([&] {
+        const std::vector<shade::sphere<double>> spheres{
+            shade::sphere<double>({0.0, 0.0, -0x1p-8}, 0x1.1004001004003p+977),
+            shade::sphere<double>({0x1p-7, 0x1p-8, -0.0}, 0x1.8p-6)};
+        shade::ray<double> r{{0, 0, 0}, {-0x1.014107194c1d2p+977, 0x1.57015ecc657c2p+975, 0x1.57015ecc657c2p+973}};
+        r.t_max = 0x1.001004003ffffp-1019;
+        std::optional<std::pair<std::uint32_t, double>> nearest;
+        for (std::uint32_t i = 0; i < spheres.size(); ++i)
+            if (auto h = shade::intersect(r, spheres[i]); h && (!nearest || h->t < nearest->second))
+                nearest = {i, h->t};
+        for (const shade::bvh_width width : widths) {
+            CAPTURE(width);
+            const shade::primitive_bvh<shade::sphere<double>> accel(spheres, width);
+            const auto h = accel.closest(r);
+            REQUIRE(h.has_value() == nearest.has_value());
+            if (h) {
+                CHECK(h->primitive == nearest->first);
+                CHECK(h->hit.t == nearest->second);
+            }
+            CHECK(accel.any(r) == nearest.has_value());
         }
-        CHECK(accel.any(r) == nearest.has_value());
-    }
+    });
 }
 
 // A direction component whose float reciprocal overflows (|d_k| < 2^-128 after the ray's
@@ -551,36 +581,38 @@ TEST_CASE("bvh: a ray entering an unused child slot visits nothing") {
 // vertex from (a, b, 0): d = -(a, b, 0), so y = b (1 - t) is 0 exactly at t = 1, and x is
 // 0 there too. A loop of the watertight test over the triangles hits at t = 1.
 TEST_CASE_TEMPLATE("triangle_bvh: directions whose components have no float reciprocal", T, float, double) {
-    const std::vector<shade::triangle<T>> tris{
-        {{1, 0, 0}, {0, 0, 0}, {1, 0, 1}},   // in y = 0, the one hit
-        {{0, 0, -7}, {-6, -6, -13}, {1, 0, 0}},
-        {{1, 1, 0}, {0, 0, 0}, {0, 0, 0}}};  // degenerate (a segment through the vertex)
-    const shade::triangle_bvh<T, shade::watertight> accel(tris, shade::bvh_width::four);
-    const shade::triangle_bvh<T, shade::watertight> wide(tris, shade::bvh_width::eight);
-    std::vector<std::pair<T, T>> origins{{T(0x1p-23), T(0x1.0509p-133)}, {T(1), T(0x1p-149)},
-                                         {T(0x1p-100), T(0x1p-140)}, {T(0x1p+100), T(0x1p-40)}};
-    if constexpr (sizeof(T) == sizeof(double))
-        // (Within the watertight test's own range: products of the sheared coordinates,
-        // here about a b, between 1e-292 and 1e308.)
-        origins.insert(origins.end(), {{T(0x1p-140), T(0x1p-160)}, {T(0x1p-400), T(0x1p-450)},
-                                       {T(0x1p+60), T(0x1p+40)}, {T(1), T(0x1p-600)}});
-    for (const auto& ab : origins) {
-        const T a = ab.first;
-        const T b = ab.second;
-        CAPTURE(a);
-        CAPTURE(b);
-        const shade::ray<T> r{{a, b, 0}, {-a, -b, 0}, T(0), T(1)};
-        const auto loop = brute_force<shade::watertight, T>(r, tris);
-        REQUIRE(loop.has_value());
-        CHECK(loop->second.t == T(1));
-        for (const auto* tree : {&accel, &wide}) {
-            const auto h = tree->closest(r);
-            REQUIRE(h.has_value());
-            CHECK(h->hit.t == loop->second.t);
-            CHECK(tree->any(r));
-            check_lean_query(*tree, r);
+    for_each_walk([&] {
+        const std::vector<shade::triangle<T>> tris{
+            {{1, 0, 0}, {0, 0, 0}, {1, 0, 1}},   // in y = 0, the one hit
+            {{0, 0, -7}, {-6, -6, -13}, {1, 0, 0}},
+            {{1, 1, 0}, {0, 0, 0}, {0, 0, 0}}};  // degenerate (a segment through the vertex)
+        const shade::triangle_bvh<T, shade::watertight> accel(tris, shade::bvh_width::four);
+        const shade::triangle_bvh<T, shade::watertight> wide(tris, shade::bvh_width::eight);
+        std::vector<std::pair<T, T>> origins{{T(0x1p-23), T(0x1.0509p-133)}, {T(1), T(0x1p-149)},
+                                             {T(0x1p-100), T(0x1p-140)}, {T(0x1p+100), T(0x1p-40)}};
+        if constexpr (sizeof(T) == sizeof(double))
+            // (Within the watertight test's own range: products of the sheared coordinates,
+            // here about a b, between 1e-292 and 1e308.)
+            origins.insert(origins.end(), {{T(0x1p-140), T(0x1p-160)}, {T(0x1p-400), T(0x1p-450)},
+                                           {T(0x1p+60), T(0x1p+40)}, {T(1), T(0x1p-600)}});
+        for (const auto& ab : origins) {
+            const T a = ab.first;
+            const T b = ab.second;
+            CAPTURE(a);
+            CAPTURE(b);
+            const shade::ray<T> r{{a, b, 0}, {-a, -b, 0}, T(0), T(1)};
+            const auto loop = brute_force<shade::watertight, T>(r, tris);
+            REQUIRE(loop.has_value());
+            CHECK(loop->second.t == T(1));
+            for (const auto* tree : {&accel, &wide}) {
+                const auto h = tree->closest(r);
+                REQUIRE(h.has_value());
+                CHECK(h->hit.t == loop->second.t);
+                CHECK(tree->any(r));
+                check_lean_query(*tree, r);
+            }
         }
-    }
+    });
 }
 
 // Which width a hierarchy gets: four when asked; eight when asked or by default exactly
@@ -724,53 +756,55 @@ TEST_CASE("bvh build: the same tree whatever the executor, threads and task size
 // every width, for the batched leaves and the watertight ones, float and double; bvh and
 // primitive_bvh too. A mesh above the default task size (4096), so the level phase runs.
 TEST_CASE_TEMPLATE("triangle_bvh, bvh: built by an executor, the same hierarchy and hits", T, float, double) {
-    shade::rng g(23);
-    const auto tris = random_mesh<T>(g, 6000, T(0.3));
-    const auto rays = random_rays<T>(g, 150);
-    const support::thread_executor two(2);
-    tally count;
-    for (const shade::bvh_width width : widths) {
-        CAPTURE(width);
-        const shade::triangle_bvh<T> serial(tris, width);
-        const shade::triangle_bvh<T> parallel(tris, width, two);
-        CHECK(parallel.memory_bytes() == serial.memory_bytes());
-        CHECK(parallel.node_count() == serial.node_count());
-        for (const auto& r : rays) {
-            const auto a = serial.closest(r), b = parallel.closest(r);
-            REQUIRE(a.has_value() == b.has_value());
-            if (!a) continue;
-            CHECK(a->primitive == b->primitive);
-            CHECK(a->hit.t == b->hit.t);
-            CHECK(a->hit.p == b->hit.p);
+    for_each_walk([&] {
+        shade::rng g(23);
+        const auto tris = random_mesh<T>(g, 6000, T(0.3));
+        const auto rays = random_rays<T>(g, 150);
+        const support::thread_executor two(2);
+        tally count;
+        for (const shade::bvh_width width : widths) {
+            CAPTURE(width);
+            const shade::triangle_bvh<T> serial(tris, width);
+            const shade::triangle_bvh<T> parallel(tris, width, two);
+            CHECK(parallel.memory_bytes() == serial.memory_bytes());
+            CHECK(parallel.node_count() == serial.node_count());
+            for (const auto& r : rays) {
+                const auto a = serial.closest(r), b = parallel.closest(r);
+                REQUIRE(a.has_value() == b.has_value());
+                if (!a) continue;
+                CHECK(a->primitive == b->primitive);
+                CHECK(a->hit.t == b->hit.t);
+                CHECK(a->hit.p == b->hit.p);
+            }
+            check_against_brute_force(parallel, std::span<const shade::triangle<T>>(tris), rays, count);
+            check_against_brute_force(shade::triangle_bvh<T, shade::watertight>(tris, width, two),
+                                      std::span<const shade::triangle<T>>(tris), rays, count);
+            std::vector<shade::aabb<T>> boxes;
+            for (const auto& t : tris) boxes.push_back(shade::bounds(t));
+            const shade::bvh<T> tree(boxes, width, two);
+            CHECK(tree.memory_bytes() == shade::bvh<T>(boxes, width).memory_bytes());
+            const auto test = [&](std::uint32_t i, const shade::ray<T>& r) { return shade::find_intersection(r, tris[i]); };
+            for (const auto& r : rays) {
+                const auto expected = brute_force<shade::moller_trumbore>(r, std::span<const shade::triangle<T>>(tris));
+                const auto got = tree.closest(r, test);
+                REQUIRE(got.has_value() == expected.has_value());
+                if (got) CHECK(got->hit.t == expected->second.t);
+            }
         }
-        check_against_brute_force(parallel, std::span<const shade::triangle<T>>(tris), rays, count);
-        check_against_brute_force(shade::triangle_bvh<T, shade::watertight>(tris, width, two),
-                                  std::span<const shade::triangle<T>>(tris), rays, count);
-        std::vector<shade::aabb<T>> boxes;
-        for (const auto& t : tris) boxes.push_back(shade::bounds(t));
-        const shade::bvh<T> tree(boxes, width, two);
-        CHECK(tree.memory_bytes() == shade::bvh<T>(boxes, width).memory_bytes());
-        const auto test = [&](std::uint32_t i, const shade::ray<T>& r) { return shade::find_intersection(r, tris[i]); };
+        CHECK(count.hits > 50);
+        CHECK(count.hits < count.rays);
+        std::vector<shade::sphere<T>> spheres;
+        for (std::size_t i = 0; i < 5000; ++i) spheres.emplace_back(in_cube<T>(g, T(4)), T(0.01));
+        const shade::primitive_bvh<shade::sphere<T>> balls(spheres, shade::bvh_width::automatic, two);
         for (const auto& r : rays) {
-            const auto expected = brute_force<shade::moller_trumbore>(r, std::span<const shade::triangle<T>>(tris));
-            const auto got = tree.closest(r, test);
-            REQUIRE(got.has_value() == expected.has_value());
-            if (got) CHECK(got->hit.t == expected->second.t);
+            std::optional<T> nearest;
+            for (const auto& s : spheres)
+                if (auto h = shade::intersect(r, s); h && (!nearest || h->t < *nearest)) nearest = h->t;
+            const auto got = balls.closest(r);
+            REQUIRE(got.has_value() == nearest.has_value());
+            if (got) CHECK(got->hit.t == *nearest);
         }
-    }
-    CHECK(count.hits > 50);
-    CHECK(count.hits < count.rays);
-    std::vector<shade::sphere<T>> spheres;
-    for (std::size_t i = 0; i < 5000; ++i) spheres.emplace_back(in_cube<T>(g, T(4)), T(0.01));
-    const shade::primitive_bvh<shade::sphere<T>> balls(spheres, shade::bvh_width::automatic, two);
-    for (const auto& r : rays) {
-        std::optional<T> nearest;
-        for (const auto& s : spheres)
-            if (auto h = shade::intersect(r, s); h && (!nearest || h->t < *nearest)) nearest = h->t;
-        const auto got = balls.closest(r);
-        REQUIRE(got.has_value() == nearest.has_value());
-        if (got) CHECK(got->hit.t == *nearest);
-    }
+    });
 }
 
 // Bad input found by a task still throws from the constructor, naming the first bad

@@ -600,6 +600,53 @@ template <bvh_order Order, bool Validate, std::size_t LeafBytes, std::floating_p
 }
 #endif
 
+#if defined(SHADE_DETAIL_BVH_WIDE) && !defined(__clang__) && !defined(__AVX512F__) && !defined(SHADE_NO_RUNTIME_DISPATCH)
+#define SHADE_DETAIL_BVH_WIDE512 1 // this build has the eight-wide walk for AVX-512 too (undefined at the end)
+/// bvh_walk_wide compiled for AVX-512 (F, VL, BW, DQ, with BMI): the same eight-lane
+/// vectors and code, in the instructions such CPUs add (AVX2, the EVEX forms, BMI). AVX-512F
+/// brings fused multiply-add, which g++ would contract a * b + c into by default
+/// (-ffp-contract=fast), changing the inlined leaf tests' bits: contraction is off in this
+/// function and in all that is inlined into it, so its hits are bvh_walk_wide's bit for
+/// bit. Only for g++: clang++ decides contraction where an expression is written (in the
+/// leaf tests' headers), not in the function they are inlined into, so clang++ builds use
+/// bvh_walk_wide. Used only where the CPU has that set (cpu_has_avx512_walk) and
+/// bvh_avx512_walk allows it; not compiled where the build targets AVX-512 itself.
+template <bvh_order Order, bool Validate, std::size_t LeafBytes, std::floating_point T, class Leaf>
+[[gnu::target("avx512f,avx512vl,avx512bw,avx512dq,bmi,bmi2,lzcnt,popcnt"), gnu::optimize("fp-contract=off")]] void
+bvh_walk_wide512(const bvh_node<8>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf, const void* leaf_base) {
+    bvh_walk<Order, Validate, LeafBytes, bvh_ray_lanes<bvh_f8>>(nodes, r, t_max, leaf, leaf_base);
+}
+
+/// True when this CPU and its OS support what bvh_walk_wide512 is compiled for (libgcc's
+/// CPU model, which checks that the OS saves the 512-bit and mask registers; every CPU
+/// with AVX-512 has LZCNT and POPCNT). Detected on the first call, in a function-local
+/// static, so that including this header adds no static initialiser.
+[[nodiscard]] inline bool cpu_has_avx512_walk() noexcept {
+    static const bool has = [] {
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+               __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+               __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2");
+    }();
+    return has;
+}
+#endif
+
+/// Whether traversal may take the eight-wide walk compiled for AVX-512 where the build has
+/// it and the CPU supports it (true); false: the walk compiled for AVX. For tests, which
+/// run both walks on a CPU that has AVX-512; set it only while no thread traverses.
+inline bool bvh_avx512_walk = true;
+
+/// Whether this build has the walk compiled for AVX-512 and this CPU can run it (what
+/// traversal takes while bvh_avx512_walk allows it).
+[[nodiscard]] inline bool bvh_avx512_walk_available() noexcept {
+#if defined(SHADE_DETAIL_BVH_WIDE512)
+    return cpu_has_avx512_walk();
+#else
+    return false;
+#endif
+}
+
 /// bvh_walk over nodes of four, as a function of its own (bvh_traverse is only the choice).
 template <bvh_order Order, bool Validate, std::size_t LeafBytes, std::floating_point T, class Leaf>
 void bvh_walk_four(const bvh_node<4>* nodes, const ray<T>& r, const T& t_max, Leaf& leaf, const void* leaf_base) {
@@ -631,11 +678,17 @@ template <bvh_order Order, bool Validate = false, std::size_t LeafBytes = 0, std
 [[gnu::always_inline]] inline void bvh_traverse(const bvh_tree& tree, const ray<T>& r, const T& t_max, Leaf&& leaf,
                                                 const void* leaf_base = nullptr) {
 #if defined(SHADE_DETAIL_BVH_WIDE)
-    if (!tree.wide_nodes.empty())
+    if (!tree.wide_nodes.empty()) {
+#if defined(SHADE_DETAIL_BVH_WIDE512)
+        if (bvh_avx512_walk && cpu_has_avx512_walk())
+            return bvh_walk_wide512<Order, Validate, LeafBytes>(tree.wide_nodes.data(), r, t_max, leaf, leaf_base);
+#endif
         return bvh_walk_wide<Order, Validate, LeafBytes>(tree.wide_nodes.data(), r, t_max, leaf, leaf_base);
+    }
 #endif
     bvh_walk_four<Order, Validate, LeafBytes>(tree.nodes.data(), r, t_max, leaf, leaf_base);
 }
 #undef SHADE_DETAIL_BVH_WIDE
+#undef SHADE_DETAIL_BVH_WIDE512
 
 } // namespace shade::detail
