@@ -24,7 +24,9 @@
 
 #include <array>
 #include <concepts>
+#include <cstddef>
 #include <cstdint>
+#include <new>
 #include <optional>
 #include <span>
 #include <string>
@@ -51,6 +53,38 @@
 #endif
 
 namespace shade {
+
+namespace detail {
+
+/// The allocator of triangle_bvh's leaf blocks: aligned operator new, and construct()
+/// without arguments default-initialises, which for a trivially default-constructible
+/// block writes nothing, so that std::vector::resize allocates the blocks without zeroing
+/// them on the calling thread (the tasks that fill them touch their memory first, each in
+/// its own core's cache).
+template <class T>
+struct leaf_allocator {
+    using value_type = T;
+    leaf_allocator() noexcept = default;
+    template <class U>
+    leaf_allocator(const leaf_allocator<U>&) noexcept {}
+    [[nodiscard]] T* allocate(std::size_t n) {
+        return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(alignof(T))));
+    }
+    void deallocate(T* p, std::size_t) noexcept { ::operator delete(p, std::align_val_t(alignof(T))); }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        if constexpr (sizeof...(Args) == 0)
+            ::new (static_cast<void*>(p)) U;
+        else
+            ::new (static_cast<void*>(p)) U(static_cast<Args&&>(args)...);
+    }
+    template <class U>
+    [[nodiscard]] bool operator==(const leaf_allocator<U>&) const noexcept {
+        return true;
+    }
+};
+
+} // namespace detail
 
 /// A hierarchy over a copy of a list of triangles, intersected with Algorithm (a
 /// shade::triangle_algorithm; Möller-Trumbore by default, whose leaves run the batch
@@ -304,6 +338,7 @@ private:
         leaf_vertices batch;
         std::array<std::uint32_t, batch_width> id; // index in the list given
     };
+    static_assert(std::is_trivially_default_constructible_v<leaf_batch>); // see detail::leaf_allocator
 
 public:
     /// Bytes of a leaf block (batched only, else 0): the vertices (9 arrays of 32 bytes: 288)
@@ -331,7 +366,7 @@ private:
                 blocks += count;
             }
         });
-        leaves_.resize(blocks);
+        leaves_.resize(blocks); // not written: each block is filled below, in the tasks
         detail::bvh_for_ranges(run, leaf.size(), detail::bvh_range_size(leaf.size(), 32, 512), [&](std::size_t begin, std::size_t end) {
             for (std::size_t l = begin; l < end; ++l)
                 for (std::uint32_t i = leaf[l][0], k = leaf[l][2]; i < leaf[l][0] + leaf[l][1]; i += leaf_width, ++k) {
@@ -355,7 +390,7 @@ private:
     }
 
     detail::bvh_tree tree_;             // the nodes (its order is moved to ids_)
-    std::vector<leaf_batch> leaves_;    // batched only: the leaves' tests and hit data
+    std::vector<leaf_batch, detail::leaf_allocator<leaf_batch>> leaves_; // batched only: the leaves' tests and hit data
     std::vector<triangle<T>> triangles_; // not batched: in leaf order
     std::vector<std::uint32_t> ids_;     // not batched: leaf order -> index given
     std::size_t size_ = 0;

@@ -74,13 +74,16 @@ struct alignas(batch_array_alignment<T, N>()) vertex_batch {
     using scalar_type = T;
     static constexpr std::size_t width = N;
     struct soa3 {
-        std::array<T, N> x{}, y{}, z{};
+        std::array<T, N> x, y, z;
     };
     soa3 v0, v1, v2;
 
+    /// Lanes unset (trivial, so that storage for many batches is not written before they
+    /// are assigned); to be assigned a batch made from triangles before it is read.
     vertex_batch() noexcept = default;
-    /// Packs tris[i] into lane i, for i < count <= N (a precondition).
-    vertex_batch(const triangle<T>* tris, std::size_t count) noexcept {
+    /// Packs tris[i] into lane i, for i < count <= N (a precondition), and zero into the
+    /// lanes past count.
+    vertex_batch(const triangle<T>* tris, std::size_t count) noexcept : v0{}, v1{}, v2{} {
         for (std::size_t i = 0; i < count && i < N; ++i) {
             set(v0, i, tris[i].v0);
             set(v1, i, tris[i].v1);
