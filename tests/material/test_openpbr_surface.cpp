@@ -1346,6 +1346,45 @@ TEST_CASE("openpbr_surface: white furnace of anisotropic glass with a thin film 
     MESSAGE("anisotropic thin-film glass below an index ratio of 1, white furnace: " << low << " to " << high);
 }
 
+TEST_CASE("openpbr_surface: white furnace of a thin film over glass below 1 on a narrow isotropic lobe") {
+    // A film over a base of specular_ior below 1 reflects totally under the base's critical
+    // cosine mu_c; a narrow lobe's share of it steps from 1 toward F_film within about alpha
+    // of mu_c, which the film row's 64 view nodes bridged from above across a whole cell. A
+    // random scan's material (issue #32, seed 8's k 242: film 0.74 of 1.392 um at index 1.59
+    // over glass of specular_ior 0.855, roughness 0 roughened to alpha 0.003 by a coat of
+    // weight 0.06, metalness 0.19) read 0.917 at mu 0.5 (mu_c 0.519); the same glass uncoated
+    // at roughness 0.05 and 0.2. With the narrow lobe's window of views around mu_c
+    // (detail::kink_view_window) issue #32's band holds, widened by 4 standard errors of
+    // furnace_stratified (48^2 u strata).
+    using T = double;
+    const auto at = check_test::model_point<T>();
+    furnace_band band;
+    for (int variant = 0; variant < 3; ++variant) {
+        params<T> p = white<T>();
+        p.specular_roughness = variant == 0 ? T(0) : variant == 1 ? T(0.05) : T(0.2);
+        p.specular_ior = T(0.855);
+        p.transmission_weight = T(1);
+        p.thin_film_weight = T(0.74);
+        p.thin_film_thickness = T(1.392);
+        p.thin_film_ior = T(1.59);
+        if (variant == 0) {
+            p.base_metalness = T(0.19);
+            p.coat_weight = T(0.06);
+            p.coat_roughness = T(0.76);
+            p.coat_ior = T(2.76);
+            p.base_diffuse_roughness = T(0.41);
+        }
+        const surface<T> m(p);
+        for (const double mu : {0.5, 0.512, 0.519, 0.53}) {
+            const auto reading = furnace_stratified(m, view_at_cosine(at, mu, 3.968), at, 0.855, 48, 32, 4);
+            INFO("variant ", variant, " mu ", mu, ": ", reading.first, " +- ", reading.second);
+            CHECK(reading.second < 0.01);
+            band.check(reading);
+        }
+    }
+    MESSAGE("thin film over glass below 1, narrow isotropic lobes, white furnace: " << band.low << " to " << band.high);
+}
+
 TEST_CASE("openpbr_surface: white furnace of a thin film over an anisotropic base at specular_weight 0") {
     // specular_weight 0 switches the base's own reflection off (eta'_s = 1), not the film's:
     // the specular lobe reflects F_film alone. Anisotropic, its share is integrated on a grid
@@ -1639,19 +1678,24 @@ TEST_CASE_TEMPLATE("openpbr_surface: a thin film over a base of index below 1 ne
     // 0.3-1, before kink_cell_correction and kink_view_shortfall). The read must never fall
     // short (white furnace at most 1.001): E_R read - true >= -1e-3, at the critical cosine
     // and beside it too. What it reads high is bounded as measured: near mu_c (within 0.05) a
-    // narrow lobe's E_R steps by up to 1 - F there, which the view nodes' interpolation can
-    // only bridge from above (measured up to 0.19 at roughness 0.1); elsewhere 2.5e-2.
-    // Isotropic lobes; float: f's rounding adds 2e-5.
+    // narrow lobe's E_R steps within about alpha of mu_c by up to 1 - F there, which the row's
+    // view nodes bridge from above only across a whole cell (read up to 0.44 high at roughness
+    // 0.05 and 0.23 at 0.1, and 1.6e-2 low at 0.05, before the kink's window of views,
+    // detail::kink_view_window): there 3e-2 (measured 2.6e-2); elsewhere 2.5e-2 (2.2e-2).
+    // Isotropic lobes; float: f's rounding adds 2e-5. The last film is scan seed 8's k 242
+    // (a film over glass of specular_ior 0.855; its white furnace read 0.917 at mu 0.5).
     const double tol = std::is_same_v<T, float> ? 2e-5 : 0.0;
     const std::vector<film_point<T>> films = {{1, T(0.5), T(1.4), T(0.4)},   {1, T(1.2), T(2.2), T(0.45)},
                                               {1, T(0.3), T(1.7), T(0.65)},  {1, T(0.9), T(2.4), T(0.8)},
-                                              {T(0.6), T(0.7), T(1.5), T(0.9)}, {1, T(0.15), T(2), T(0.95)}};
+                                              {T(0.6), T(0.7), T(1.5), T(0.9)}, {1, T(0.15), T(2), T(0.95)},
+                                              {T(0.74), T(1.392), T(1.59), T(0.855)}};
     double lowest = 1, highest_near = -1, highest_far = -1;
     for (const auto& fl : films) {
         const double mu_c = std::sqrt(1 - double(fl.base_ior) * double(fl.base_ior));
-        for (const T r : {T(0.1), T(0.25), T(0.6), T(1)}) {
+        for (const T r : {T(0.05), T(0.1), T(0.25), T(0.6), T(1)}) {
             const film_test::film_reader<T> reader(fl, r, T(0));
-            for (const double mu : {0.1, 0.3, mu_c - 0.02, mu_c - 0.005, mu_c, mu_c + 0.005, mu_c + 0.02, 0.9, 1.0}) {
+            for (const double mu : {0.1, 0.3, mu_c - 0.02, mu_c - 0.005, mu_c - 0.002, mu_c, mu_c + 0.002,
+                                    mu_c + 0.005, mu_c + 0.02, 0.9, 1.0}) {
                 if (!(mu >= 0.05 && mu <= 1)) continue;
                 const rgb<double> error = reader.error(mu, 0.4, 160);
                 const bool near = std::abs(mu - mu_c) <= 0.05;
@@ -1660,7 +1704,7 @@ TEST_CASE_TEMPLATE("openpbr_surface: a thin film over a base of index below 1 ne
                          double(fl.ior), " base ior ", double(fl.base_ior), " roughness ", double(r), " mu ", mu,
                          " (mu_c ", mu_c, ") channel ", k, ": E_R read - true ", error[k]);
                     CHECK(error[k] >= -1e-3 - tol);
-                    CHECK(error[k] <= (near ? 0.25 : 2.5e-2) + tol);
+                    CHECK(error[k] <= (near ? 3e-2 : 2.5e-2) + tol);
                     lowest = std::min(lowest, error[k]);
                     (near ? highest_near : highest_far) = std::max(near ? highest_near : highest_far, error[k]);
                 }

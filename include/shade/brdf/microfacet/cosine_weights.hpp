@@ -287,6 +287,75 @@ template <std::floating_point T, class Fresnel>
     return out;
 }
 
+/// E_F(mu) of the isotropic GGX lobe of roughness alpha > 0 around a kink of F at the cosine
+/// `kink` (kink_cell_correction), on view cosines much finer than the row's nodes: a narrow
+/// lobe's E_F steps from 1 toward F(mu) within about alpha sin(theta) of the critical cosine,
+/// which fresnel_albedo_row's 64 view nodes bridge from above only across a whole cell (read
+/// up to 0.17 high there at alpha 0.0025). The window spans the row's view cells within
+/// `reach` of the kink's cell, split evenly in mu into `cells` cells; E_F is computed at
+/// `samples` points per cell (the cells' ends among them) by visit_ggx_cosine_measure on
+/// strata^2 cells with F itself (a callable double -> rgb<double>). Each node holds E_F at
+/// its cosine, lifted by 1.25 times the most E_F rises above the chord at the points inside
+/// either of its two cells (as kink_view_shortfall lifts the row: read linearly, the window
+/// is then at or above E_F at every point, and by a quarter more for the peaks between
+/// them), plus `margin` (for the quadrature's error). Empty (contains() false) until built.
+template <std::floating_point T>
+class kink_view_window {
+public:
+    static constexpr std::size_t cells = 96;  ///< the window's cells, even in mu
+    static constexpr std::size_t samples = 4; ///< E_F's points per cell, one end included
+
+    kink_view_window() = default;
+
+    template <class Fresnel>
+    kink_view_window(double alpha, const Fresnel& F, double kink, std::size_t reach, std::size_t strata,
+                     double margin) {
+        constexpr std::size_t n = cosine_weight_nodes, points = cells * samples + 1;
+        const std::size_t center = cosine_weight_cell(kink);
+        const std::size_t first = center > reach ? center - reach : 0;
+        const std::size_t last = glm::min(center + reach + 1, n - 1);
+        lo_ = cosine_weight_node(first);
+        const double hi = cosine_weight_node(last);
+        step_ = (hi - lo_) / double(cells);
+        std::array<rgb<double>, points> e{};
+        for (std::size_t q = 0; q < points; ++q) {
+            const double mu = lo_ + (hi - lo_) * double(q) / double(points - 1);
+            visit_ggx_cosine_measure(mu, alpha, strata, [&](double c, double weight) { e[q] += weight * F(c); });
+        }
+        std::array<rgb<double>, cells + 1> lift{};
+        for (std::size_t j = 0; j < cells; ++j) {
+            rgb<double> worst(0.0);
+            for (std::size_t q = 1; q < samples; ++q) {
+                const double t = double(q) / double(samples);
+                const rgb<double> chord = (1 - t) * e[j * samples] + t * e[(j + 1) * samples];
+                worst = glm::max(worst, e[j * samples + q] - chord);
+            }
+            lift[j] = glm::max(lift[j], 1.25 * worst);
+            lift[j + 1] = glm::max(lift[j + 1], 1.25 * worst);
+        }
+        for (std::size_t j = 0; j <= cells; ++j) nodes_[j] = rgb<T>(e[j * samples] + lift[j] + margin);
+        built_ = true;
+    }
+
+    /// Whether mu lies in the window (false when empty or for a NaN mu).
+    [[nodiscard]] bool contains(T mu) const noexcept {
+        return built_ && double(mu) >= lo_ && double(mu) <= lo_ + step_ * double(cells);
+    }
+
+    /// E_F at view cosine mu in the window (contains(mu)), margin included, per channel.
+    [[nodiscard]] rgb<T> at(T mu) const noexcept {
+        const double x = glm::clamp((double(mu) - lo_) / step_, 0.0, double(cells));
+        const std::size_t j = glm::min(std::size_t(x), cells - 1);
+        const T t = T(x - double(j));
+        return (T(1) - t) * nodes_[j] + t * nodes_[j + 1];
+    }
+
+private:
+    double lo_ = 0, step_ = 0;
+    bool built_ = false;
+    std::array<rgb<T>, cells + 1> nodes_{};
+};
+
 /// One view's sum of fresnel_albedo_row without keeping a row: e = sum_k w_k F(c_k) per
 /// channel (the lobe's albedo with F) and mass = sum_k w_k (its albedo with F = 1), the
 /// weights at (alpha, mu) interpolated bilinearly in sqrt(alpha) and x = mu^(2/3) as
