@@ -401,6 +401,9 @@ TEST_CASE("anisotropic_reflection_albedo_grid: another Fresnel term's difference
             CAPTURE(mu);
             CAPTURE(phi);
             CHECK(g.difference(1, v) == doctest::Approx(margin).epsilon(1e-6));
+            // differences_at reads the three channels at once, as difference() reads each.
+            const std::array<T, 3> all = g.differences_at(v);
+            for (std::size_t c = 0; c < 3; ++c) CHECK(all[c] == g.difference(c, v));
             for (const std::size_t c : {std::size_t(0), std::size_t(2)}) {
                 const double error = g.difference(c, v) - margin - fresh[int(c)];
                 CAPTURE(c);

@@ -1389,7 +1389,7 @@ TEST_CASE("openpbr_surface: white furnace of a thin film over an anisotropic bas
     // specular_weight 0 switches the base's own reflection off (eta'_s = 1), not the film's:
     // the specular lobe reflects F_film alone. Anisotropic, its share is integrated on a grid
     // of the lobe's views as where R_ss is integrated (D alone, R_ss = 0); read as the
-    // isotropic reference at alpha_v plus film_mean_, a random scan's material (issue #32:
+    // isotropic reference at alpha_v plus a tabulated anisotropic correction, a random scan's material (issue #32:
     // thin-walled, roughness 0.1, anisotropy 0.68, specular_ior 0.518, transmission 0.61,
     // film 0.81 of 0.78 um at index 1.08) read 0.985 at mu 0.2. Issue #32's band, widened by
     // 4 standard errors of furnace_stratified (48^2 u strata).
@@ -1847,7 +1847,7 @@ TEST_CASE_TEMPLATE("openpbr_surface: white furnace with a thin film at specular_
                    T, float, double) {
     // specular_weight 0.5 (eta'_s 1.33 at specular_ior 1.5: the film's share summed against
     // that index's Fresnel) and anisotropy 0.5 and 0.9 (the film's share read at the view's
-    // azimuth, anisotropic_film_share; the dielectric part from the anisotropic table), over
+    // azimuth, integrated with R_ss on the lobe's grid of views), over
     // a white diffuse base, end to end through sample(). Allowed: the issue's band widened by
     // 4 standard errors of the stratified estimate (48^2 draws); on the anisotropic lobes its
     // low end is the next test's high bound (read - true <= 5e-2: furnace >= 0.95).
@@ -1894,7 +1894,7 @@ TEST_CASE_TEMPLATE("openpbr_surface: a thin film's share on anisotropic lobes ne
     // R_ss and the film's share on a grid of its views (the true R_ss then by quadrature,
     // film_reader::integrates_r_ss), measured +4.2e-3 to +9.0e-3 (the margins of R_ss, 3e-3,
     // and of the share, 2e-3); asserted at 1.5e-2 for every film (the share read from the
-    // isotropic reference plus film_mean_ reached 2.4e-2 at index 1.05 and 1.3e-2 at index
+    // isotropic reference plus a tabulated anisotropic correction reached 2.4e-2 at index 1.05 and 1.3e-2 at index
     // 1.2 and above, asserted at 3e-2 and 1.5e-2). float: f's rounding adds 2e-5.
     const double tol = std::is_same_v<T, float> ? 2e-5 : 0.0;
     const std::vector<film_point<T>> films = {{1, T(0.25), T(3), T(1.33)}, {1, T(3), T(1.05), T(1.5)},

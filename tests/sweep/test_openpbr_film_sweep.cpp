@@ -57,7 +57,7 @@ TEST_CASE("openpbr_surface: a thin film's share of E_spec on anisotropic lobes n
     // and azimuths 0 to pi/2, every channel: never above the white furnace's 1.001 is
     // E_R read - true >= -1e-3; the high side is held to the 1.5e-2 of
     // tests/material/test_openpbr_surface.cpp (measured +2.3e-3 to +1.03e-2 with the film's
-    // share integrated on the lobe's grid; 2.6e-2 with the isotropic reference plus film_mean_).
+    // share integrated on the lobe's grid; 2.6e-2 with the isotropic reference plus a tabulated anisotropic correction).
     using T = double;
     double lowest = 1, highest = -1;
     for (const T base : {T(1.33), T(2.2)}) {

@@ -330,6 +330,12 @@ public:
         return difference_ != nullptr ? (*difference_)[k].at_signed(w) : T(0);
     }
 
+    /// difference(k, w) for the three channels k at once (w located once on the grid).
+    [[nodiscard]] std::array<T, 3> differences_at(const vec3<T>& w) const noexcept {
+        if (difference_ == nullptr) return {};
+        return dielectric_side_grid<T>::at_signed_all(*difference_, w);
+    }
+
     /// Whether the grid holds the differences D_k (the constructor with `other`).
     [[nodiscard]] bool has_difference() const noexcept { return difference_ != nullptr; }
 

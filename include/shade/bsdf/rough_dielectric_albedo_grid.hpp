@@ -270,6 +270,20 @@ public:
         return glm::clamp(e, T(-1), T(1));
     }
 
+    /// at_signed(w) of each of `grids`, grids of one layout (made by one many() call), with w
+    /// located once: out[k] is grids[k].at_signed(w).
+    template <std::size_t N>
+    [[nodiscard]] static std::array<T, N> at_signed_all(const std::array<dielectric_side_grid, N>& grids,
+                                                        const vec3<T>& w) noexcept {
+        static_assert(N > 0);
+        const cell c = grids[0].cell_of(w);
+        std::array<T, N> out;
+        for (std::size_t k = 0; k < N; ++k)
+            out[k] = glm::clamp((T(1) - c.t) * grids[k].row_at(c, c.i) + c.t * grids[k].row_at(c, c.i + 1), T(-1),
+                                T(1));
+        return out;
+    }
+
     /// A read of the value at w that is at or below the nodes' own function (their margin
     /// included) where that function is concave in mu below the critical cosine and convex
     /// above it, as the reflection albedo R_ss of a side with total internal reflection is

@@ -601,112 +601,11 @@ private:
         return margin;
     }
 
-    // The mean of F_film - F (what film_albedo_ sums) against the isotropic lobe of roughness
-    // alpha (its measure of c = v·h, from the cosine weights' table) at view cosine mu.
-    [[nodiscard]] rgb<T> film_reference_mean(T alpha, T mu) const noexcept {
-        const detail::fresnel_albedo_sum<T> sum = detail::fresnel_albedo_at(alpha, mu, film_nodes_);
-        return sum.mass > T(0) ? sum.e / sum.mass : sum.e;
-    }
-
-    // film_node_margin at roughness alpha and view cosine mu, bilinear in sqrt(alpha) and x =
-    // mu^(2/3) as the weights; alpha clamped to [0, 1], mu in [0, 1].
-    [[nodiscard]] double film_margin_at(T alpha, T mu) const noexcept {
-        constexpr std::size_t n = detail::cosine_weight_nodes, m = detail::cosine_weight_alpha_nodes;
-        const double s = std::sqrt(glm::clamp(double(alpha), 0.0, 1.0)) * double(m - 1);
-        const std::size_t j = glm::min(std::size_t(s), m - 2);
-        const double t = s - double(j);
-        const double x = std::cbrt(double(mu) * double(mu)) * double(n - 1);
-        const std::size_t i = glm::min(std::size_t(x), n - 2);
-        const double u = x - double(i);
-        return (1 - t) * ((1 - u) * film_node_margin(j, i) + u * film_node_margin(j, i + 1)) +
-               t * ((1 - u) * film_node_margin(j + 1, i) + u * film_node_margin(j + 1, i + 1));
-    }
-
-    // A local view w as anisotropic_film_share reads it: cos^2 of its azimuth (1/2 where the
-    // azimuth is undefined or not a number: w along the pole, or a w that is not finite, so
-    // that alpha_v and mu are never NaN and the node indices are always in range), the
-    // lobe's roughness along that azimuth, alpha_v = sqrt(alpha_x^2 cos^2(phi) + alpha_y^2
-    // sin^2(phi)), and the view cosine clamped to [0, 1].
-    struct film_view {
-        T cos2_phi, alpha_v, mu;
-    };
-    [[nodiscard]] film_view anisotropic_film_view(const vec3<T>& w) const noexcept {
-        const T sin2 = w.x * w.x + w.y * w.y;
-        const T ratio = sin2 > T(0) ? w.x * w.x / sin2 : T(0.5);
-        const T cos2_phi = ratio >= T(0) && ratio <= T(1) ? ratio : T(0.5);
-        const T alpha_v = std::sqrt(film_alpha_x_ * film_alpha_x_ * cos2_phi +
-                                    film_alpha_y_ * film_alpha_y_ * (T(1) - cos2_phi));
-        return {cos2_phi, alpha_v, w.z > T(0) ? glm::min(w.z, T(1)) : T(0)};
-    }
-
-    // The anisotropic lobe's albedo with F = 1 at the view (the isotropic table at
-    // sqrt(alpha_x alpha_y) plus the anisotropic correction, as kulla_conty_anisotropic reads
-    // it; beyond that correction's anisotropy, film_mean_'s own quadrature).
-    [[nodiscard]] T anisotropic_film_e_one(const film_view& fv, const vec3<T>& w) const noexcept {
-        return film_cell_in_range_
-                   ? glm::clamp(detail::albedo_lookup(detail::ggx_albedo, detail::albedo_grid_nodes, fv.mu,
-                                                      specular_alpha_) +
-                                    detail::anisotropic_albedo_delta(detail::ggx_anisotropic_albedo_delta, film_cell_,
-                                                                     w.x, w.y, w.z),
-                                T(0), T(1))
-                   : film_mean_.albedo(fv.mu, fv.cos2_phi);
-    }
-
-    // What an isotropic lobe's row misses of a total-reflection kink of F_film (over a base
-    // of specular_ior below 1) at roughness alpha and view cosine mu, in the row's units (an
-    // albedo): the rows of film_kink_rows_ (kink_cell_correction plus kink_view_shortfall at
-    // film_kink_alpha_rows roughnesses from the anisotropic lobe's smaller to its larger,
-    // evenly in log alpha), read linearly in log alpha (clamped to those roughnesses) and in
-    // x = mu^(2/3). Zero without such a kink (film_kink_alpha_first_ 0).
-    [[nodiscard]] rgb<T> film_kink_at(T alpha, T mu) const noexcept {
-        if (!(film_kink_alpha_first_ > T(0))) return rgb<T>(0);
-        constexpr std::size_t n = detail::cosine_weight_nodes, m = film_kink_alpha_rows;
-        const T a = alpha > film_kink_alpha_first_ ? alpha : film_kink_alpha_first_;
-        const T s = glm::clamp(film_kink_log_step_ > T(0) ? std::log(a / film_kink_alpha_first_) / film_kink_log_step_
-                                                          : T(0),
-                               T(0), T(m - 1));
-        const std::size_t j = glm::min(std::size_t(s), m - 2);
-        const T t = s - T(j);
-        const T c = mu > T(0) ? glm::min(mu, T(1)) : T(0);
-        const T x = std::cbrt(c * c) * T(n - 1);
-        const std::size_t i = glm::min(std::size_t(x), n - 2);
-        const T u = x - T(i);
-        return (T(1) - t) * ((T(1) - u) * film_kink_rows_[j][i] + u * film_kink_rows_[j][i + 1]) +
-               t * ((T(1) - u) * film_kink_rows_[j + 1][i] + u * film_kink_rows_[j + 1][i + 1]);
-    }
-
-    // anisotropic_film_share without its margin: the mean at alpha_v (film_reference_mean's
-    // node sum with film_kink_at added, over the same sum's albedo with F = 1) plus
-    // film_mean_, times the anisotropic lobe's albedo with F = 1.
-    [[nodiscard]] rgb<T> anisotropic_film_share_read(const film_view& fv, T e_one) const noexcept {
-        const detail::fresnel_albedo_sum<T> sum = detail::fresnel_albedo_at(fv.alpha_v, fv.mu, film_nodes_);
-        const rgb<T> e = sum.e + film_kink_at(fv.alpha_v, fv.mu);
-        return ((sum.mass > T(0) ? e / sum.mass : e) + film_mean_.at(fv.mu, fv.cos2_phi)) * e_one;
-    }
-
-    // The film's share (the integral of F_film - F, or of F_film alone below an index ratio
-    // of 1) for an anisotropic lobe at the local view w: the mean of F_film - F against the
-    // anisotropic lobe's own measure of c = v·h, read as the isotropic lobe's at the roughness
-    // along the view's azimuth, alpha_v = sqrt(alpha_x^2 cos^2(phi) + alpha_y^2 sin^2(phi))
-    // (at the pole, phi = pi/4; it carries the fine structure in mu), plus the anisotropic
-    // lobe's difference from it (film_mean_, tabulated per material over the view's cosine
-    // and azimuth, lifted around a base's total-reflection kink where it read low); times
-    // the lobe's albedo with F = 1 (anisotropic_film_e_one); plus the margin.
-    [[nodiscard]] rgb<T> anisotropic_film_share(const vec3<T>& w) const noexcept {
-        const film_view fv = anisotropic_film_view(w);
-        const T alpha_v = fv.alpha_v, mu = fv.mu;
-        const rgb<T> share = anisotropic_film_share_read(fv, anisotropic_film_e_one(fv, w));
-        // The margin: the isotropic lobes' (the larger of its reads at alpha_v and at the
-        // lobe's smaller roughness) plus the grid's own (film_anisotropic_margin, raised near
-        // the smoother axis for a film of low index).
-        const T alpha_min = glm::min(film_alpha_x_, film_alpha_y_);
-        const T alpha_max = glm::max(film_alpha_x_, film_alpha_y_);
-        const T toward_rougher = alpha_max > alpha_min ? (alpha_v - alpha_min) / (alpha_max - alpha_min) : T(1);
-        const T near_smooth_axis = glm::clamp((T(0.4) - toward_rougher) / T(0.1), T(0), T(1));
-        const double margin = glm::max(film_margin_at(alpha_v, mu), film_margin_at(alpha_min, mu)) +
-                              film_anisotropic_margin + film_anisotropic_margin_near_smooth_axis *
-                                                            double(film_low_index_weight_ * near_smooth_axis);
-        return share + rgb<T>(T(margin));
+    // The film's share D(v) per channel at the local view w where it is integrated with R_ss
+    // (film_on_grid_).
+    [[nodiscard]] rgb<T> film_grid_difference(const vec3<T>& w) const noexcept {
+        const std::array<T, 3> d = specular_albedo_anisotropic_.differences_at(w);
+        return rgb<T>(d[0], d[1], d[2]);
     }
 
     // E_spec(v): the specular reflection lobe's directional albedo per channel.
@@ -728,16 +627,12 @@ private:
             // table's R_ss, which holds F's total-reflection kink, is subtracted here.
             // Around the film's own kink over a base below 1 an isotropic lobe reads the
             // same sum from film_window_.
-            // An anisotropic lobe: anisotropic_film_share at the view's azimuth.
-            // With film_on_grid_, D(v) of the same pass as R_ss (margins included).
+            // An anisotropic lobe (film_on_grid_): D(v) of the same pass as R_ss, margins
+            // included.
             const rgb<T> film_part =
                 !specular_ ? film_dielectric_->F(mu) - rgb<T>(e_dielectric)
                 : film_on_grid_ && w_local != vec3<T>(0)
-                    ? rgb<T>(specular_albedo_anisotropic_.difference(0, w_local),
-                             specular_albedo_anisotropic_.difference(1, w_local),
-                             specular_albedo_anisotropic_.difference(2, w_local))
-                : specular_anisotropic_ && w_local != vec3<T>(0)
-                    ? anisotropic_film_share(w_local) - rgb<T>(film_alone_ ? e_dielectric : T(0))
+                    ? film_grid_difference(w_local)
                     : (film_window_.contains(mu) ? film_window_.at(mu) : film_albedo_.at(mu)) -
                           rgb<T>(film_alone_ ? e_dielectric : T(0));
             e = glm::clamp(e + p_.thin_film_weight * film_part, rgb<T>(0), rgb<T>(1));
@@ -1261,23 +1156,6 @@ private:
     detail::fresnel_albedo_row<T> film_albedo_{}; // integral of F_film - F at eta'_s (rough, with a film)
     bool film_alone_ = false;                      // film_albedo_ integrates F_film alone (eta'_s < 1)
     std::array<rgb<T>, detail::cosine_weight_nodes> film_nodes_{}; // what film_albedo_ sums, at the nodes
-    detail::anisotropic_fresnel_mean_grid<T> film_mean_{};         // its mean over the lobe less film_reference_mean
-    // What anisotropic_film_share adds for the grid's own error (its 20^2-cell quadrature of
-    // F_film - F read between the nodes, its 16 x 13 views, with the margin read at an
-    // isotropic roughness): the largest shortfall against the anisotropic lobe's own
-    // quadrature with F_film read per cell, rounded up (docs/conventions.md;
-    // tests/sweep/test_openpbr_film_sweep.cpp holds it). It is film_anisotropic_margin
-    // everywhere but for films of index below 1.15 (whose F_film - F the grid's view nodes
-    // follow worst) seen near the lobe's smoother axis, where the difference from the
-    // reference at the nearly smooth alpha_v changes fastest with mu: there it rises to
-    // film_anisotropic_margin + film_anisotropic_margin_near_smooth_axis, in proportion to
-    // film_low_index_weight_ (1 below index 1.10, 0 from 1.15, linear between) and to
-    // the view's nearness to that axis (1 where alpha_v is within 30 % of the way from the
-    // smaller roughness to the larger, 0 from 40 %, linear between), so that E_spec stays
-    // continuous in the view and in the film's index.
-    static constexpr double film_anisotropic_margin = 5e-3;
-    static constexpr double film_anisotropic_margin_near_smooth_axis = 9e-3;
-    T film_low_index_weight_ = 0;
     // What film_row_margin adds to its own estimate of a film's shortfall for the weights' error
     // beyond that of a smooth Fresnel factor: the largest shortfall without it, over the
     // films of tests/sweep/test_openpbr_film_sweep.cpp and 900 random films (index 1.01-3,
@@ -1294,21 +1172,6 @@ private:
     static constexpr std::size_t film_kink_view_strata = 16;
     static constexpr std::size_t film_kink_view_reach = 2;
     static constexpr double film_kink_margin = 3e-3;
-    // The samples of the row's function in the kink's cell of the nodes that an anisotropic
-    // lobe's lift reads (linear between them in x; the nodes' interpolation elsewhere).
-    static constexpr std::size_t film_kink_samples = 256;
-    // The points per cell in mu at which an anisotropic lobe's share is checked against its
-    // own quadrature (film_kink_lift_strata^2 cells, whose own error is lifted as if it were
-    // a shortfall, so it must stay well under the margins): film_kink_sparse_points in every
-    // cell of film_mean_, then film_kink_dense_points in the kink's cell and its neighbours
-    // (a narrow lobe's share changes there on the scale of its roughness along the view).
-    static constexpr std::size_t film_kink_sparse_points = 4;
-    static constexpr std::size_t film_kink_dense_points = 16;
-    static constexpr std::size_t film_kink_lift_strata = 24;
-    // film_kink_at's rows (anisotropic lobes over specular_ior < 1 only; otherwise
-    // film_kink_alpha_first_ stays 0).
-    static constexpr std::size_t film_kink_alpha_rows = 3;
-    std::array<std::array<rgb<T>, detail::cosine_weight_nodes>, film_kink_alpha_rows> film_kink_rows_{};
     // The film's share around a kink over a base below 1 for narrow isotropic lobes
     // (specular_albedo), the largest alpha that reads it, its quadrature's cells per side,
     // and its margin: the midpoint rule's error on a kinked F at 32^2 cells against 200^2,
@@ -1318,15 +1181,11 @@ private:
     static constexpr double film_window_alpha_max = 0.1;
     static constexpr std::size_t film_window_strata = 32;
     static constexpr double film_window_margin = 4e-3;
-    T film_kink_alpha_first_ = 0, film_kink_log_step_ = 0;
     // The film's share of an anisotropic lobe whose R_ss is integrated per interface is
     // integrated in the same pass (specular_albedo_anisotropic_.difference); F_film is read
     // there from this many cosine intervals, linearly.
     static constexpr std::size_t film_fresnel_nodes = 4096;
     bool film_on_grid_ = false;
-    T film_alpha_x_ = 0, film_alpha_y_ = 0;                         // the specular lobe's roughnesses (anisotropic)
-    detail::anisotropic_albedo_cell<T> film_cell_{};                // its cell in the anisotropic tables
-    bool film_cell_in_range_ = true;                                // its anisotropy within those tables' range
     std::size_t film_margin_first_ = 0, film_margin_last_ = 0;      // the margin's film indices
     std::size_t film_margin_table_ = 0;                             // the margin's table (0: eta'_s = specular_ior)
     rgb<T> transmission_tint_{1};
@@ -1503,8 +1362,8 @@ void openpbr_surface<T>::build() {
             // (kink_cell_correction, up to its quadrature's error, which film_kink_margin
             // covers) and is lifted where it still reads low around the critical cosine
             // (kink_view_shortfall). About 12 ms, only for such films on isotropic lobes: an
-            // anisotropic lobe's share (anisotropic_film_share) does not read this row. F's own
-            // kink (eta'_s < 1) is not in the nodes: below 1 they hold F_film alone.
+            // anisotropic lobe's share is integrated on its grid (film_on_grid_). F's own kink
+            // (eta'_s < 1) is not in the nodes: below 1 they hold F_film alone.
             const T n_b = glm::clamp(p.specular_ior, T(1e-4), T(1e4));
             if (n_b < T(1) && !specular_anisotropic_) {
                 const double kink = std::sqrt((1.0 - double(n_b)) * (1.0 + double(n_b)));
@@ -1533,82 +1392,6 @@ void openpbr_surface<T>::build() {
                     film_window_ = detail::kink_view_window<T>(double(specular_alpha_), difference_at, kink,
                                                                film_kink_view_reach, film_window_strata,
                                                                film_window_margin);
-                }
-            }
-            if (specular_anisotropic_ && !film_on_grid_) {
-                film_alpha_x_ = base_distribution->alpha_x();
-                film_alpha_y_ = base_distribution->alpha_y();
-                const auto reference = [&](T mu, T cos2_phi) {
-                    return film_reference_mean(std::sqrt(film_alpha_x_ * film_alpha_x_ * cos2_phi +
-                                                         film_alpha_y_ * film_alpha_y_ * (T(1) - cos2_phi)),
-                                               mu);
-                };
-                film_low_index_weight_ = glm::clamp((T(1.15) - film_ior) / T(0.05), T(0), T(1));
-                film_cell_ = detail::anisotropic_albedo_locate(film_alpha_x_, film_alpha_y_);
-                film_cell_in_range_ = glm::max(film_alpha_x_, film_alpha_y_) <=
-                                      T(detail::anisotropic_albedo_ratio_max) * glm::min(film_alpha_x_, film_alpha_y_);
-                film_mean_ =
-                    detail::anisotropic_fresnel_mean_grid<T>(film_alpha_x_, film_alpha_y_, film_nodes_, reference);
-                if (n_b < T(1)) {
-                    // Over a base of specular_ior below 1 the same kink sits inside one cell
-                    // of the nodes (cut off in c by film_mean_ and by the reference alike)
-                    // and, for narrow lobes, between two view nodes (cut off in mu). First the
-                    // isotropic row's corrections (kink_cell_correction and kink_view_shortfall)
-                    // at film_kink_alpha_rows roughnesses from the smaller alpha to the larger,
-                    // which film_kink_at reads at alpha_v: the anisotropic lobe's share of the
-                    // kink is close to the isotropic lobe's at alpha_v, and the reference's 64
-                    // view nodes follow it in mu where film_mean_'s 16 cannot. Then what still
-                    // reads low: anisotropic_film_share (margins included) is measured against
-                    // the lobe's own quadrature (film_kink_lift_strata^2 cells) of what the row
-                    // sums (F_film - F, or F_film alone), read from film_kink_samples + 1
-                    // samples of the kink's cell and as the nodes' interpolation elsewhere, at
-                    // points between film_mean_'s nodes (a few in every cell, then many around
-                    // the kink), and film_mean_'s nodes lifted for 1.25 times the shortfall
-                    // found (the peaks between the points), as kink_view_shortfall does for
-                    // the isotropic row.
-                    constexpr std::size_t n = detail::cosine_weight_nodes, samples = film_kink_samples;
-                    const double kink = std::sqrt((1.0 - double(n_b)) * (1.0 + double(n_b)));
-                    const std::size_t kink_node = detail::cosine_weight_cell(kink);
-                    const T alpha_lo = glm::min(film_alpha_x_, film_alpha_y_);
-                    const T alpha_hi = glm::max(film_alpha_x_, film_alpha_y_);
-                    film_kink_alpha_first_ = alpha_lo;
-                    film_kink_log_step_ = std::log(alpha_hi / alpha_lo) / T(film_kink_alpha_rows - 1);
-                    for (std::size_t k = 0; k < film_kink_alpha_rows; ++k) {
-                        const T alpha_k = alpha_lo * std::exp(film_kink_log_step_ * T(k));
-                        detail::fresnel_albedo_row<T> row(alpha_k, film_nodes_);
-                        const auto cell = detail::kink_cell_correction(alpha_k, film_nodes_, film_difference, kink,
-                                                                       film_kink_columns, film_kink_rows);
-                        row.add(cell);
-                        const auto near = detail::kink_view_shortfall(alpha_k, row, film_difference, kink,
-                                                                      film_kink_view_reach, film_kink_view_strata);
-                        for (std::size_t i = 0; i < n; ++i) film_kink_rows_[k][i] = cell[i] + near[i];
-                    }
-                    std::array<rgb<double>, samples + 1> in_cell;
-                    for (std::size_t q = 0; q <= samples; ++q) {
-                        const double x = (double(kink_node) + double(q) / double(samples)) / double(n - 1);
-                        in_cell[q] = rgb<double>(film_difference(T(x * std::sqrt(x))));
-                    }
-                    const auto resolved = [&](double c) {
-                        if (detail::cosine_weight_cell(c) != kink_node) return detail::fresnel_nodes_at(film_nodes_, c);
-                        const double x = glm::clamp(std::cbrt(c * c), 0.0, 1.0) * double(n - 1);
-                        const double y = (x - double(kink_node)) * double(samples);
-                        const std::size_t q = glm::min(std::size_t(y), samples - 1);
-                        return (double(q + 1) - y) * in_cell[q] + (y - double(q)) * in_cell[q + 1];
-                    };
-                    const auto shortfall = [&](const vec3<double>& v, T, T) {
-                        rgb<double> e(0.0);
-                        detail::visit_ggx_cosine_measure(v, double(film_alpha_x_), double(film_alpha_y_),
-                                                         film_kink_lift_strata,
-                                                         [&](double c, double weight) { e += weight * resolved(c); });
-                        const vec3<T> w(v);
-                        const T e_one = anisotropic_film_e_one(anisotropic_film_view(w), w);
-                        const rgb<T> read = anisotropic_film_share(w);
-                        return e_one > T(0) ? T(1.25) * (rgb<T>(e) - read) / e_one : rgb<T>(0);
-                    };
-                    constexpr std::size_t rows = detail::anisotropic_view_grid<T>::mu_nodes;
-                    const std::size_t cell = detail::anisotropic_view_grid<T>::mu_cell(kink);
-                    film_mean_.lift_cells(0, rows - 2, film_kink_sparse_points, shortfall);
-                    film_mean_.lift_cells(cell > 0 ? cell - 1 : 0, cell + 1, film_kink_dense_points, shortfall);
                 }
             }
             // The margin's film indices around thin_film_ior (the larger margin of the two,
