@@ -1385,6 +1385,49 @@ TEST_CASE("openpbr_surface: white furnace of a thin film over glass below 1 on a
     MESSAGE("thin film over glass below 1, narrow isotropic lobes, white furnace: " << band.low << " to " << band.high);
 }
 
+TEST_CASE("openpbr_surface: white furnace of an opaque dielectric below an index ratio of 1, isotropic") {
+    // specular_ior below 1, uncoated, opaque (white diffuse base): the furnace reads
+    // 1 + R_ss,true - R_ss,read, nothing cancels the specular lobe's albedo. The reflection
+    // row (33 view nodes) read R_ss low near the critical cosine mu_c for narrow lobes and
+    // slightly low at grazing views: measured 1.094 (specular_ior 0.3, roughness 0.05, mu
+    // 0.945; mu_c 0.954), 1.0089 (0.65, 0.05, mu 0.76), 1.0025 (0.7, roughness 0.15, mu 0.1).
+    // With the row raised below 1 and the narrow lobe's window of views around mu_c
+    // (detail::kink_view_window of F itself, mu_c on a node), never above 1.001 (4 standard
+    // errors of furnace_stratified, 48^2 u strata); the band's 0.99 everywhere but in the
+    // window's cell just above mu_c, where a narrow lobe's R_ss falls faster than the
+    // window's cells (0.981 at 0.955 for the first material; before 0.613).
+    using T = double;
+    const auto at = check_test::model_point<T>();
+    struct opaque {
+        T ior, roughness;
+    };
+    furnace_band band;
+    double highest_near = 0;
+    for (const opaque o : {opaque{T(0.3), T(0.05)}, opaque{T(0.65), T(0.05)}, opaque{T(0.7), T(0.15)},
+                           opaque{T(0.9), T(0.02)}, opaque{T(0.95), T(0.3)}}) {
+        params<T> p = white<T>();
+        p.specular_ior = o.ior;
+        p.specular_roughness = o.roughness;
+        const surface<T> m(p);
+        const double mu_c = std::sqrt(1 - double(o.ior) * double(o.ior));
+        for (const double mu : {0.1, 0.3, mu_c - 0.01, mu_c - 0.004, mu_c - 0.001, mu_c + 0.001, mu_c + 0.01, 0.9}) {
+            if (!(mu >= 0.1 && mu < 1)) continue;
+            const auto reading = furnace_stratified(m, view_at_cosine(at, mu, 0.7), at, 1.0, 48, 32, 4);
+            INFO("specular_ior ", double(o.ior), " roughness ", double(o.roughness), " mu ", mu, " (mu_c ", mu_c,
+                 "): ", reading.first, " +- ", reading.second);
+            CHECK(reading.second < 0.01);
+            if (mu > mu_c && mu < mu_c + 0.005) {
+                CHECK(reading.first <= 1.001 + 4 * reading.second);
+                highest_near = std::max(highest_near, reading.first);
+            } else {
+                band.check(reading);
+            }
+        }
+    }
+    MESSAGE("opaque dielectric below 1, white furnace: " << band.low << " to " << band.high
+                                                         << " (just above mu_c: up to " << highest_near << ")");
+}
+
 TEST_CASE("openpbr_surface: white furnace of a thin film over an anisotropic base at specular_weight 0") {
     // specular_weight 0 switches the base's own reflection off (eta'_s = 1), not the film's:
     // the specular lobe reflects F_film alone. Anisotropic, its share is integrated on a grid
@@ -1681,9 +1724,12 @@ TEST_CASE_TEMPLATE("openpbr_surface: a thin film over a base of index below 1 ne
     // narrow lobe's E_R steps within about alpha of mu_c by up to 1 - F there, which the row's
     // view nodes bridge from above only across a whole cell (read up to 0.44 high at roughness
     // 0.05 and 0.23 at 0.1, and 1.6e-2 low at 0.05, before the kink's window of views,
-    // detail::kink_view_window): there 3e-2 (measured 2.6e-2); elsewhere 2.5e-2 (2.2e-2).
+    // detail::kink_view_window): there 2e-2 (measured 1.5e-2); elsewhere 1.5e-2 (1.04e-2).
     // Isotropic lobes; float: f's rounding adds 2e-5. The last film is scan seed 8's k 242
-    // (a film over glass of specular_ior 0.855; its white furnace read 0.917 at mu 0.5).
+    // (a film over glass of specular_ior 0.855; its white furnace read 0.917 at mu 0.5). The
+    // true E_R takes R_ss by the same quadrature (film_reader's r_ss_by_quadrature): below an
+    // index ratio of 1 the material reads R_ss from its own window around mu_c, not from
+    // the table the reader would otherwise count as true.
     const double tol = std::is_same_v<T, float> ? 2e-5 : 0.0;
     const std::vector<film_point<T>> films = {{1, T(0.5), T(1.4), T(0.4)},   {1, T(1.2), T(2.2), T(0.45)},
                                               {1, T(0.3), T(1.7), T(0.65)},  {1, T(0.9), T(2.4), T(0.8)},
@@ -1697,14 +1743,14 @@ TEST_CASE_TEMPLATE("openpbr_surface: a thin film over a base of index below 1 ne
             for (const double mu : {0.1, 0.3, mu_c - 0.02, mu_c - 0.005, mu_c - 0.002, mu_c, mu_c + 0.002,
                                     mu_c + 0.005, mu_c + 0.02, 0.9, 1.0}) {
                 if (!(mu >= 0.05 && mu <= 1)) continue;
-                const rgb<double> error = reader.error(mu, 0.4, 160);
+                const rgb<double> error = reader.error(mu, 0.4, 160, true);
                 const bool near = std::abs(mu - mu_c) <= 0.05;
                 for (int k = 0; k < 3; ++k) {
                     INFO("weight ", double(fl.weight), " thickness ", double(fl.thickness_um), " film ior ",
                          double(fl.ior), " base ior ", double(fl.base_ior), " roughness ", double(r), " mu ", mu,
                          " (mu_c ", mu_c, ") channel ", k, ": E_R read - true ", error[k]);
                     CHECK(error[k] >= -1e-3 - tol);
-                    CHECK(error[k] <= (near ? 3e-2 : 2.5e-2) + tol);
+                    CHECK(error[k] <= (near ? 2e-2 : 1.5e-2) + tol);
                     lowest = std::min(lowest, error[k]);
                     (near ? highest_near : highest_far) = std::max(near ? highest_near : highest_far, error[k]);
                 }

@@ -292,17 +292,20 @@ template <std::floating_point T, class Fresnel>
 /// lobe's E_F steps from 1 toward F(mu) within about alpha sin(theta) of the critical cosine,
 /// which fresnel_albedo_row's 64 view nodes bridge from above only across a whole cell (read
 /// up to 0.17 high there at alpha 0.0025). The window spans the row's view cells within
-/// `reach` of the kink's cell, split evenly in mu into `cells` cells; E_F is computed at
-/// `samples` points per cell (the cells' ends among them) by visit_ggx_cosine_measure on
-/// strata^2 cells with F itself (a callable double -> rgb<double>). Each node holds E_F at
-/// its cosine, lifted by 1.25 times the most E_F rises above the chord at the points inside
-/// either of its two cells (as kink_view_shortfall lifts the row: read linearly, the window
-/// is then at or above E_F at every point, and by a quarter more for the peaks between
-/// them), plus `margin` (for the quadrature's error). Empty (contains() false) until built.
+/// `reach` of the kink's cell, on `cells` cells even in x in [-1, 1], mu = kink + d x |x| (d
+/// the distance from the kink to the window's end on x's side): the kink is the middle node
+/// and the cells crowd toward it quadratically, where E_F bends most (concave below it,
+/// falling steeply above it). E_F is computed at `samples` points per cell (the cells' ends
+/// among them) by visit_ggx_cosine_measure on strata^2 cells with F itself (a callable
+/// double -> rgb<double>). A read is linear in x between the two nodes of its cell plus the
+/// cell's lift, 1.25 times the most E_F rises above that chord at the points inside the cell
+/// (as kink_view_shortfall lifts the row: the read is at or above E_F at every point, and by
+/// a quarter more for the peaks between them), plus `margin` (for the quadrature's error).
+/// Empty (contains() false) until built.
 template <std::floating_point T>
 class kink_view_window {
 public:
-    static constexpr std::size_t cells = 96;  ///< the window's cells, even in mu
+    static constexpr std::size_t cells = 96;  ///< the window's cells (even: the kink a node)
     static constexpr std::size_t samples = 4; ///< E_F's points per cell, one end included
 
     kink_view_window() = default;
@@ -314,15 +317,15 @@ public:
         const std::size_t center = cosine_weight_cell(kink);
         const std::size_t first = center > reach ? center - reach : 0;
         const std::size_t last = glm::min(center + reach + 1, n - 1);
-        lo_ = cosine_weight_node(first);
-        const double hi = cosine_weight_node(last);
-        step_ = (hi - lo_) / double(cells);
+        kink_ = glm::clamp(kink, 0.0, 1.0);
+        below_ = glm::max(kink_ - cosine_weight_node(first), 0.0);
+        above_ = glm::max(cosine_weight_node(last) - kink_, 0.0);
         std::array<rgb<double>, points> e{};
         for (std::size_t q = 0; q < points; ++q) {
-            const double mu = lo_ + (hi - lo_) * double(q) / double(points - 1);
+            const double x = -1.0 + 2.0 * double(q) / double(points - 1);
+            const double mu = kink_ + (x < 0 ? below_ : above_) * x * std::abs(x);
             visit_ggx_cosine_measure(mu, alpha, strata, [&](double c, double weight) { e[q] += weight * F(c); });
         }
-        std::array<rgb<double>, cells + 1> lift{};
         for (std::size_t j = 0; j < cells; ++j) {
             rgb<double> worst(0.0);
             for (std::size_t q = 1; q < samples; ++q) {
@@ -330,30 +333,34 @@ public:
                 const rgb<double> chord = (1 - t) * e[j * samples] + t * e[(j + 1) * samples];
                 worst = glm::max(worst, e[j * samples + q] - chord);
             }
-            lift[j] = glm::max(lift[j], 1.25 * worst);
-            lift[j + 1] = glm::max(lift[j + 1], 1.25 * worst);
+            lift_[j] = rgb<T>(1.25 * worst);
         }
-        for (std::size_t j = 0; j <= cells; ++j) nodes_[j] = rgb<T>(e[j * samples] + lift[j] + margin);
+        for (std::size_t j = 0; j <= cells; ++j) nodes_[j] = rgb<T>(e[j * samples] + margin);
         built_ = true;
     }
 
     /// Whether mu lies in the window (false when empty or for a NaN mu).
     [[nodiscard]] bool contains(T mu) const noexcept {
-        return built_ && double(mu) >= lo_ && double(mu) <= lo_ + step_ * double(cells);
+        return built_ && double(mu) >= kink_ - below_ && double(mu) <= kink_ + above_;
     }
 
-    /// E_F at view cosine mu in the window (contains(mu)), margin included, per channel.
+    /// E_F at view cosine mu in the window (contains(mu)), lift and margin included, per
+    /// channel.
     [[nodiscard]] rgb<T> at(T mu) const noexcept {
-        const double x = glm::clamp((double(mu) - lo_) / step_, 0.0, double(cells));
-        const std::size_t j = glm::min(std::size_t(x), cells - 1);
-        const T t = T(x - double(j));
-        return (T(1) - t) * nodes_[j] + t * nodes_[j + 1];
+        const double offset = double(mu) - kink_;
+        const double side = offset < 0 ? below_ : above_;
+        const double x = side > 0 ? (offset < 0 ? -1.0 : 1.0) * std::sqrt(glm::min(std::abs(offset) / side, 1.0)) : 0.0;
+        const double u = (x + 1.0) * 0.5 * double(cells);
+        const std::size_t j = glm::min(std::size_t(glm::max(u, 0.0)), cells - 1);
+        const T t = T(glm::clamp(u - double(j), 0.0, 1.0));
+        return (T(1) - t) * nodes_[j] + t * nodes_[j + 1] + lift_[j];
     }
 
 private:
-    double lo_ = 0, step_ = 0;
+    double kink_ = 0, below_ = 0, above_ = 0;
     bool built_ = false;
     std::array<rgb<T>, cells + 1> nodes_{};
+    std::array<rgb<T>, cells> lift_{};
 };
 
 /// One view's sum of fresnel_albedo_row without keeping a row: e = sum_k w_k F(c_k) per
