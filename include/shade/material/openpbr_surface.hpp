@@ -240,7 +240,8 @@ enum class interface_albedo {
 ///   * f_coat: shade::microfacet_reflection over anisotropic GGX with the exact dielectric
 ///     Fresnel of coat_ior (coat_roughness, coat_roughness_anisotropy; openpbr::
 ///     roughness_to_alpha); E_coat = shade::dielectric_reflection_albedo (anisotropic: its
-///     form at the view's azimuth).
+///     form at the view's azimuth; isotropic below an index ratio of 1 as E_spec reads
+///     R_ss there, below).
 ///   * f_metal: microfacet_reflection with the F82-tint Fresnel (base_weight base_color,
 ///     specular_color, specular_weight clamped to 1 so the metal creates no energy) and
 ///     Kulla-Conty compensation at every azimuth (shade::kulla_conty_anisotropic), so a white
@@ -537,7 +538,7 @@ private:
     [[nodiscard]] T coat_albedo(T mu, const vec3<T>& w_local = vec3<T>(0)) const noexcept {
         if (coat_ && coat_anisotropic_ && w_local != vec3<T>(0))
             return coat_albedo_anisotropic_.at(w_local);
-        if (coat_) return coat_albedo_.at(mu);
+        if (coat_) return reflection_read(coat_albedo_.at(mu), coat_window_, coat_row_margin_, mu);
         return F_dielectric(mu, coat_eta_);
     }
 
@@ -611,12 +612,36 @@ private:
         return rgb<T>(d[0], d[1], d[2]);
     }
 
-    // R_ss of the isotropic specular lobe's interface at view cosine mu: the row; below an
-    // index ratio of 1 (specular_row_margin_ > 0) raised by that margin, and for a narrow
-    // lobe read from specular_window_ around the critical cosine.
+    // R_ss of an isotropic rough interface at view cosine mu from its row's value there:
+    // below an index ratio of 1 (margin > 0) raised by that margin, and for a narrow lobe
+    // read from its window around the critical cosine instead (below_one_reflection).
+    [[nodiscard]] static T reflection_read(T row_value, const detail::kink_view_window<T>& window, T margin,
+                                           T mu) noexcept {
+        if (window.contains(mu)) return glm::min(window.at(mu).x, T(1));
+        return glm::min(row_value + margin, T(1));
+    }
+
+    // What reflection_read needs of an isotropic interface of roughness alpha and index
+    // ratio eta: below 1 the margin below_one_margin and, for alpha up to
+    // film_window_alpha_max, a kink_view_window of F(c, eta) itself within
+    // below_one_window_reach row cells of the critical cosine (the film's quadrature and
+    // margin). The reflection row (the dielectric reflection table's 33 view nodes) reads
+    // R_ss low there: by up to 3.3e-3 at grazing views (roughness 0.1-0.2) and, within a
+    // few table cells of the critical cosine, by up to 7.6e-2 for narrow lobes (eta 0.3,
+    // roughness 0.05), where an opaque material's white furnace reads 1 + true - read.
+    static void below_one_reflection(T alpha, T eta, detail::kink_view_window<T>& window, T& margin) {
+        if (!(eta < T(1))) return;
+        margin = T(below_one_margin);
+        if (!(alpha <= T(film_window_alpha_max))) return;
+        const double e = double(eta);
+        window = detail::kink_view_window<T>(
+            double(alpha), [e](double c) { return rgb<double>(F_dielectric(c, e)); }, std::sqrt((1.0 - e) * (1.0 + e)),
+            below_one_window_reach, film_window_strata, film_window_margin);
+    }
+
+    // R_ss of the isotropic specular lobe's interface at view cosine mu (reflection_read).
     [[nodiscard]] T specular_reflection_at(T mu) const noexcept {
-        if (specular_window_.contains(mu)) return glm::min(specular_window_.at(mu).x, T(1));
-        return glm::min(specular_albedo_.at(mu) + specular_row_margin_, T(1));
+        return reflection_read(specular_albedo_.at(mu), specular_window_, specular_row_margin_, mu);
     }
 
     // E_spec(v): the specular reflection lobe's directional albedo per channel.
@@ -683,7 +708,7 @@ private:
             // albedo table's own Fresnel term, and the darkening's K_s.
             const T fresnel = F_dielectric(w.mu, coat_eta_);
             w.coat_albedo = coat_ && coat_anisotropic_ ? coat_albedo_anisotropic_.at(w.v_local)
-                            : coat_                    ? coat_albedo_.at(w.mu, fresnel)
+                            : coat_ ? reflection_read(coat_albedo_.at(w.mu, fresnel), coat_window_, coat_row_margin_, w.mu)
                                                        : fresnel;
             w.darkening = openpbr::coat_darkening_factor_of_reflectances(
                 base_albedo_, fresnel, coat_rough_reflection_, base_roughness_estimate_, C, p_.coat_darkening);
@@ -1209,18 +1234,15 @@ private:
     T coat_rough_reflection_ = 0;   // K_r of the coat (openpbr::coat_rough_reflection)
     T coat_alpha_ = 0;
     detail::reflection_albedo_row<T> coat_albedo_{};          // E_coat(mu)
+    detail::kink_view_window<T> coat_window_{};               // reflection_read's, coat_ior < 1
+    T coat_row_margin_ = 0;                                   // reflection_read's, coat_ior < 1
     detail::reflection_albedo_row<T> specular_albedo_{};      // R_ss(mu) at eta'_s
-    // Below an index ratio of 1 (isotropic rough lobe): what specular_reflection_at adds to
-    // the row, and the window of views around the critical cosine for alpha up to
-    // film_window_alpha_max (detail::kink_view_window of F(c, eta'_s), the same quadrature
-    // and margin as the film's). The row (the reflection table, 33 view nodes) read R_ss
-    // low by up to 3.3e-3 at grazing views (roughness 0.1-0.2) and, within a few table
-    // cells of the critical cosine, by up to 7.6e-2 for narrow lobes (eta'_s 0.3, roughness
-    // 0.05), where an opaque material's white furnace reads 1 + true - read.
+    // Below an index ratio of 1 (isotropic rough lobe): reflection_read's window and margin
+    // for the specular lobe (below_one_reflection).
     detail::kink_view_window<T> specular_window_{};
     T specular_row_margin_ = 0;
-    static constexpr double specular_row_margin = 4e-3;
-    static constexpr std::size_t specular_window_reach = 3;
+    static constexpr double below_one_margin = 4e-3;
+    static constexpr std::size_t below_one_window_reach = 3;
     detail::reflection_albedo_row<T> transmission_reflection_{}; // R_ss(mu) at specular_ior
     detail::anisotropic_reflection_albedo_grid<T> coat_albedo_anisotropic_{};         // E_coat(v), anisotropic coat
     detail::anisotropic_reflection_albedo_grid<T> specular_albedo_anisotropic_{};     // R_ss(v) at eta'_s, anisotropic
@@ -1271,6 +1293,7 @@ void openpbr_surface<T>::build() {
             coat_alpha_ = iso(*d);
             coat_albedo_ = detail::reflection_albedo_row<T>(coat_alpha_, coat_eta_);
             coat_anisotropic_ = d->alpha_x() != d->alpha_y();
+            if (!coat_anisotropic_) below_one_reflection(coat_alpha_, coat_eta_, coat_window_, coat_row_margin_);
             if (coat_anisotropic_)
                 coat_albedo_anisotropic_ =
                     detail::anisotropic_reflection_albedo_grid<T>(d->alpha_x(), d->alpha_y(), coat_eta_);
@@ -1326,16 +1349,8 @@ void openpbr_surface<T>::build() {
         specular_alpha_ = iso(*base_distribution);
         specular_albedo_ = detail::reflection_albedo_row<T>(specular_alpha_, specular_eta_);
         specular_anisotropic_ = base_distribution->alpha_x() != base_distribution->alpha_y();
-        if (!specular_anisotropic_ && specular_eta_ < T(1)) {
-            specular_row_margin_ = T(specular_row_margin);
-            if (specular_alpha_ <= T(film_window_alpha_max)) {
-                const double eta = double(specular_eta_);
-                const double critical = std::sqrt((1.0 - eta) * (1.0 + eta));
-                specular_window_ = detail::kink_view_window<T>(
-                    double(specular_alpha_), [eta](double c) { return rgb<double>(F_dielectric(c, eta)); }, critical,
-                    specular_window_reach, film_window_strata, film_window_margin);
-            }
-        }
+        if (!specular_anisotropic_)
+            below_one_reflection(specular_alpha_, specular_eta_, specular_window_, specular_row_margin_);
         // Below an index ratio of 1, and above it at strong anisotropy, the grid integrates
         // R_ss for this interface (100-180 ms below, 20-50 ms above; its class comment); the
         // transmission lobe, below, reads the same grid when its index is the same.
