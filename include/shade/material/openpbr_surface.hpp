@@ -723,7 +723,9 @@ private:
                                           ? transmission_reflection_anisotropic_.at_without_margin(w.v_local)
                                           : transmission_reflection_anisotropic_.at(w.v_local))
                                : transmission_reflection_is_specular_ ? w.specular_albedo.x
-                                                                      : transmission_reflection_.at(w.mu);
+                               : transmission_reflection_windowed_ && specular_window_.contains(w.mu)
+                                   ? glm::max(specular_window_.at_or_below(w.mu).x, T(0))
+                                   : transmission_reflection_.at(w.mu);
                 // The single-scattering part e_s - R_ss cannot be negative; where the two tables
                 // read it so (near the total-reflection kink of an anisotropic interface below
                 // an index ratio of 1, where both are near 1), it counts as 0, and the
@@ -1250,6 +1252,10 @@ private:
     bool transmission_reflection_shared_ = false; // E_spec reads R_ss at the transmission's index (same_index)
     bool transmission_anisotropic_ = false;
     bool transmission_reflection_is_specular_ = false; // transmission_reflection_ = E_spec (build)
+    // The transmission's interface is the isotropic specular lobe's below 1 (the same index
+    // and roughness) but E_spec is not its R_ss (a film, a tint): R_ss around the critical
+    // cosine is read from the lobe's window at or below its value (view_at).
+    bool transmission_reflection_windowed_ = false;
     bool coat_anisotropic_ = false;
     bool specular_anisotropic_ = false;
     T specular_eta_ = T(1.5);
@@ -1505,6 +1511,8 @@ void openpbr_surface<T>::build() {
             transmission_reflection_is_specular_ = specular_ && !specular_anisotropic_ && !transmission_anisotropic_ &&
                                                    specular_alpha_ == transmission_alpha_ && same_index &&
                                                    p.specular_color == rgb<T>(1) && !(film_weight > T(0));
+            transmission_reflection_windowed_ = specular_ && !specular_anisotropic_ && !transmission_anisotropic_ &&
+                                                specular_alpha_ == transmission_alpha_ && same_index;
         }
     }
 

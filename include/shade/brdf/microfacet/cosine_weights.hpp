@@ -300,7 +300,9 @@ template <std::floating_point T, class Fresnel>
 /// double -> rgb<double>). A read is linear in x between the two nodes of its cell plus the
 /// cell's lift, 1.25 times the most E_F rises above that chord at the points inside the cell
 /// (as kink_view_shortfall lifts the row: the read is at or above E_F at every point, and by
-/// a quarter more for the peaks between them), plus `margin` (for the quadrature's error).
+/// a quarter more for the peaks between them), plus `margin` (for the quadrature's error);
+/// at_or_below() reads the chord less the cell's drop (1.25 times the most E_F falls below
+/// the chord at those points) less `margin`, for a caller that must not read E_F high.
 /// Empty (contains() false) until built.
 template <std::floating_point T>
 class kink_view_window {
@@ -327,15 +329,18 @@ public:
             visit_ggx_cosine_measure(mu, alpha, strata, [&](double c, double weight) { e[q] += weight * F(c); });
         }
         for (std::size_t j = 0; j < cells; ++j) {
-            rgb<double> worst(0.0);
+            rgb<double> above(0.0), below(0.0);
             for (std::size_t q = 1; q < samples; ++q) {
                 const double t = double(q) / double(samples);
                 const rgb<double> chord = (1 - t) * e[j * samples] + t * e[(j + 1) * samples];
-                worst = glm::max(worst, e[j * samples + q] - chord);
+                above = glm::max(above, e[j * samples + q] - chord);
+                below = glm::max(below, chord - e[j * samples + q]);
             }
-            lift_[j] = rgb<T>(1.25 * worst);
+            lift_[j] = rgb<T>(1.25 * above);
+            drop_[j] = rgb<T>(1.25 * below);
         }
-        for (std::size_t j = 0; j <= cells; ++j) nodes_[j] = rgb<T>(e[j * samples] + margin);
+        for (std::size_t j = 0; j <= cells; ++j) nodes_[j] = rgb<T>(e[j * samples]);
+        margin_ = T(margin);
         built_ = true;
     }
 
@@ -347,20 +352,38 @@ public:
     /// E_F at view cosine mu in the window (contains(mu)), lift and margin included, per
     /// channel.
     [[nodiscard]] rgb<T> at(T mu) const noexcept {
+        const cell c = cell_of(mu);
+        return (T(1) - c.t) * nodes_[c.j] + c.t * nodes_[c.j + 1] + lift_[c.j] + rgb<T>(margin_);
+    }
+
+    /// A read at or below E_F at view cosine mu in the window (contains(mu)): the chord less
+    /// the cell's drop and the margin, per channel (not clamped: may be below 0).
+    [[nodiscard]] rgb<T> at_or_below(T mu) const noexcept {
+        const cell c = cell_of(mu);
+        return (T(1) - c.t) * nodes_[c.j] + c.t * nodes_[c.j + 1] - drop_[c.j] - rgb<T>(margin_);
+    }
+
+private:
+    // The cell j holding mu and the weight t of its node j + 1.
+    struct cell {
+        std::size_t j;
+        T t;
+    };
+    [[nodiscard]] cell cell_of(T mu) const noexcept {
         const double offset = double(mu) - kink_;
         const double side = offset < 0 ? below_ : above_;
         const double x = side > 0 ? (offset < 0 ? -1.0 : 1.0) * std::sqrt(glm::min(std::abs(offset) / side, 1.0)) : 0.0;
         const double u = (x + 1.0) * 0.5 * double(cells);
         const std::size_t j = glm::min(std::size_t(glm::max(u, 0.0)), cells - 1);
-        const T t = T(glm::clamp(u - double(j), 0.0, 1.0));
-        return (T(1) - t) * nodes_[j] + t * nodes_[j + 1] + lift_[j];
+        return {j, T(glm::clamp(u - double(j), 0.0, 1.0))};
     }
 
-private:
     double kink_ = 0, below_ = 0, above_ = 0;
     bool built_ = false;
+    T margin_ = 0;
     std::array<rgb<T>, cells + 1> nodes_{};
     std::array<rgb<T>, cells> lift_{};
+    std::array<rgb<T>, cells> drop_{};
 };
 
 /// One view's sum of fresnel_albedo_row without keeping a row: e = sum_k w_k F(c_k) per
