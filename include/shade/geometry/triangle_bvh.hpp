@@ -237,11 +237,12 @@ private:
             }
             return false;
         };
-        // Nearest child first, the others unsorted: sorting three or more entered children
-        // by distance (so that later pops come in order too) costs more branches than the
-        // nodes it would prune; a stacked entry beyond the nearest hit found is still
-        // skipped when popped.
-        detail::bvh_traverse<detail::bvh_order::nearest, true>(tree_, r, r.t_max, leaf);
+        // Of two entered children the nearer first; of three or more, in nodes of eight
+        // where the walk has AVX2, the node's order for the ray's octant (later pops come
+        // near first too, without comparing distances), else the nearest first and the
+        // others unsorted (sorting them by distance costs more branches than the nodes it
+        // would prune). A stacked entry beyond the nearest hit found is skipped when popped.
+        detail::bvh_traverse<detail::bvh_order::octant, true>(tree_, r, r.t_max, leaf);
         return best;
     }
 

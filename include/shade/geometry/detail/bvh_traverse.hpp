@@ -244,6 +244,7 @@ struct bvh_ray_lanes {
     std::array<std::uint32_t, 4> near_offset; ///< [k < 3]: byte offset of planes[near_plane[k]]
     std::array<std::uint32_t, 4> far_offset;  ///< [k < 3]: byte offset of planes[near_plane[k] ^ 1]
     Lanes t_min;
+    std::uint32_t octant; ///< bit k set where direction component k has its sign bit set (bvh_node::visit)
 
     template <std::floating_point T>
     [[gnu::always_inline]] explicit bvh_ray_lanes(const ray<T>& r, const bvh_ray_scale<T>& scale) noexcept
@@ -309,6 +310,7 @@ struct bvh_ray_lanes {
                 origin_far[k] = Lanes{} + far3[k];
             }
         }
+        octant = bvh_bits(negative) & 7u;
         // Plane 2 k + 1 (hi) is near where the direction is negative, else plane 2 k.
         const bvh_i4 near_plane = bvh_i4{0, 2, 4, 0} + (negative & 1);
         const bvh_i4 near_bytes = near_plane * static_cast<std::int32_t>(sizeof(Lanes));
@@ -475,7 +477,38 @@ enum class bvh_order {
     child,   ///< the stored order (no comparisons)
     nearest, ///< the nearest first, the others in no particular order
     sorted,  ///< nearest first, then by entry distance
+    octant,  ///< two: the nearer first; three or more: the node's order for the ray's octant
+             ///< (bvh_node::visit), no comparisons. Nodes of eight in a walk with AVX2's
+             ///< variable shifts only; the other walks take `nearest` instead (bvh_order_in)
 };
+
+/// The order a walk takes when asked for `order`: `nearest` for `octant` where the walk
+/// lacks AVX2's variable shifts of eight lanes (`variable_shifts` false), which put a
+/// node's entered children in visit order in a few instructions
+/// (bvh_entered_in_visit_order); without them that costs about what the order saves.
+[[nodiscard]] constexpr bvh_order bvh_order_in(bvh_order order, bool variable_shifts) noexcept {
+    return order == bvh_order::octant && !variable_shifts ? bvh_order::nearest : order;
+}
+
+/// True where the whole build targets AVX2 (then the walk compiled for AVX has its shifts).
+#if defined(__AVX2__)
+inline constexpr bool bvh_build_has_avx2 = true;
+#else
+inline constexpr bool bvh_build_has_avx2 = false;
+#endif
+
+#if defined(__GNUC__) && defined(__x86_64__)
+/// The entered children of a node of eight, `bits` (child j at bit j), in the order
+/// `visit` (one of bvh_node<8>::visit): bit p set where the child at position p was
+/// entered. Each lane p shifts the entered bits right by its child's index: AVX2's
+/// variable shifts (vpsrlvd) in the AVX-512 walk or an AVX2 build.
+[[gnu::always_inline]] inline unsigned bvh_entered_in_visit_order(unsigned bits, std::uint32_t visit) noexcept {
+    using lanes_u32 [[gnu::vector_size(32)]] = std::uint32_t;
+    const lanes_u32 child = ((lanes_u32{} + visit) >> lanes_u32{0, 3, 6, 9, 12, 15, 18, 21}) & 7u;
+    const lanes_u32 entered = ((lanes_u32{} + bits) >> child) << 31; // the sign bit: entered
+    return bvh_bits8(reinterpret_cast<bvh_i8>(entered));
+}
+#endif
 
 /// True when r is valid and needs no scaling (the common case), in the walk of Ray: for
 /// a float ray in the AVX walk bvh_ray_plain8, else bvh_ray_valid and bvh_scale_needed.
@@ -522,6 +555,7 @@ template <bvh_order Order, bool Validate, std::size_t LeafBytes, class Ray, std:
             unsigned bits = bvh_test_boxes(node, fr, t_max_lanes, t_enter);
             if (bits == 0) goto pop;
             {
+                const unsigned entered = bits;
                 const auto i0 = static_cast<std::size_t>(std::countr_zero(bits));
                 bits &= bits - 1;
                 if (bits == 0) {
@@ -539,6 +573,27 @@ template <bvh_order Order, bool Validate, std::size_t LeafBytes, class Ray, std:
                     ref = node.child[go];
                     continue;
                 }
+#if defined(__GNUC__) && defined(__x86_64__)
+                if constexpr (Order == bvh_order::octant) {
+                    // Three or more: stack all but the first of the octant's order, far
+                    // first (so that they are popped near first), and go to the first.
+                    static_assert(W == 8);
+                    const std::uint32_t visit = node.visit[fr.octant];
+                    const auto child_at = [visit](unsigned p) { return std::size_t(visit >> (3 * p) & 7u); };
+                    unsigned in_order = bvh_entered_in_visit_order(entered, visit);
+                    const auto first = static_cast<unsigned>(std::countr_zero(in_order));
+                    in_order &= in_order - 1;
+                    do {
+                        const auto p = static_cast<unsigned>(std::bit_width(in_order) - 1);
+                        const std::size_t j = child_at(p);
+                        stack[top++] = {node.child[j], t_enter[j]};
+                        if constexpr (LeafBytes != 0) bvh_prefetch_child<LeafBytes>(nodes, leaf_base, node.child[j]);
+                        in_order ^= 1u << p;
+                    } while (in_order != 0);
+                    ref = node.child[child_at(first)];
+                    continue;
+                }
+#endif
                 // Three or more: stack them all, then (sorted) sort them so that the
                 // nearest is on top and pop it, or (nearest) take the nearest off the stack
                 // and fill its place with the top entry: a linear scan, cheaper than the
@@ -683,10 +738,11 @@ template <bvh_order Order, bool Validate = false, std::size_t LeafBytes = 0, std
         if (bvh_avx512_walk && cpu_has_avx512_walk())
             return bvh_walk_wide512<Order, Validate, LeafBytes>(tree.wide_nodes.data(), r, t_max, leaf, leaf_base);
 #endif
-        return bvh_walk_wide<Order, Validate, LeafBytes>(tree.wide_nodes.data(), r, t_max, leaf, leaf_base);
+        return bvh_walk_wide<bvh_order_in(Order, bvh_build_has_avx2), Validate, LeafBytes>(tree.wide_nodes.data(), r,
+                                                                                           t_max, leaf, leaf_base);
     }
 #endif
-    bvh_walk_four<Order, Validate, LeafBytes>(tree.nodes.data(), r, t_max, leaf, leaf_base);
+    bvh_walk_four<bvh_order_in(Order, false), Validate, LeafBytes>(tree.nodes.data(), r, t_max, leaf, leaf_base);
 }
 #undef SHADE_DETAIL_BVH_WIDE
 #undef SHADE_DETAIL_BVH_WIDE512
