@@ -671,6 +671,66 @@ TEST_CASE("bvh collapse: a perfect binary tree fills its wide nodes from the lea
     for (const int s : seen) CHECK(s == 1);
 }
 
+// bvh_node<8>::visit: for each octant a permutation of the eight children, the filled ones
+// first, in order of the dot product of the octant's direction with their boxes' centres
+// (ties in either order); octant 7 - o lists the filled ones in the opposite order. On a
+// random soup (many ties-free keys), at node sizes 1-8, and on boxes with non-finite bounds.
+TEST_CASE("bvh visit orders: per octant, the filled children sorted along the octant's direction") {
+    shade::rng g(7);
+    const auto check = [](const shade::detail::bvh_node<8>& node) {
+        std::size_t n = 0;
+        while (n < 8 && node.child[n] != shade::detail::make_leaf_ref(0, 0)) ++n;
+        const auto key = [&](unsigned o, std::size_t j) {
+            float sum = 0.0f;
+            for (std::size_t k = 0; k < 3; ++k) {
+                const float c = node.planes[2 * k][j] + node.planes[2 * k + 1][j];
+                sum += (o >> k & 1u) != 0 ? -c : c;
+            }
+            return sum;
+        };
+        for (unsigned o = 0; o < 8; ++o) {
+            const std::uint32_t w = node.visit[o];
+            CHECK((w >> 24) == 0u);
+            unsigned seen = 0;
+            for (std::size_t p = 0; p < 8; ++p) {
+                const std::size_t j = w >> (3 * p) & 7u;
+                seen |= 1u << j;
+                CHECK((p < n) == (j < n)); // the filled children first
+                if (p == 0 || p >= n) continue;
+                const std::size_t prev = w >> (3 * (p - 1)) & 7u;
+                const float a = key(o, prev), b = key(o, j);
+                if (std::isfinite(a) && std::isfinite(b)) CHECK(a <= b);
+            }
+            CHECK(seen == 0xffu); // a permutation
+            // The opposite octant: the filled children reversed.
+            for (std::size_t p = 0; p < n; ++p)
+                CHECK((node.visit[7 - o] >> (3 * p) & 7u) == (w >> (3 * (n - 1 - p)) & 7u));
+        }
+    };
+    for (const std::size_t count : {1u, 2u, 3u, 5u, 9u, 40u, 3000u}) {
+        std::vector<shade::detail::bvh_prim_ref> refs;
+        for (std::size_t i = 0; i < count; ++i) {
+            const v3<float> lo{g.uniform<float>() * 100.0f, g.uniform<float>() * 100.0f, g.uniform<float>() * 100.0f};
+            refs.push_back(shade::detail::make_prim_ref(shade::aabb<float>{lo, lo + v3<float>(g.uniform<float>())},
+                                                        static_cast<std::uint32_t>(i)));
+        }
+        const auto tree = shade::detail::bvh_builder(1, 1).build(refs, 8);
+        REQUIRE(!tree.wide_nodes.empty());
+        for (const auto& node : tree.wide_nodes) check(node);
+    }
+    // A node whose children have infinite keys (bounds at +-max float: their centre sums
+    // overflow) and a NaN key (a box from -inf to +inf).
+    shade::detail::bvh_node<8> node{};
+    const float big = std::numeric_limits<float>::max(), inf = std::numeric_limits<float>::infinity();
+    for (std::size_t j = 0; j < 8; ++j) {
+        const float lo = j == 1 ? -inf : j < 4 ? big / 2 : float(j), hi = j == 1 ? inf : j < 4 ? big : float(j) + 1;
+        for (std::size_t k = 0; k < 3; ++k) node.planes[2 * k][j] = lo, node.planes[2 * k + 1][j] = hi;
+        node.child[j] = j < 6 ? shade::detail::make_leaf_ref(static_cast<std::uint32_t>(j), 1) : shade::detail::make_leaf_ref(0, 0);
+    }
+    shade::detail::bvh_visit_orders(node, 6);
+    check(node);
+}
+
 // memory_bytes counts the nodes and the leaf data as allocated. One triangle: one node
 // (128 bytes with four children, 256 with eight) and, batched, one leaf block of 320 bytes
 // (float: the vertices v0, v1, v2 as 9 arrays of 8 floats, 288, then 8 indices of 4 bytes,
