@@ -725,6 +725,8 @@ private:
                                : transmission_reflection_is_specular_ ? w.specular_albedo.x
                                : transmission_reflection_windowed_ && specular_window_.contains(w.mu)
                                    ? glm::max(specular_window_.at_or_below(w.mu).x, T(0))
+                               : transmission_window_.contains(w.mu)
+                                   ? glm::max(transmission_window_.at_or_below(w.mu).x, T(0))
                                    : transmission_reflection_.at(w.mu);
                 // The single-scattering part e_s - R_ss cannot be negative; where the two tables
                 // read it so (near the total-reflection kink of an anisotropic interface below
@@ -1256,6 +1258,11 @@ private:
     // and roughness) but E_spec is not its R_ss (a film, a tint): R_ss around the critical
     // cosine is read from the lobe's window at or below its value (view_at).
     bool transmission_reflection_windowed_ = false;
+    // Below an index ratio of 1/3, beyond the reflection table's index range, where the row
+    // reads R_ss up to 6e-2 high (roughness 0.5): the isotropic interface's R_ss over every
+    // view cosine (a kink_view_window reaching the whole range), read at or below it by the
+    // transmission lobe when E_spec is not that R_ss (view_at).
+    detail::kink_view_window<T> transmission_window_{};
     bool coat_anisotropic_ = false;
     bool specular_anisotropic_ = false;
     T specular_eta_ = T(1.5);
@@ -1513,6 +1520,14 @@ void openpbr_surface<T>::build() {
                                                    p.specular_color == rgb<T>(1) && !(film_weight > T(0));
             transmission_reflection_windowed_ = specular_ && !specular_anisotropic_ && !transmission_anisotropic_ &&
                                                 specular_alpha_ == transmission_alpha_ && same_index;
+            if (!transmission_anisotropic_ && !transmission_reflection_is_specular_ &&
+                eta < T(1.0 / detail::dielectric_albedo_eta_max)) {
+                const double e = double(eta);
+                transmission_window_ = detail::kink_view_window<T>(
+                    double(transmission_alpha_), [e](double c) { return rgb<double>(F_dielectric(c, e)); },
+                    std::sqrt((1.0 - e) * (1.0 + e)), detail::cosine_weight_nodes, film_window_strata,
+                    film_window_margin);
+            }
         }
     }
 
