@@ -1536,6 +1536,67 @@ TEST_CASE("openpbr_surface: white furnace of a thin film over an anisotropic bas
     MESSAGE("thin film over an anisotropic base at specular_weight 0, white furnace: " << band.low << " to " << band.high);
 }
 
+TEST_CASE("openpbr_surface: copies of a material below an index ratio of 1 keep its windows of views") {
+    // Below an index ratio of 1 a narrow isotropic lobe reads R_ss around the critical cosine
+    // from a detail::kink_view_window whose values live in a heap block (specular, coat and,
+    // below 1/3, the transmission's): a copy (copy construction, copy assignment, move)
+    // evaluates as the original did after the original is gone (a freed or shared block
+    // would read freed memory under the sanitizers; here the values would differ), and an
+    // empty window's copy stays empty.
+    using T = double;
+    const auto at = check_test::model_point<T>();
+    for (const bool coated : {false, true}) {
+        params<T> p = white<T>();
+        // Uncoated: the specular lobe's window (eta'_s 0.45) and, with a film, the transmission
+        // reading it; coated: the coat's (coat_ior 0.65) and the transmission's own (specular_ior
+        // 0.3, E_spec at another index).
+        p.specular_ior = coated ? T(0.3) : T(0.45);
+        p.specular_roughness = T(0.05);
+        p.transmission_weight = T(0.5);
+        if (coated) {
+            p.specular_weight = T(0.7);
+            p.coat_weight = T(0.5);
+            p.coat_ior = T(0.65);
+            p.coat_roughness = T(0.05);
+        } else {
+            p.thin_film_weight = T(0.5);
+        }
+        const double n = coated ? 0.65 : 0.45;
+        const double mu_c = std::sqrt(1 - n * n);
+        const vec3<T> v = view_at_cosine(at, mu_c + 0.001, 0.7);
+        const vec3<T> l_reflected = view_at_cosine(at, 0.6, 2.0);
+        const vec3<T> l_transmitted = glm::normalize(vec3<T>(0.2, -0.1, 0) - at.n());
+        rgb<T> f_reflected{}, f_transmitted{};
+        T pdf_reflected = 0;
+        std::optional<surface<T>> copied, assigned, moved;
+        {
+            const surface<T> original(p);
+            f_reflected = original.f(l_reflected, v, at);
+            f_transmitted = original.f(l_transmitted, v, at);
+            pdf_reflected = original.pdf(l_reflected, v, at);
+            copied.emplace(original);
+            surface<T> other(white<T>());
+            other = original;
+            assigned.emplace(other);
+            surface<T> temporary(original);
+            moved.emplace(std::move(temporary));
+        }
+        CHECK(f_reflected.x > 0);
+        CHECK(f_transmitted.x > 0);
+        for (const auto* m : {&*copied, &*assigned, &*moved}) {
+            CHECK(m->f(l_reflected, v, at).x == f_reflected.x);
+            CHECK(m->f(l_transmitted, v, at).x == f_transmitted.x);
+            CHECK(m->pdf(l_reflected, v, at) == pdf_reflected);
+        }
+        // A material without windows, copied and assigned over one with them.
+        surface<T> plain(white<T>());
+        plain = *copied;
+        CHECK(plain.f(l_reflected, v, at).x == f_reflected.x);
+        *copied = surface<T>(white<T>());
+        CHECK(copied->f(l_reflected, v, at).x == surface<T>(white<T>()).f(l_reflected, v, at).x);
+    }
+}
+
 TEST_CASE("openpbr_surface: with interface_albedo::grid, copies share the grid and outlive the material that built it") {
     // The transmission lobe points to a grid on the heap that the material's copies share;
     // a copy (made by copy construction, copy assignment or move) evaluates as the original

@@ -303,7 +303,9 @@ template <std::floating_point T, class Fresnel>
 /// a quarter more for the peaks between them), plus `margin` (for the quadrature's error);
 /// at_or_below() reads the chord less the cell's drop (1.25 times the most E_F falls below
 /// the chord at those points) less `margin`, for a caller that must not read E_F high.
-/// Empty (contains() false) until built.
+/// Empty (contains() false) until built; a built window keeps its values in a heap block
+/// (about 3.5 KB for float), so that an empty one, what most materials hold, is small. Copies
+/// copy the block.
 template <std::floating_point T>
 class kink_view_window {
 public:
@@ -311,6 +313,25 @@ public:
     static constexpr std::size_t samples = 4; ///< E_F's points per cell, one end included
 
     kink_view_window() = default;
+    kink_view_window(const kink_view_window& other)
+        : kink_(other.kink_), below_(other.below_), above_(other.above_), margin_(other.margin_),
+          table_(other.table_ != nullptr ? new table(*other.table_) : nullptr) {}
+    kink_view_window(kink_view_window&& other) noexcept
+        : kink_(other.kink_), below_(other.below_), above_(other.above_), margin_(other.margin_),
+          table_(other.table_) {
+        other.table_ = nullptr;
+    }
+    kink_view_window& operator=(kink_view_window other) noexcept {
+        kink_ = other.kink_;
+        below_ = other.below_;
+        above_ = other.above_;
+        margin_ = other.margin_;
+        table* const mine = table_;
+        table_ = other.table_;
+        other.table_ = mine;
+        return *this;
+    }
+    ~kink_view_window() { delete table_; }
 
     template <class Fresnel>
     kink_view_window(double alpha, const Fresnel& F, double kink, std::size_t reach, std::size_t strata,
@@ -322,6 +343,7 @@ public:
         kink_ = glm::clamp(kink, 0.0, 1.0);
         below_ = glm::max(kink_ - cosine_weight_node(first), 0.0);
         above_ = glm::max(cosine_weight_node(last) - kink_, 0.0);
+        table_ = new table;
         std::array<rgb<double>, points> e{};
         for (std::size_t q = 0; q < points; ++q) {
             const double x = -1.0 + 2.0 * double(q) / double(points - 1);
@@ -336,31 +358,32 @@ public:
                 above = glm::max(above, e[j * samples + q] - chord);
                 below = glm::max(below, chord - e[j * samples + q]);
             }
-            lift_[j] = rgb<T>(1.25 * above);
-            drop_[j] = rgb<T>(1.25 * below);
+            table_->lift[j] = rgb<T>(1.25 * above);
+            table_->drop[j] = rgb<T>(1.25 * below);
         }
-        for (std::size_t j = 0; j <= cells; ++j) nodes_[j] = rgb<T>(e[j * samples]);
+        for (std::size_t j = 0; j <= cells; ++j) table_->nodes[j] = rgb<T>(e[j * samples]);
         margin_ = T(margin);
-        built_ = true;
     }
 
     /// Whether mu lies in the window (false when empty or for a NaN mu).
     [[nodiscard]] bool contains(T mu) const noexcept {
-        return built_ && double(mu) >= kink_ - below_ && double(mu) <= kink_ + above_;
+        return table_ != nullptr && double(mu) >= kink_ - below_ && double(mu) <= kink_ + above_;
     }
 
     /// E_F at view cosine mu in the window (contains(mu)), lift and margin included, per
     /// channel.
     [[nodiscard]] rgb<T> at(T mu) const noexcept {
         const cell c = cell_of(mu);
-        return (T(1) - c.t) * nodes_[c.j] + c.t * nodes_[c.j + 1] + lift_[c.j] + rgb<T>(margin_);
+        const table& w = *table_;
+        return (T(1) - c.t) * w.nodes[c.j] + c.t * w.nodes[c.j + 1] + w.lift[c.j] + rgb<T>(margin_);
     }
 
     /// A read at or below E_F at view cosine mu in the window (contains(mu)): the chord less
     /// the cell's drop and the margin, per channel (not clamped: may be below 0).
     [[nodiscard]] rgb<T> at_or_below(T mu) const noexcept {
         const cell c = cell_of(mu);
-        return (T(1) - c.t) * nodes_[c.j] + c.t * nodes_[c.j + 1] - drop_[c.j] - rgb<T>(margin_);
+        const table& w = *table_;
+        return (T(1) - c.t) * w.nodes[c.j] + c.t * w.nodes[c.j + 1] - w.drop[c.j] - rgb<T>(margin_);
     }
 
 private:
@@ -378,12 +401,15 @@ private:
         return {j, T(glm::clamp(u - double(j), 0.0, 1.0))};
     }
 
+    // The nodes' E_F, and each cell's lift and drop.
+    struct table {
+        std::array<rgb<T>, cells + 1> nodes{};
+        std::array<rgb<T>, cells> lift{}, drop{};
+    };
+
     double kink_ = 0, below_ = 0, above_ = 0;
-    bool built_ = false;
     T margin_ = 0;
-    std::array<rgb<T>, cells + 1> nodes_{};
-    std::array<rgb<T>, cells> lift_{};
-    std::array<rgb<T>, cells> drop_{};
+    table* table_ = nullptr; // nullptr: empty
 };
 
 /// One view's sum of fresnel_albedo_row without keeping a row: e = sum_k w_k F(c_k) per
