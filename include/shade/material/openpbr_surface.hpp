@@ -633,10 +633,17 @@ private:
         if (!(eta < T(1))) return;
         margin = T(below_one_margin);
         if (!(alpha <= T(film_window_alpha_max))) return;
+        window = dielectric_window(alpha, eta, below_one_window_reach);
+    }
+
+    // The kink_view_window of F(c, eta) (eta < 1) for an isotropic interface of roughness
+    // alpha around its critical cosine, within `reach` row cells of it (the film's
+    // quadrature and margin).
+    [[nodiscard]] static detail::kink_view_window<T> dielectric_window(T alpha, T eta, std::size_t reach) {
         const double e = double(eta);
-        window = detail::kink_view_window<T>(
+        return detail::kink_view_window<T>(
             double(alpha), [e](double c) { return rgb<double>(F_dielectric(c, e)); }, std::sqrt((1.0 - e) * (1.0 + e)),
-            below_one_window_reach, film_window_strata, film_window_margin);
+            reach, film_window_strata, film_window_margin);
     }
 
     // R_ss of the isotropic specular lobe's interface at view cosine mu (reflection_read).
@@ -1521,13 +1528,8 @@ void openpbr_surface<T>::build() {
             transmission_reflection_windowed_ = specular_ && !specular_anisotropic_ && !transmission_anisotropic_ &&
                                                 specular_alpha_ == transmission_alpha_ && same_index;
             if (!transmission_anisotropic_ && !transmission_reflection_is_specular_ &&
-                eta < T(1.0 / detail::dielectric_albedo_eta_max)) {
-                const double e = double(eta);
-                transmission_window_ = detail::kink_view_window<T>(
-                    double(transmission_alpha_), [e](double c) { return rgb<double>(F_dielectric(c, e)); },
-                    std::sqrt((1.0 - e) * (1.0 + e)), detail::cosine_weight_nodes, film_window_strata,
-                    film_window_margin);
-            }
+                eta < T(1.0 / detail::dielectric_albedo_eta_max))
+                transmission_window_ = dielectric_window(transmission_alpha_, eta, detail::cosine_weight_nodes);
         }
     }
 
