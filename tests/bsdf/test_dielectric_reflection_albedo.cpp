@@ -586,6 +586,78 @@ TEST_CASE_TEMPLATE("dielectric reflection albedo: below an index ratio of 1 an a
     }
 }
 
+TEST_CASE_TEMPLATE("dielectric reflection albedo: below an index ratio of 1 a narrow anisotropic interface reads R_ss at or above direct estimates around the critical cosine",
+                   T, float, double) {
+    // A narrow lobe's R_ss steps from 1 toward F(mu) within about alpha sin(theta_c) of the
+    // critical cosine mu_c; the grid's rows (a few thousandths apart there) bridged the step
+    // with chords reading R_ss up to 0.085 low below mu_c (an opaque material's white
+    // furnace, 1 + true - read, reached 1.042 for alphas 0.0036 and 0.0011 at index 0.5).
+    // With alpha_min <= window_alpha_max R_ss is read from an anisotropic_kink_window over
+    // the grid's rows within window_rows of mu_c (cells crowding toward mu_c, each lifted over
+    // its bilinear read). Against fresh 64^2 estimates of the model at views within 0.004 of
+    // mu_c, five azimuths, narrow and one-axis-narrow interfaces (both axes smoother in turn)
+    // at three index ratios: at() at least -1e-3 - 4 standard errors below (the furnace at
+    // most 1.001) and at most 0.03 above; at_without_margin() (the transmission's read of
+    // R_ss under a film) at most 0.012 above. The one interface nearly smooth along one axis
+    // (alphas 1e-4 and 0.2263) reads up to 0.045 high on that axis just below mu_c: there
+    // R_ss is flat (c = mu cos(theta_m) < mu_c, total reflection) and falls as soon as the
+    // view turns off the axis, so the window's first azimuth cell is lifted by what its
+    // halfway azimuth rises above the chord (measured +0.036; the grid alone read +0.01 there
+    // and 0.01 low just above mu_c).
+    using d::anisotropic_reflection_albedo_grid;
+    double low = 1, high = -1, without_high = -1;
+    for (const double eta : {0.3, 0.5, 0.9})
+        for (const alphas a : {alphas{0.0036, 0.0011}, alphas{0.0011, 0.0036}, alphas{0.0141, 1e-4}, alphas{0.05, 0.03},
+                               alphas{1e-4, 0.2263}}) {
+            const anisotropic_reflection_albedo_grid<T> g(T(a.x), T(a.y), T(eta));
+            REQUIRE(g.windowed());
+            const double mu_c = std::sqrt(1 - eta * eta);
+            for (const double offset : {-0.004, -0.001, -0.0003, 0.0, 0.0003, 0.001, 0.004})
+                for (const double degrees : {0.0, 30.0, 60.0, 85.0, 90.0}) {
+                    const auto v = view(mu_c + offset, 0, degrees * shade::pi<double> / 180);
+                    const auto fresh = fresh_reflection(a.x, a.y, eta, v, 64, 919);
+                    const vec3<T> w(v);
+                    const double error = double(g.at(w)) - fresh.albedo.x;
+                    const double without = double(g.at_without_margin(w)) - fresh.albedo.x;
+                    CAPTURE(eta);
+                    CAPTURE(a.x);
+                    CAPTURE(a.y);
+                    CAPTURE(offset);
+                    CAPTURE(degrees);
+                    CAPTURE(fresh.albedo.x);
+                    CHECK(error >= -1e-3 - 4 * fresh.standard_error.x);
+                    const double high_bound = std::min(a.x, a.y) / std::max(a.x, a.y) < 1e-3 ? 0.045 : 0.03;
+                    CHECK(error <= high_bound + 4 * fresh.standard_error.x);
+                    CHECK(without <= 0.012 + 4 * fresh.standard_error.x);
+                    low = std::min(low, error);
+                    high = std::max(high, error);
+                    without_high = std::max(without_high, without);
+                }
+        }
+    MESSAGE("narrow anisotropic interface below 1 around mu_c, read - fresh: at() " << low << " to " << high
+                                                                                     << ", at_without_margin() up to "
+                                                                                     << without_high);
+    // Wider lobes keep the grid alone.
+    CHECK(!anisotropic_reflection_albedo_grid<T>(T(0.38), T(0.16), T(0.5)).windowed());
+    // Copies own their window: a copy reads as the original after the original is gone, at
+    // a view inside the window (mu_c - 0.001 at index 0.5).
+    const vec3<T> w(view(std::sqrt(0.75) - 0.001, 0, 1.2));
+    auto original = std::make_unique<anisotropic_reflection_albedo_grid<T>>(T(0.0036), T(0.0011), T(0.5));
+    REQUIRE(original->windowed());
+    const T expected = original->at(w), expected_below = original->at_without_margin(w);
+    const anisotropic_reflection_albedo_grid<T> copy(*original);
+    anisotropic_reflection_albedo_grid<T> assigned;
+    assigned = *original;
+    const anisotropic_reflection_albedo_grid<T> moved(std::move(*original));
+    original.reset();
+    const anisotropic_reflection_albedo_grid<T>& assigned_read = assigned;
+    for (const anisotropic_reflection_albedo_grid<T>* g : {&copy, &assigned_read, &moved}) {
+        CHECK(g->windowed());
+        CHECK(g->at(w) == expected);
+        CHECK(g->at_without_margin(w) == expected_below);
+    }
+}
+
 TEST_CASE_TEMPLATE("dielectric reflection albedo: the anisotropic grid below 1 reads finite values at its extremes", T, float,
                    double) {
     // At the smallest index ratio (1e-4: the critical cosine sqrt(1 - 1e-8) is 1 in float,

@@ -1462,6 +1462,52 @@ TEST_CASE("openpbr_surface: white furnace of an opaque dielectric below an index
                                                          << " (just above mu_c: up to " << highest_near << ")");
 }
 
+TEST_CASE("openpbr_surface: white furnace of an opaque dielectric below an index ratio of 1, anisotropic, around the critical cosine") {
+    // The anisotropic form of the test above: specular (or a full coat's) index below 1,
+    // narrow anisotropic lobes, views within 0.004 of the critical cosine mu_c at three
+    // azimuths. R_ss came from the interface's grid, whose rows bridge a narrow lobe's step
+    // at mu_c with chords reading it low: measured 1.042 (index 0.5, roughness 0.05,
+    // anisotropy 0.7, mu_c - 0.001, azimuth pi / 2), 1.016-1.020 (0.9, 0.08, 1; mu_c + 0.002),
+    // 1.018 (0.7, 0.1, 0.9; mu_c - 0.001). Now it is read from the interface's
+    // anisotropic_kink_window there: the band [0.99, 1.001] (4 standard errors of
+    // furnace_stratified, 48^2 u strata).
+    using T = double;
+    const auto at = check_test::model_point<T>();
+    struct opaque {
+        T ior, roughness, anisotropy;
+    };
+    furnace_band band;
+    for (const bool coat : {false, true}) {
+        for (const opaque o : {opaque{T(0.5), T(0.05), T(0.7)}, opaque{T(0.9), T(0.08), T(1)},
+                               opaque{T(0.7), T(0.1), T(0.9)}, opaque{T(0.3), T(0.2), T(0.5)}}) {
+            params<T> p = white<T>();
+            if (coat) {
+                p.coat_weight = T(1);
+                p.coat_ior = o.ior;
+                p.coat_roughness = o.roughness;
+                p.coat_roughness_anisotropy = o.anisotropy;
+            } else {
+                p.specular_ior = o.ior;
+                p.specular_roughness = o.roughness;
+                p.specular_roughness_anisotropy = o.anisotropy;
+            }
+            const surface<T> m(p);
+            const double mu_c = std::sqrt(1 - double(o.ior) * double(o.ior));
+            for (const double offset : {-0.004, -0.001, -0.0003, 0.0003, 0.001, 0.004})
+                for (const double phi : {0.0, 0.8, 1.5708}) {
+                    const double mu = mu_c + offset;
+                    const auto reading = furnace_stratified(m, view_at_cosine(at, mu, phi), at, 1.0, 48, 32, 4);
+                    INFO((coat ? "coat" : "specular"), " ior ", double(o.ior), " roughness ", double(o.roughness),
+                         " anisotropy ", double(o.anisotropy), " mu ", mu, " (mu_c ", mu_c, ") phi ", phi, ": ",
+                         reading.first, " +- ", reading.second);
+                    CHECK(reading.second < 0.01);
+                    band.check(reading);
+                }
+        }
+    }
+    MESSAGE("opaque anisotropic dielectric below 1 around mu_c, white furnace: " << band.low << " to " << band.high);
+}
+
 TEST_CASE("openpbr_surface: glass below an index ratio of 1/3 never reads its furnace above 1.001") {
     // specular_ior 0.3 (beyond the reflection table's index range, 1/3 to 3), roughness 0.5:
     // with specular_weight 0.7 (E_spec at another index) or a film E_spec is not the

@@ -67,6 +67,7 @@
 
 #include <shade/brdf/fresnel.hpp>
 #include <shade/brdf/microfacet/albedo_table.hpp>
+#include <shade/core/math.hpp>
 #include <shade/core/quadrature.hpp>
 
 namespace shade::detail {
@@ -253,12 +254,8 @@ template <std::floating_point T>
 /// bisection to double precision (for the generator and the tests).
 [[nodiscard]] inline double dielectric_albedo_view_mu(double t, double alpha, double eta_hat, std::size_t side,
                                                      bool near_critical = false) noexcept {
-    double lo = 0, hi = 1;
-    for (int k = 0; k < 64; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        (dielectric_albedo_view(mid, alpha, eta_hat, side, near_critical) < t ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
+    return bisect_increasing(
+        [=](double mu) { return dielectric_albedo_view(mu, alpha, eta_hat, side, near_critical); }, t);
 }
 
 /// Where a lookup reads: the side, and the cells and fractions along alpha and eta.

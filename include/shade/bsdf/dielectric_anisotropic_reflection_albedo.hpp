@@ -21,6 +21,7 @@
 #include <shade/bsdf/dielectric_reflection_albedo.hpp>
 #include <shade/bsdf/rough_dielectric_albedo_grid.hpp>
 #include <shade/core/error.hpp>
+#include <shade/core/heap_value.hpp>
 #include <shade/core/types.hpp>
 
 namespace shade {
@@ -95,6 +96,183 @@ private:
     reflection_anisotropic_cell<T> cell_{};
 };
 
+/// The reflection albedo R_ss(w) of an anisotropic GGX interface (alphas alpha_x != alpha_y,
+/// both > 0) below an index ratio of 1 (eta_s < 1) on the views around its critical cosine
+/// mu_c = sqrt(1 - eta_s^2), much finer in mu than a dielectric_side_grid's rows: the lobe's
+/// R_ss steps from 1 toward F(mu) within about alpha sin(theta_c) of mu_c (alpha the roughness
+/// projected on the view's azimuth), which rows a few thousandths apart bridge with chords
+/// reading R_ss up to 0.04 low below mu_c (a surface of alphas 0.0036 and 0.0011). The window
+/// spans `below` under mu_c and `above` over it on `cells` cells even in x in [-1, 1],
+/// mu = mu_c + d x |x| (d the side's span): mu_c is the middle node and the cells crowd
+/// toward it quadratically. In azimuth it has `azimuths` nodes (strong_azimuths at strong
+/// anisotropy) at the side grid's azimuth
+/// coordinate (dielectric_side_grid::azimuth_warp, crowded toward the smoother axis). R_ss is
+/// computed on the nodes' azimuths and on the azimuths halfway between them, at `samples`
+/// points per cell in mu (the cells' ends among them), each by visit_ggx_cosine_measure on
+/// strata_narrow^2 cells with F_dielectric(c, eta_s) (strata_wide^2 for alpha_max above
+/// narrow_alpha). A read is bilinear between the four nodes of
+/// its cell plus the cell's lift, 1.25 times the most R_ss rises above the bilinear read at
+/// the cell's points (the nodes' azimuths between their ends and the halfway azimuth along
+/// the whole cell), plus `margin` (for the quadrature's error), at most 1: at or above R_ss.
+/// at_or_below() reads the bilinear value less the cell's drop (the same for R_ss below it),
+/// close to R_ss and not above it but for the quadrature's error. Empty (contains() false)
+/// until built; a built window keeps its values in a heap block (about 9.5 KB for float),
+/// copies copy it.
+template <std::floating_point T>
+class anisotropic_kink_window {
+public:
+    static constexpr std::size_t cells = 48;    ///< cells in mu (even: mu_c a node)
+    static constexpr std::size_t samples = 3;   ///< R_ss's points per cell in mu, one end included
+    static constexpr std::size_t azimuths = 9;  ///< azimuth nodes
+    /// Azimuth nodes at strong anisotropy (dielectric_side_grid::strong: alpha_max / alpha_min
+    /// >= 20), where R_ss turns within a few degrees of the smoother axis.
+    static constexpr std::size_t strong_azimuths = 17;
+    /// The quadrature's cells per side at each point for alpha_max <= narrow_alpha.
+    static constexpr std::size_t strata_narrow = 32;
+    /// The same for wider lobes (the midpoint rule's error near the critical cosine grows with
+    /// alpha_max: at 32^2 down to -3.8e-3 for alpha_max up to 0.02 and -6.4e-3 up to 0.23,
+    /// at 48^2 -4.7e-3).
+    static constexpr std::size_t strata_wide = 48;
+    static constexpr double narrow_alpha = 0.02; ///< (strata_narrow)
+    /// A cell's lift (drop) over its largest sampled rise (fall): the points between the
+    /// samples may rise further.
+    static constexpr double lift_factor = 1.25;
+
+    anisotropic_kink_window() = default;
+
+    /// The window of the interface of alphas alpha_x != alpha_y (both > 0) and index ratio
+    /// eta_s in (0, 1) over [mu_c - below, mu_c + above] (both >= 0, within [0, 1];
+    /// unchecked), its reads at() raised by `margin`.
+    anisotropic_kink_window(double alpha_x, double alpha_y, double eta_s, double below, double above, double margin) {
+        azimuths_ = dielectric_side_grid<T>::strong(alpha_x, alpha_y) ? strong_azimuths : azimuths;
+        constexpr std::size_t points = cells * samples + 1;
+        const std::size_t lines = 2 * azimuths_ - 1;
+        const double q = glm::min(glm::max(alpha_x, alpha_y) / glm::min(alpha_x, alpha_y), 20.0);
+        // The side grid's parameter, rounded to T as the grid rounds it, so that the two
+        // place their azimuth nodes alike.
+        log_q2_ = T(2 * std::log(q));
+        smoother_y_ = alpha_x > alpha_y;
+        mu_c_ = std::sqrt((1.0 - eta_s) * (1.0 + eta_s));
+        below_ = glm::clamp(below, 0.0, mu_c_);
+        above_ = glm::clamp(above, 0.0, 1.0 - mu_c_);
+        margin_ = T(margin);
+        const std::size_t strata = glm::max(alpha_x, alpha_y) <= narrow_alpha ? strata_narrow : strata_wide;
+        // R_ss on every line (line 2a the node azimuth a, line 2a + 1 halfway to a + 1) at
+        // every point in mu; on the heap while built (about 250 KB).
+        struct values {
+            double* data = new double[(2 * strong_azimuths - 1) * points];
+            ~values() { delete[] data; }
+        } e;
+        for (std::size_t line = 0; line < lines; ++line) {
+            const double target = double(line) / double(lines - 1);
+            const double s = dielectric_side_grid<T>::azimuth_of_warp(target, double(log_q2_));
+            const double cos2 = smoother_y_ ? s : 1.0 - s;
+            const double cx = std::sqrt(cos2), cy = std::sqrt(glm::max(0.0, 1.0 - cos2));
+            for (std::size_t k = 0; k < points; ++k) {
+                const double mu = glm::clamp(point_mu(k, points), 1e-4, 1.0);
+                const double st = std::sqrt((1.0 - mu) * (1.0 + mu));
+                double r = 0;
+                visit_ggx_cosine_measure(vec3<double>(st * cx, st * cy, mu), alpha_x, alpha_y, strata,
+                                         [&r, eta_s](double c, double weight) { r += weight * F_dielectric(c, eta_s); });
+                e.data[line * points + k] = r;
+            }
+        }
+        table& out = table_.emplace();
+        for (std::size_t a = 0; a < azimuths_; ++a)
+            for (std::size_t j = 0; j <= cells; ++j) out.nodes[j * azimuths_ + a] = T(e.data[2 * a * points + j * samples]);
+        for (std::size_t j = 0; j < cells; ++j) {
+            for (std::size_t a = 0; a + 1 < azimuths_; ++a) {
+                const double n00 = e.data[2 * a * points + j * samples], n01 = e.data[2 * a * points + (j + 1) * samples];
+                const double n10 = e.data[(2 * a + 2) * points + j * samples];
+                const double n11 = e.data[(2 * a + 2) * points + (j + 1) * samples];
+                double rise = 0, fall = 0;
+                for (std::size_t side = 0; side <= 2; ++side) {
+                    const double b = 0.5 * double(side);
+                    for (std::size_t k = 0; k <= samples; ++k) {
+                        const double t = double(k) / double(samples);
+                        const double bilinear = (1 - b) * ((1 - t) * n00 + t * n01) + b * ((1 - t) * n10 + t * n11);
+                        const double d = e.data[(2 * a + side) * points + j * samples + k] - bilinear;
+                        rise = glm::max(rise, d);
+                        fall = glm::max(fall, -d);
+                    }
+                }
+                out.lift[j * (azimuths_ - 1) + a] = T(lift_factor * rise);
+                out.drop[j * (azimuths_ - 1) + a] = T(lift_factor * fall);
+            }
+        }
+    }
+
+    /// Whether the window is empty (not built).
+    [[nodiscard]] bool empty() const noexcept { return !table_.has_value(); }
+
+    /// Whether the cosine |w.z| of a view lies in the window (false when empty or NaN).
+    [[nodiscard]] bool contains(T mu) const noexcept {
+        return table_.has_value() && double(mu) >= mu_c_ - below_ && double(mu) <= mu_c_ + above_;
+    }
+
+    /// R_ss at the local direction w (contains(|w.z|); only |w.z| and w's azimuth are read):
+    /// the bilinear read plus the cell's lift and the margin, in [0, 1].
+    [[nodiscard]] T at(const vec3<T>& w) const noexcept {
+        const cell c = cell_of(w);
+        return glm::clamp(bilinear(c) + table_->lift[c.j * (azimuths_ - 1) + c.a] + margin_, T(0), T(1));
+    }
+
+    /// R_ss at w (as at()) read at or below it up to the quadrature's error: the bilinear read
+    /// less the cell's drop, in [0, 1].
+    [[nodiscard]] T at_or_below(const vec3<T>& w) const noexcept {
+        const cell c = cell_of(w);
+        return glm::clamp(bilinear(c) - table_->drop[c.j * (azimuths_ - 1) + c.a], T(0), T(1));
+    }
+
+private:
+    // mu of point k of `points` along a line: x = -1 + 2 k / (points - 1), mu_c + d x |x|.
+    [[nodiscard]] double point_mu(std::size_t k, std::size_t points) const noexcept {
+        const double x = -1.0 + 2.0 * double(k) / double(points - 1);
+        return mu_c_ + (x < 0 ? below_ : above_) * x * std::abs(x);
+    }
+
+    // The cell (j in mu, a in azimuth) holding w and the weights t of node j + 1 and b of
+    // node a + 1.
+    struct cell {
+        std::size_t j, a;
+        T t, b;
+    };
+    [[nodiscard]] cell cell_of(const vec3<T>& w) const noexcept {
+        const T mu_t = std::abs(w.z);
+        const double mu = mu_t <= T(1) ? double(mu_t) : 1.0;
+        const double offset = mu - mu_c_;
+        const double side = offset < 0 ? below_ : above_;
+        const double x = side > 0 ? (offset < 0 ? -1.0 : 1.0) * std::sqrt(glm::min(std::abs(offset) / side, 1.0)) : 0.0;
+        const double u = (x + 1.0) * 0.5 * double(cells);
+        const std::size_t j = glm::min(std::size_t(glm::max(u, 0.0)), cells - 1);
+        const double p = double(dielectric_side_grid<T>::azimuth_position(w, smoother_y_, log_q2_)) * double(azimuths_ - 1);
+        const std::size_t a = glm::min(std::size_t(glm::max(p, 0.0)), azimuths_ - 2);
+        return {j, a, T(glm::clamp(u - double(j), 0.0, 1.0)), T(glm::clamp(p - double(a), 0.0, 1.0))};
+    }
+
+    [[nodiscard]] T bilinear(const cell& c) const noexcept {
+        const table& w = *table_;
+        const T* row = w.nodes.data() + c.j * azimuths_ + c.a;
+        const T low = (T(1) - c.b) * row[0] + c.b * row[1];
+        const T high = (T(1) - c.b) * row[azimuths_] + c.b * row[azimuths_ + 1];
+        return (T(1) - c.t) * low + c.t * high;
+    }
+
+    // The nodes' R_ss (cell row j: azimuths_ values), and each cell's lift and drop (cell row
+    // j: azimuths_ - 1 values).
+    struct table {
+        std::array<T, (cells + 1) * strong_azimuths> nodes{};
+        std::array<T, cells * (strong_azimuths - 1)> lift{}, drop{};
+    };
+
+    double mu_c_ = 0, below_ = 0, above_ = 0;
+    T log_q2_ = 0;
+    T margin_ = 0;
+    std::size_t azimuths_ = azimuths; // azimuth nodes (strong_azimuths at strong anisotropy)
+    bool smoother_y_ = false;
+    heap_value<table> table_{}; // empty: not built
+};
+
 /// anisotropic_reflection_albedo for a caller that reads many views of one interface (a
 /// material), with the correction computed at construction where the table's index range
 /// ends on the rarer side: for eta_s > 3 (the table's eta_hat_max) and alpha_x != alpha_y,
@@ -154,6 +332,14 @@ public:
     /// The tag of the constructor without another Fresnel term.
     struct no_other_fresnel_t {};
     static constexpr no_other_fresnel_t no_other_fresnel{};
+    /// The largest alpha_min at which R_ss below 1 is read from an anisotropic_kink_window
+    /// around the critical cosine (narrower lobes step there faster than the grid's rows
+    /// resolve).
+    static constexpr double window_alpha_max = 0.1;
+    /// The grid's rows the window spans on either side of the critical cosine's row.
+    static constexpr int window_rows = 3;
+    /// What the window's reads add for its quadrature's error.
+    static constexpr double window_margin = 4e-3;
     /// below_margin at strong anisotropy (alpha_max / alpha_min >= 20).
     static constexpr double below_margin_strong = 1e-2;
     /// Visible normals per side at each node above 1 at strong anisotropy (no total
@@ -176,44 +362,6 @@ public:
     }
 
     anisotropic_reflection_albedo_grid() = default;
-    anisotropic_reflection_albedo_grid(const anisotropic_reflection_albedo_grid& other)
-        : table_(other.table_), views_(other.views_), delta_(other.delta_), alpha_x_(other.alpha_x_),
-          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_),
-          grid_(other.grid_ != nullptr ? new dielectric_side_grid<T>(*other.grid_) : nullptr),
-          albedo_(other.albedo_ != nullptr ? new dielectric_side_grid<T>(*other.albedo_) : nullptr),
-          difference_(other.difference_ != nullptr ? new differences(*other.difference_) : nullptr) {}
-    anisotropic_reflection_albedo_grid(anisotropic_reflection_albedo_grid&& other) noexcept
-        : table_(other.table_), views_(other.views_), delta_(other.delta_), alpha_x_(other.alpha_x_),
-          alpha_y_(other.alpha_y_), eta_s_(other.eta_s_), beyond_(other.beyond_), grid_(other.grid_),
-          albedo_(other.albedo_), difference_(other.difference_) {
-        other.grid_ = nullptr;
-        other.albedo_ = nullptr;
-        other.difference_ = nullptr;
-    }
-    anisotropic_reflection_albedo_grid& operator=(anisotropic_reflection_albedo_grid other) noexcept {
-        table_ = other.table_;
-        views_ = other.views_;
-        delta_ = other.delta_;
-        alpha_x_ = other.alpha_x_;
-        alpha_y_ = other.alpha_y_;
-        eta_s_ = other.eta_s_;
-        beyond_ = other.beyond_;
-        dielectric_side_grid<T>* const grid = grid_;
-        grid_ = other.grid_;
-        other.grid_ = grid;
-        dielectric_side_grid<T>* const albedo = albedo_;
-        albedo_ = other.albedo_;
-        other.albedo_ = albedo;
-        differences* const difference = difference_;
-        difference_ = other.difference_;
-        other.difference_ = difference;
-        return *this;
-    }
-    ~anisotropic_reflection_albedo_grid() {
-        delete grid_;
-        delete albedo_;
-        delete difference_;
-    }
 
     /// R_ss of the interface of alphas alpha_x, alpha_y and index ratio eta_s (the class
     /// comment). With `with_total`, where the interface integrates R_ss below 1
@@ -266,9 +414,10 @@ public:
                         return std::array<double, 5>{e.reflected, e.total, diff[0], diff[1], diff[2]};
                     },
                     true);
-                grid_ = new dielectric_side_grid<T>(grids[0]);
-                if (total) albedo_ = new dielectric_side_grid<T>(grids[1]);
-                difference_ = new differences{grids[2], grids[3], grids[4]};
+                grid_.emplace(grids[0]);
+                if (total) albedo_.emplace(grids[1]);
+                difference_.emplace(differences{grids[2], grids[3], grids[4]});
+                build_window();
                 return;
             }
             if (below && with_total) {
@@ -281,16 +430,18 @@ public:
                         return std::array<double, 2>{e.reflected, e.total};
                     },
                     true);
-                grid_ = new dielectric_side_grid<T>(grids[0]);
-                albedo_ = new dielectric_side_grid<T>(grids[1]);
+                grid_.emplace(grids[0]);
+                albedo_.emplace(grids[1]);
+                build_window();
                 return;
             }
-            grid_ = new dielectric_side_grid<T>(ax, ay, eta, below ? below_margin : above_margin,
+            grid_.emplace(ax, ay, eta, below ? below_margin : above_margin,
                                                 below ? below_margin_strong : above_margin,
                                                 [&d, eta, columns, rows](const vec3<double>& v) {
                                                     return dielectric_visible_albedo(d, v, eta, columns, rows, false);
                                                 },
                                                 below);
+            build_window();
             return;
         }
         beyond_ = eta_s > T(dielectric_albedo_eta_max) && anisotropic_interface;
@@ -308,7 +459,8 @@ public:
     /// R_ss(w) for the unit local direction w on the view's side (only its azimuth and |w.z|
     /// are used). Dimensionless, in [0, 1].
     [[nodiscard]] T at(const vec3<T>& w) const noexcept {
-        if (grid_ != nullptr) return grid_->at(w);
+        if (window_.contains(std::abs(w.z))) return window_.at(w);
+        if (grid_.has_value()) return grid_->at(w);
         if (!beyond_) return table_.at(w);
         const T mu = glm::min(std::abs(w.z), T(1));
         const T s2 = w.x * w.x + w.y * w.y;
@@ -321,32 +473,32 @@ public:
 
     /// Whether R_ss is read from a grid of this interface's own views (integrates(); the
     /// class comment).
-    [[nodiscard]] bool integrated() const noexcept { return grid_ != nullptr; }
+    [[nodiscard]] bool integrated() const noexcept { return grid_.has_value(); }
 
     /// D_k(w) (the constructor with `other`) for channel k at the unit local direction w,
     /// read as at() reads R_ss, margin included: dimensionless, in [-1, 1]. 0 without `other`
     /// (has_difference() false).
     [[nodiscard]] T difference(std::size_t k, const vec3<T>& w) const noexcept {
-        return difference_ != nullptr ? (*difference_)[k].at_signed(w) : T(0);
+        return difference_.has_value() ? (*difference_)[k].at_signed(w) : T(0);
     }
 
     /// difference(k, w) for the three channels k at once (w located once on the grid).
     [[nodiscard]] std::array<T, 3> differences_at(const vec3<T>& w) const noexcept {
-        if (difference_ == nullptr) return {};
+        if (!difference_.has_value()) return {};
         return dielectric_side_grid<T>::at_signed_all(*difference_, w);
     }
 
     /// Whether the grid holds the differences D_k (the constructor with `other`).
-    [[nodiscard]] bool has_difference() const noexcept { return difference_ != nullptr; }
+    [[nodiscard]] bool has_difference() const noexcept { return difference_.has_value(); }
 
     /// The side's total single-scattering albedo E_s = R + T on the grid's nodes, integrated
     /// in the same pass as R_ss (the constructor's with_total), or nullptr. For
     /// rough_dielectric_albedo_grid's one-sided constructor.
-    [[nodiscard]] const dielectric_side_grid<T>* total_albedo() const noexcept { return albedo_; }
+    [[nodiscard]] const dielectric_side_grid<T>* total_albedo() const noexcept { return albedo_.get(); }
 
     /// Whether R_ss is read from a grid of this interface's own views below an index ratio
     /// of 1 (anisotropic; the class comment).
-    [[nodiscard]] bool integrated_below_one() const noexcept { return grid_ != nullptr && eta_s_ < T(1); }
+    [[nodiscard]] bool integrated_below_one() const noexcept { return grid_.has_value() && eta_s_ < T(1); }
 
     /// With integrated_below_one(): R_ss(w) without the margin the nodes hold, read by
     /// dielectric_side_grid::at_or_below (chords that do not rise above R_ss where it is
@@ -357,12 +509,28 @@ public:
     /// Integrated above 1 (strong anisotropy): at(w) less the margin (read - true from
     /// -1.6e-3 to +9e-3 before the margin, the class comment). Otherwise at(w).
     [[nodiscard]] T at_without_margin(const vec3<T>& w) const noexcept {
-        if (grid_ == nullptr) return at(w);
+        if (!grid_.has_value()) return at(w);
         if (!integrated_below_one()) return glm::max(grid_->at(w) - grid_->margin(), T(0));
+        if (window_.contains(std::abs(w.z))) return window_.at_or_below(w);
         return glm::max(grid_->at_or_below(w) - grid_->margin(), T(0));
     }
 
+    /// Whether R_ss is read from an anisotropic_kink_window around the critical cosine
+    /// (integrated below 1 and alpha_min <= window_alpha_max).
+    [[nodiscard]] bool windowed() const noexcept { return !window_.empty(); }
+
 private:
+    // Below an index ratio of 1 with alpha_min <= window_alpha_max: the window of R_ss over
+    // the grid's rows within window_rows of the critical cosine's row on either side.
+    void build_window() {
+        if (!(eta_s_ < T(1)) || !grid_.has_value() || !(glm::min(alpha_x_, alpha_y_) <= T(window_alpha_max))) return;
+        const int critical = dielectric_side_grid<T>::rows_below_critical;
+        const double mu_c = grid_->row_cosine(critical);
+        window_ = anisotropic_kink_window<T>(double(alpha_x_), double(alpha_y_), double(eta_s_),
+                                             mu_c - grid_->row_cosine(critical - window_rows),
+                                             grid_->row_cosine(critical + window_rows) - mu_c, window_margin);
+    }
+
     // The roughness projected on the azimuth of cos^2(phi) from the tangent, at most 1. Not
     // reflection_projected_alpha: that reads the smoother alpha at the pole, and the grid's
     // nodes at mu = 1 keep their azimuths, so that the difference they hold stays continuous
@@ -377,10 +545,11 @@ private:
     std::array<T, anisotropic_view_grid<T>::size> delta_{};
     T alpha_x_ = 0, alpha_y_ = 0, eta_s_ = 1;
     bool beyond_ = false;
-    dielectric_side_grid<T>* grid_ = nullptr; // R_ss per view where integrates(), or nullptr
-    dielectric_side_grid<T>* albedo_ = nullptr; // E_s = R + T on the same views (with_total), or nullptr
+    heap_value<dielectric_side_grid<T>> grid_{};   // R_ss per view where integrates(), or empty
+    heap_value<dielectric_side_grid<T>> albedo_{}; // E_s = R + T on the same views (with_total), or empty
     using differences = std::array<dielectric_side_grid<T>, 3>;
-    differences* difference_ = nullptr; // D_k on the same views (the constructor with `other`), or nullptr
+    heap_value<differences> difference_{}; // D_k on the same views (the constructor with `other`), or empty
+    anisotropic_kink_window<T> window_{}; // R_ss around the critical cosine (build_window), or empty
 };
 
 } // namespace detail

@@ -184,14 +184,7 @@ public:
         rows_ = mu_c_ > T(0) ? rows_below_critical + rows_above_ + 1 : plain_rows_;
         const double log_q2 = double(log_q2_);
         for (int j = 0; j < azimuths_; ++j) {
-            // The s whose warp is j / (azimuths_ - 1), by bisection (the warp is increasing).
-            const double target = double(j) / double(azimuths_ - 1);
-            double lo = 0.0, hi = 1.0;
-            for (int k = 0; k < 60; ++k) {
-                const double mid = 0.5 * (lo + hi);
-                (azimuth_warp(mid, log_q2) < target ? lo : hi) = mid;
-            }
-            const double s = 0.5 * (lo + hi);
+            const double s = azimuth_of_warp(double(j) / double(azimuths_ - 1), log_q2);
             const double cos2 = smoother_y_ ? s : 1.0 - s;
             const double c = std::sqrt(cos2), sn = std::sqrt(glm::max(0.0, 1.0 - cos2));
             for (int i = 0; i < rows_; ++i) {
@@ -314,6 +307,37 @@ public:
         return glm::clamp(below, T(0), T(1));
     }
 
+    /// mu of row i (0 to rows() - 1): the layout of the class comment and the constructor's.
+    [[nodiscard]] double row_cosine(int i) const noexcept { return row_mu(i); }
+
+    /// The number of rows in mu.
+    [[nodiscard]] int rows() const noexcept { return rows_; }
+
+    /// The spacing function of the azimuth nodes: s -> [0, 1], increasing, s the squared cosine
+    /// of the azimuth from the rougher axis and log_q2 = 2 log q (q the ratio of the alphas,
+    /// at most 20); node j of n lies where it equals j / (n - 1).
+    [[nodiscard]] static double azimuth_warp(double s, double log_q2) noexcept {
+        const double logarithmic = log_q2 > 0.0 ? std::log1p(std::expm1(log_q2) * s) / log_q2 : s;
+        return 0.5 * (s + logarithmic);
+    }
+
+    /// The s in [0, 1] whose azimuth_warp is `target` (in [0, 1]), by bisection.
+    [[nodiscard]] static double azimuth_of_warp(double target, double log_q2) noexcept {
+        return bisect_increasing([log_q2](double s) { return azimuth_warp(s, log_q2); }, target);
+    }
+
+    /// azimuth_warp of the local direction w's azimuth (only w.x and w.y are read), in [0, 1]:
+    /// smoother_y when alpha_x > alpha_y. On the normal, where the azimuth is undefined and a
+    /// value the same at every one, 1; NaN components read as 0.
+    [[nodiscard]] static T azimuth_position(const vec3<T>& w, bool smoother_y, T log_q2) noexcept {
+        const T xx = w.x * w.x, yy = w.y * w.y;
+        const T planar = xx + yy;
+        const T cos2 = planar > T(0) ? xx / planar : T(1);
+        const T s = smoother_y ? cos2 : T(1) - cos2;
+        const T s_unit = s >= T(0) ? glm::min(s, T(1)) : T(0);
+        return T(azimuth_warp(double(s_unit), double(log_q2)));
+    }
+
     /// The cosine-weighted hemispherical average of at(): 2 int at(w) mu dw / (2 pi).
     [[nodiscard]] T average() const noexcept { return average_; }
 
@@ -376,22 +400,9 @@ private:
         return mu_c + (1.0 - mu_c) * (dense_at_critical_ ? y * std::sqrt(y) : y);
     }
 
-    /// The spacing function of the azimuth nodes: s -> [0, 1], increasing.
-    [[nodiscard]] static double azimuth_warp(double s, double log_q2) noexcept {
-        const double logarithmic = log_q2 > 0.0 ? std::log1p(std::expm1(log_q2) * s) / log_q2 : s;
-        return 0.5 * (s + logarithmic);
-    }
-
     /// The azimuth coordinate (0 to azimuths_ - 1) of the local direction w.
     [[nodiscard]] T azimuth_coordinate(const vec3<T>& w) const noexcept {
-        const T xx = w.x * w.x, yy = w.y * w.y;
-        const T planar = xx + yy;
-        // On the normal the azimuth is undefined and the value the same at every one: s = 1.
-        const T cos2 = planar > T(0) ? xx / planar : T(1);
-        const T s = smoother_y_ ? cos2 : T(1) - cos2;
-        // In [0, 1], NaN (infinite components) read as 0.
-        const T s_unit = s >= T(0) ? glm::min(s, T(1)) : T(0);
-        return T(azimuth_warp(double(s_unit), double(log_q2_))) * T(azimuths_ - 1);
+        return azimuth_position(w, smoother_y_, log_q2_) * T(azimuths_ - 1);
     }
 
     T mu_c_ = 0;               ///< critical cosine, 0 when eta_s > 1

@@ -82,6 +82,20 @@ template <std::floating_point T>
 
 namespace detail {
 
+/// The x in [0, 1] at which f, increasing on [0, 1], reaches `target`, by bisection: 64
+/// halvings of [0, 1], which end on adjacent doubles (for the inverses of the tables'
+/// coordinate maps, computed when a table or grid is built, not per lookup). A target
+/// outside f's range returns the nearer end.
+template <class F>
+[[nodiscard]] double bisect_increasing(const F& f, double target) noexcept {
+    double lo = 0, hi = 1;
+    for (int k = 0; k < 64; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (f(mid) < target ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
 /// True when T is IEEE 754 binary32 or binary64 (float and double on every platform shade
 /// targets), whose bit layout the power-of-two helpers below read directly. For other
 /// types (long double) they call the C library instead.

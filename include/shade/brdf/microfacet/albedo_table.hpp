@@ -43,6 +43,8 @@
 
 #include <glm/common.hpp>
 
+#include <shade/core/math.hpp>
+
 namespace shade::detail {
 
 /// Nodes per axis of the committed albedo tables.
@@ -68,12 +70,7 @@ template <std::floating_point T>
 /// The view cosine at coordinate c in [0, 1] for roughness alpha: the inverse of
 /// albedo_grid_c, by bisection to double precision (for the generator and the tests).
 [[nodiscard]] inline double albedo_grid_mu(double c, double alpha) noexcept {
-    double lo = 0, hi = 1;
-    for (int k = 0; k < 64; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        (albedo_grid_c(mid, alpha) < c ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
+    return bisect_increasing([alpha](double mu) { return albedo_grid_c(mu, alpha); }, c);
 }
 
 /// Where the generator evaluates the c = 0 column (mu = 0, no view above the surface): a

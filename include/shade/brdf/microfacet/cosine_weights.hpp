@@ -16,6 +16,8 @@
 
 #include <shade/brdf/microfacet/detail/cosine_weight_data.hpp>
 #include <shade/brdf/microfacet/ggx.hpp>
+#include <shade/core/heap_value.hpp>
+#include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
 
 namespace shade::detail {
@@ -313,25 +315,6 @@ public:
     static constexpr std::size_t samples = 4; ///< E_F's points per cell, one end included
 
     kink_view_window() = default;
-    kink_view_window(const kink_view_window& other)
-        : kink_(other.kink_), below_(other.below_), above_(other.above_), margin_(other.margin_),
-          table_(other.table_ != nullptr ? new table(*other.table_) : nullptr) {}
-    kink_view_window(kink_view_window&& other) noexcept
-        : kink_(other.kink_), below_(other.below_), above_(other.above_), margin_(other.margin_),
-          table_(other.table_) {
-        other.table_ = nullptr;
-    }
-    kink_view_window& operator=(kink_view_window other) noexcept {
-        kink_ = other.kink_;
-        below_ = other.below_;
-        above_ = other.above_;
-        margin_ = other.margin_;
-        table* const mine = table_;
-        table_ = other.table_;
-        other.table_ = mine;
-        return *this;
-    }
-    ~kink_view_window() { delete table_; }
 
     template <class Fresnel>
     kink_view_window(double alpha, const Fresnel& F, double kink, std::size_t reach, std::size_t strata,
@@ -343,7 +326,7 @@ public:
         kink_ = glm::clamp(kink, 0.0, 1.0);
         below_ = glm::max(kink_ - cosine_weight_node(first), 0.0);
         above_ = glm::max(cosine_weight_node(last) - kink_, 0.0);
-        table_ = new table;
+        table& out = table_.emplace();
         std::array<rgb<double>, points> e{};
         for (std::size_t q = 0; q < points; ++q) {
             const double x = -1.0 + 2.0 * double(q) / double(points - 1);
@@ -358,16 +341,16 @@ public:
                 above = glm::max(above, e[j * samples + q] - chord);
                 below = glm::max(below, chord - e[j * samples + q]);
             }
-            table_->lift[j] = rgb<T>(1.25 * above);
-            table_->drop[j] = rgb<T>(1.25 * below);
+            out.lift[j] = rgb<T>(1.25 * above);
+            out.drop[j] = rgb<T>(1.25 * below);
         }
-        for (std::size_t j = 0; j <= cells; ++j) table_->nodes[j] = rgb<T>(e[j * samples]);
+        for (std::size_t j = 0; j <= cells; ++j) out.nodes[j] = rgb<T>(e[j * samples]);
         margin_ = T(margin);
     }
 
     /// Whether mu lies in the window (false when empty or for a NaN mu).
     [[nodiscard]] bool contains(T mu) const noexcept {
-        return table_ != nullptr && double(mu) >= kink_ - below_ && double(mu) <= kink_ + above_;
+        return table_.has_value() && double(mu) >= kink_ - below_ && double(mu) <= kink_ + above_;
     }
 
     /// E_F at view cosine mu in the window (contains(mu)), lift and margin included, per
@@ -409,7 +392,7 @@ private:
 
     double kink_ = 0, below_ = 0, above_ = 0;
     T margin_ = 0;
-    table* table_ = nullptr; // nullptr: empty
+    heap_value<table> table_{}; // empty: not built
 };
 
 /// One view's sum of fresnel_albedo_row without keeping a row: e = sum_k w_k F(c_k) per
@@ -568,12 +551,7 @@ private:
     // s at the azimuth coordinate u in [0, 1]: the inverse of azimuth_of_s (increasing, from
     // 0 to 1) by bisection to double precision.
     [[nodiscard]] double node_s(double u) const noexcept {
-        double lo = 0, hi = 1;
-        for (int k = 0; k < 60; ++k) {
-            const double mid = 0.5 * (lo + hi);
-            (azimuth_of_s(mid) < u ? lo : hi) = mid;
-        }
-        return 0.5 * (lo + hi);
+        return bisect_increasing([this](double s) { return azimuth_of_s(s); }, u);
     }
 
     bool x_rougher_ = true; // alpha_x > alpha_y
