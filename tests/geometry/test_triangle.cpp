@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -647,6 +648,67 @@ TEST_CASE_TEMPLATE("triangle: make_hit keeps the point on the triangle's boundin
     CHECK(h.p.z == T(0x1p-20));
     CHECK(h.n == v3<T>(1, 0, 0));
 }
+
+// Only where no fused multiply-add can be formed (tests/robustness builds this file with
+// FMA and contraction on, and the compiler may then fuse the lanes and the scalar code
+// differently).
+#if defined(__GNUC__) && !defined(__FMA__) && !defined(__FP_FAST_FMAF)
+namespace {
+
+bool same_bits(float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); }
+bool same_bits(const v3<float>& a, const v3<float>& b) {
+    return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z);
+}
+
+} // namespace
+
+TEST_CASE("triangle: float make_hit and normal() in lanes give the scalar form's bits") {
+    // make_hit<float> and triangle<float>::normal() compute in four-lane vectors
+    // (detail::make_hit_lanes); detail::make_hit_scalar and the scalar
+    // unit_normal_from_cross(glm::cross(...)) are the same operations one component at a
+    // time. Triangles of every scale from 2^-70 to 2^+70 (and some near the largest float,
+    // where p overflows and is clamped, and near the smallest, where the normal is
+    // rescaled), slivers, axis-aligned ones, and barycentrics that need not sum to 1.
+    std::mt19937_64 rng(2026);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f), weight(0.0f, 1.0f);
+    std::uniform_int_distribution<int> exponent(-70, 70), kind(0, 9);
+    const float max = std::numeric_limits<float>::max();
+    std::size_t clamped = 0, rescaled = 0;
+    for (int k = 0; k < 200000; ++k) {
+        const int shape = kind(rng);
+        float scale = std::ldexp(1.0f, exponent(rng));
+        if (shape == 0) scale = max * weight(rng);                     // p may overflow
+        if (shape == 1) scale = std::ldexp(1.0f, -60 - kind(rng) * 3); // c·c underflows
+        const auto point = [&] { return scale * v3<float>(unit(rng), unit(rng), unit(rng)); };
+        shade::triangle<float> tri{point(), point(), point()};
+        if (shape == 2) tri.v2 = tri.v0 + (tri.v1 - tri.v0) * weight(rng) + 1e-5f * point(); // a sliver
+        if (shape == 3) tri.v0.z = tri.v1.z = tri.v2.z;                                    // axis-aligned
+        if (shape == 4) tri.v1 = tri.v0;                                                   // degenerate
+        if (shape == 0) tri.v0.x = tri.v1.x = tri.v2.x = max;
+        const float b1 = weight(rng), b2 = weight(rng) * (1.0f - b1);
+        const shade::triangle_intersection<float> x{weight(rng), v3<float>(1.0f - b1 - b2, b1, b2), kind(rng) < 5};
+        const auto lanes = shade::make_hit(tri, x);
+        const auto scalar = shade::detail::make_hit_scalar(tri, x);
+        const v3<float> normal = shade::detail::unit_normal_from_cross(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
+        const float len2 = glm::dot(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0), glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
+        rescaled += !(len2 >= std::numeric_limits<float>::min());
+        clamped += !shade::is_finite(x.barycentric.x * tri.v0 + x.barycentric.y * tri.v1 + x.barycentric.z * tri.v2);
+        INFO("triangle ", k, " shape ", shape);
+        REQUIRE(same_bits(tri.normal(), normal));
+        REQUIRE(same_bits(lanes.n, normal));
+        REQUIRE(same_bits(lanes.p, scalar.p));
+        REQUIRE(same_bits(lanes.p_error, scalar.p_error));
+        REQUIRE(same_bits(lanes.dpdu, scalar.dpdu));
+        REQUIRE(same_bits(lanes.t, scalar.t));
+        REQUIRE(same_bits(lanes.barycentric, scalar.barycentric));
+        REQUIRE(same_bits(lanes.uv.x, scalar.uv.x));
+        REQUIRE(same_bits(lanes.uv.y, scalar.uv.y));
+        REQUIRE(lanes.front_face == scalar.front_face);
+    }
+    CHECK(clamped > 100); // about 440
+    CHECK(rescaled > 1000);
+}
+#endif
 
 TEST_CASE_TEMPLATE("triangle: no ray that is not valid() hits, over a sweep of special values", C,
                    SHADE_TEST_ALL_COMBOS) {

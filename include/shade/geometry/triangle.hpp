@@ -35,10 +35,13 @@
 // fuses into multiply-adds (see watertight; docs/robustness.md lists the builds tested).
 
 #include <cmath>
+#include <array>
 #include <concepts>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 
 #include <glm/common.hpp>
@@ -84,10 +87,54 @@ template <std::floating_point T>
     return normalize_or_zero(c);
 }
 
+#if defined(__GNUC__)
+/// Four floats in a GNU vector (SSE on x86-64, NEON on ARM): a point or vector in lanes
+/// 0-2 and a spare lane 3, for the float forms of triangle::normal and make_hit.
+using triangle_f4 [[gnu::vector_size(16)]] = float;
+
+/// The vertices of a float triangle in lanes 0-2, each by one 16-byte load within the
+/// triangle (v0 and v1 with the next vertex's x in lane 3, v2 loaded from v1.z on and
+/// rotated): lane 3 holds some coordinate, which no result reads.
+[[gnu::always_inline]] inline std::array<triangle_f4, 3> vertex_lanes(const triangle<float>& tri) noexcept {
+    static_assert(sizeof(triangle<float>) == 36 && sizeof(vec3<float>) == 12);
+    std::array<triangle_f4, 3> v;
+    __builtin_memcpy(&v[0], &tri.v0.x, sizeof v[0]);
+    __builtin_memcpy(&v[1], &tri.v1.x, sizeof v[1]);
+    __builtin_memcpy(&v[2], &tri.v1.z, sizeof v[2]);
+    v[2] = __builtin_shufflevector(v[2], v[2], 1, 2, 3, 0);
+    return v;
+}
+
+/// glm::cross(a, b) in lanes 0-2: lane k is a[k+1] b[k+2] - b[k+1] a[k+2] (indices mod 3),
+/// the same products and difference.
+[[gnu::always_inline]] inline triangle_f4 cross_lanes(const triangle_f4& a, const triangle_f4& b) noexcept {
+    return __builtin_shufflevector(a, a, 1, 2, 0, 3) * __builtin_shufflevector(b, b, 2, 0, 1, 3) -
+           __builtin_shufflevector(b, b, 1, 2, 0, 3) * __builtin_shufflevector(a, a, 2, 0, 1, 3);
+}
+
+/// unit_normal_from_cross(c) for c in lanes 0-2: the same c·c ((x x + y y) + z z, as
+/// glm::dot) and the same three divisions, in lanes.
+[[gnu::always_inline]] inline vec3<float> unit_normal_from_cross(const triangle_f4& c) noexcept {
+    const triangle_f4 c2 = c * c;
+    const float len2 = c2[0] + c2[1] + c2[2];
+    if (len2 >= std::numeric_limits<float>::min() && len2 <= std::numeric_limits<float>::max()) [[likely]] {
+        const triangle_f4 n = c / std::sqrt(len2);
+        return vec3<float>(n[0], n[1], n[2]);
+    }
+    return normalize_or_zero(vec3<float>(c[0], c[1], c[2]));
+}
+#endif
+
 } // namespace detail
 
 template <std::floating_point T>
 vec3<T> triangle<T>::normal() const noexcept {
+#if defined(__GNUC__)
+    if constexpr (std::is_same_v<T, float>) {
+        const auto v = detail::vertex_lanes(*this);
+        return detail::unit_normal_from_cross(detail::cross_lanes(v[1] - v[0], v[2] - v[0]));
+    } else
+#endif
     return detail::unit_normal_from_cross(glm::cross(v1 - v0, v2 - v0));
 }
 
@@ -110,22 +157,44 @@ struct triangle_intersection {
     [[nodiscard]] constexpr T v() const noexcept { return barycentric.z; }
 };
 
-/// The full hit record of an intersection x that a triangle algorithm's find returned for
-/// tri: x's t, barycentrics and front_face, the geometric unit normal tri.normal(), the
-/// barycentric parameterisation uv = (b1, b2) with dpdu = v1 - v0 (the triangle is
-/// p = v0 + u (v1 - v0) + v (v2 - v0), right-handed about its normal), and
-/// the point p = b0 v0 + b1 v1 + b2 v2 with its bound p_error = gamma_7 (|b0 v0| + |b1 v1|
-/// + |b2 v2|) (p's rounding) + gamma_6 L (1 / sin(angle at v0) + 1) in every coordinate
-/// (the rounding of the plane the intersection tests evaluate, L the longest edge), so
-/// that a ray spawned from p (shade::spawn_ray) is on the side it leaves by for every
-/// algorithm. Where the sum overflows (vertices within a few ulps of the largest finite
-/// value), each coordinate of p is clamped to the triangle's bounding box, so p is always
-/// finite, and p_error is the box's width.
-/// Precondition: x came from a find (or intersect) on this same triangle, which
-/// guarantees a non-degenerate, finite triangle and finite barycentrics >= 0.
+namespace detail {
+
+/// make_hit's fallback where p or p_error is not finite (the sums overflow: vertices
+/// within a few ulps of the largest finite value): each coordinate of p clamped to the
+/// triangle's bounding box, and p_error the box's width (the largest finite value where
+/// the width itself overflows).
 template <std::floating_point T>
-[[nodiscard]] triangle_hit<T> make_hit(const triangle<T>& tri,
-                                       const triangle_intersection<T>& x) noexcept {
+inline void clamp_hit_point_to_box(const triangle<T>& tri, vec3<T>& p, vec3<T>& p_error) noexcept {
+    for (int k = 0; k < 3; ++k) {
+        const T lo = glm::min(tri.v0[k], glm::min(tri.v1[k], tri.v2[k]));
+        const T hi = glm::max(tri.v0[k], glm::max(tri.v1[k], tri.v2[k]));
+        p[k] = glm::min(glm::max(p[k], lo), hi); // an infinite p[k] becomes lo or hi
+        p_error[k] = std::isfinite(hi - lo) ? hi - lo : std::numeric_limits<T>::max();
+    }
+}
+
+/// make_hit's record from its p, p_error, unit normal n and dpdu = v1 - v0 (the part both
+/// forms of make_hit share).
+template <std::floating_point T>
+[[nodiscard]] inline triangle_hit<T> assemble_hit(const triangle_intersection<T>& x, const vec3<T>& p,
+                                                  const vec3<T>& p_error, const vec3<T>& n,
+                                                  const vec3<T>& dpdu) noexcept {
+    triangle_hit<T> h;
+    h.t = x.t;
+    h.p = p;
+    h.p_error = p_error;
+    h.n = n;
+    h.front_face = x.front_face;
+    h.barycentric = x.barycentric;
+    h.uv = vec2<T>(x.barycentric.y, x.barycentric.z);
+    h.dpdu = dpdu;
+    return h;
+}
+
+/// make_hit computed one component at a time (any T, any compiler), with the normal
+/// tri.normal(): the definition the lane form below must match bit for bit.
+template <std::floating_point T>
+[[nodiscard]] triangle_hit<T> make_hit_scalar(const triangle<T>& tri, const triangle_intersection<T>& x) noexcept {
     const vec3<T>& b = x.barycentric;
     vec3<T> p = b.x * tri.v0 + b.y * tri.v1 + b.z * tri.v2;
     // Two parts, both distances from the plane that the intersection tests see:
@@ -155,26 +224,94 @@ template <std::floating_point T>
         detail::gamma<T>(6) * longest * (e1_l1 * e2_l1 / glm::max(c.x, glm::max(c.y, c.z)) + T(1));
     vec3<T> p_error = detail::gamma<T>(7) * (abs3(b.x * tri.v0) + abs3(b.y * tri.v1) + abs3(b.z * tri.v2)) +
                       vec3<T>(plane_error);
-    if (!is_finite(p) || !is_finite(p_error)) {
-        for (int k = 0; k < 3; ++k) {
-            const T lo = glm::min(tri.v0[k], glm::min(tri.v1[k], tri.v2[k]));
-            const T hi = glm::max(tri.v0[k], glm::max(tri.v1[k], tri.v2[k]));
-            p[k] = glm::min(glm::max(p[k], lo), hi); // an infinite p[k] becomes lo or hi
-            // p is somewhere in the triangle's box; its width is then the bound (largest
-            // finite value where the width itself overflows).
-            p_error[k] = std::isfinite(hi - lo) ? hi - lo : std::numeric_limits<T>::max();
-        }
+    if (!is_finite(p) || !is_finite(p_error)) [[unlikely]]
+        clamp_hit_point_to_box(tri, p, p_error);
+    return assemble_hit(x, p, p_error, tri.normal(), e1);
+}
+
+#if defined(__GNUC__)
+/// make_hit for float in four-lane GNU vectors (x, y, z and a spare lane; SSE on x86-64,
+/// NEON on ARM): the same operations on each coordinate, in the same order, as
+/// make_hit_scalar (so the same bits wherever the compiler fuses neither into
+/// multiply-adds), in a fraction of the instructions: p and p_error three coordinates at a
+/// time, the cross product once (for p_error and the normal) by lane rotations, the
+/// three edges' 1-norms as one transposed sum.
+/// The triangle is given as its vertices in lanes (vertex_lanes, or gathered from a
+/// structure-of-arrays batch by shade::triangle_bvh); inlined where it is called, so that
+/// the record is written in place.
+[[nodiscard, gnu::always_inline]] inline triangle_hit<float>
+make_hit_lanes(const std::array<triangle_f4, 3>& v, const triangle_intersection<float>& x) noexcept {
+    using f4 = triangle_f4;
+    using i4 [[gnu::vector_size(16)]] = std::int32_t;
+    const auto abs4 = [](const f4& w) { return reinterpret_cast<f4>(reinterpret_cast<i4>(w) & 0x7fff'ffff); };
+    // glm::max(a, b) = a < b ? b : a, lane by lane (which of two equal or unordered values
+    // it keeps matters to the bits).
+    const auto max4 = [](const f4& a, const f4& b) { return a < b ? b : a; };
+    const auto& [v0, v1, v2] = v;
+    const vec3<float>& b = x.barycentric;
+    const f4 w0 = b.x * v0, w1 = b.y * v1, w2 = b.z * v2;
+    const f4 p = w0 + w1 + w2;
+    const f4 e1 = v1 - v0, e2 = v2 - v0, e3 = v2 - v1;
+    const f4 cross = cross_lanes(e1, e2);
+    const f4 c = abs4(cross);
+    // The 1-norms of e1, e2 and e3 = v2 - v1 in lanes 0, 1, 2: (|x| + |y|) + |z| of each.
+    const f4 a1 = abs4(e1), a2 = abs4(e2), a3 = abs4(e3);
+    const f4 xy12 = __builtin_shufflevector(a1, a2, 0, 4, 1, 5); // |e1.x| |e2.x| |e1.y| |e2.y|
+    const f4 z12 = __builtin_shufflevector(a1, a2, 2, 6, 2, 6);  // |e1.z| |e2.z|
+    const f4 ex = __builtin_shufflevector(xy12, a3, 0, 1, 4, 7);
+    const f4 ey = __builtin_shufflevector(xy12, a3, 2, 3, 5, 7);
+    const f4 ez = __builtin_shufflevector(z12, a3, 0, 1, 6, 7);
+    const f4 l1 = ex + ey + ez;
+    const float longest = max4(max4(l1, __builtin_shufflevector(l1, l1, 1, 1, 1, 1)),
+                               __builtin_shufflevector(l1, l1, 2, 2, 2, 2))[0];
+    const float c_max = max4(c, max4(__builtin_shufflevector(c, c, 1, 1, 1, 1), __builtin_shufflevector(c, c, 2, 2, 2, 2)))[0];
+    const float plane_error = detail::gamma<float>(6) * longest * (l1[0] * l1[1] / c_max + 1.0f);
+    const f4 p_error = detail::gamma<float>(7) * (abs4(w0) + abs4(w1) + abs4(w2)) + plane_error;
+    constexpr float largest = std::numeric_limits<float>::max();
+    const i4 finite = (abs4(p) <= largest) & (abs4(p_error) <= largest);
+    vec3<float> p3(p[0], p[1], p[2]), p_error3(p_error[0], p_error[1], p_error[2]);
+#if defined(__SSE__)
+    const bool all_finite = (__builtin_ia32_movmskps(reinterpret_cast<f4>(finite)) & 7) == 7;
+#else
+    const bool all_finite = (finite[0] & finite[1] & finite[2]) != 0;
+#endif
+    if (!all_finite) [[unlikely]] {
+        const triangle<float> tri{vec3<float>(v0[0], v0[1], v0[2]), vec3<float>(v1[0], v1[1], v1[2]),
+                                  vec3<float>(v2[0], v2[1], v2[2])};
+        clamp_hit_point_to_box(tri, p3, p_error3);
     }
-    triangle_hit<T> h;
-    h.t = x.t;
-    h.p = p;
-    h.p_error = p_error;
-    h.n = tri.normal();
-    h.front_face = x.front_face;
-    h.barycentric = b;
-    h.uv = vec2<T>(b.y, b.z);
-    h.dpdu = tri.v1 - tri.v0;
-    return h;
+    // The normal from the same cross product, as triangle::normal() computes it.
+    return assemble_hit(x, p3, p_error3, unit_normal_from_cross(cross), vec3<float>(e1[0], e1[1], e1[2]));
+}
+
+/// make_hit_lanes of a triangle.
+[[nodiscard]] inline triangle_hit<float> make_hit_lanes(const triangle<float>& tri,
+                                                        const triangle_intersection<float>& x) noexcept {
+    return make_hit_lanes(vertex_lanes(tri), x);
+}
+#endif
+
+} // namespace detail
+
+/// The full hit record of an intersection x that a triangle algorithm's find returned for
+/// tri: x's t, barycentrics and front_face, the geometric unit normal tri.normal(), the
+/// barycentric parameterisation uv = (b1, b2) with dpdu = v1 - v0 (the triangle is
+/// p = v0 + u (v1 - v0) + v (v2 - v0), right-handed about its normal), and
+/// the point p = b0 v0 + b1 v1 + b2 v2 with its bound p_error = gamma_7 (|b0 v0| + |b1 v1|
+/// + |b2 v2|) (p's rounding) + gamma_6 L (1 / sin(angle at v0) + 1) in every coordinate
+/// (the rounding of the plane the intersection tests evaluate, L the longest edge), so
+/// that a ray spawned from p (shade::spawn_ray) is on the side it leaves by for every
+/// algorithm. Where the sum overflows (vertices within a few ulps of the largest finite
+/// value), each coordinate of p is clamped to the triangle's bounding box, so p is always
+/// finite, and p_error is the box's width.
+/// Precondition: x came from a find (or intersect) on this same triangle, which
+/// guarantees a non-degenerate, finite triangle and finite barycentrics >= 0.
+template <std::floating_point T>
+[[nodiscard]] triangle_hit<T> make_hit(const triangle<T>& tri, const triangle_intersection<T>& x) noexcept {
+#if defined(__GNUC__)
+    if constexpr (std::is_same_v<T, float>) return detail::make_hit_lanes(tri, x); else
+#endif
+    return detail::make_hit_scalar(tri, x);
 }
 
 /// Texture coordinates given at a triangle's three vertices (e.g. by a mesh file). The

@@ -149,7 +149,7 @@ public:
     /// front_face, uv, dpdu, p_error, barycentrics): what closest() returns for that ray.
     /// Precondition: h came from this hierarchy (unchanged since).
     [[nodiscard]] primitive_hit<triangle_hit<T>> make_hit(const intersection& h) const noexcept {
-        return {h.primitive, shade::make_hit(triangle_at(h.slot), h.hit)};
+        return {h.primitive, record(h.slot, h.hit)};
     }
 
     /// The nearest hit of r (double-sided unless cull is culling::back_faces): the index
@@ -160,7 +160,7 @@ public:
         triangle_intersection<T> x;
         const std::uint32_t slot = walk(r, cull, x);
         if (slot == no_hit) return std::nullopt;
-        return primitive_hit<triangle_hit<T>>{id_of(slot), shade::make_hit(triangle_at(slot), x)};
+        return primitive_hit<triangle_hit<T>>{id_of(slot), record(slot, x)};
     }
 
     /// True when r hits some triangle within [t_min, t_max] (for shadow rays).
@@ -252,6 +252,23 @@ private:
             return leaves_[slot / leaf_width].id[slot % leaf_width];
         else
             return ids_[slot];
+    }
+
+    /// shade::make_hit of the triangle at slot and x; for float leaf blocks, its lanes'
+    /// form (the same bits) on the vertices read from the block straight into lanes (not
+    /// through a triangle in memory, whose 16-byte reloads would wait for the stores).
+    [[nodiscard]] triangle_hit<T> record(std::uint32_t slot, const triangle_intersection<T>& x) const noexcept {
+#if defined(__GNUC__)
+        if constexpr (batched && std::is_same_v<T, float>) {
+            const leaf_vertices& b = leaves_[slot / leaf_width].batch;
+            const std::size_t i = slot % leaf_width;
+            return detail::make_hit_lanes({detail::triangle_f4{b.v0.x[i], b.v0.y[i], b.v0.z[i], 0.0f},
+                                           detail::triangle_f4{b.v1.x[i], b.v1.y[i], b.v1.z[i], 0.0f},
+                                           detail::triangle_f4{b.v2.x[i], b.v2.y[i], b.v2.z[i], 0.0f}},
+                                          x);
+        } else
+#endif
+        return shade::make_hit(triangle_at(slot), x);
     }
 
     /// The triangle at slot (its vertices from the leaf block when batched).
