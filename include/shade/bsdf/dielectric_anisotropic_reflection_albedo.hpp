@@ -96,40 +96,42 @@ private:
     reflection_anisotropic_cell<T> cell_{};
 };
 
-/// The reflection albedo R_ss(w) of an anisotropic GGX interface (alphas alpha_x != alpha_y,
-/// both > 0) below an index ratio of 1 (eta_s < 1) on the views around its critical cosine
-/// mu_c = sqrt(1 - eta_s^2), much finer in mu than a dielectric_side_grid's rows: the lobe's
-/// R_ss steps from 1 toward F(mu) within about alpha sin(theta_c) of mu_c (alpha the roughness
-/// projected on the view's azimuth), which rows a few thousandths apart bridge with chords
-/// reading R_ss up to 0.04 low below mu_c (a surface of alphas 0.0036 and 0.0011). The window
-/// spans `below` under mu_c and `above` over it on `cells` cells even in x in [-1, 1],
-/// mu = mu_c + d x |x| (d the side's span): mu_c is the middle node and the cells crowd
+/// The albedo E_F(w) = E_m[F(v·m) G2(v, l) / G1(v)] of an anisotropic GGX reflection lobe
+/// (alphas alpha_x != alpha_y, both > 0) for a Fresnel term F with a kink at the cosine
+/// `kink` (total internal reflection: F = 1 below it), on the views around that cosine, much
+/// finer in mu than a dielectric_side_grid's rows: a narrow lobe's E_F steps from 1 toward
+/// F(mu) within about alpha sin(theta) of the kink (alpha the roughness projected on the
+/// view's azimuth), which rows a few thousandths apart bridge with chords reading the
+/// reflection albedo R_ss up to 0.085 low below it. F has 1 or 3 channels (R_ss with the
+/// interface's own F_dielectric; a thin film's F per colour channel). The window spans
+/// `below` under the kink and `above` over it on `cells` cells even in x in [-1, 1],
+/// mu = kink + d x |x| (d the side's span): the kink is the middle node and the cells crowd
 /// toward it quadratically. In azimuth it has `azimuths` nodes (strong_azimuths at strong
-/// anisotropy) at the side grid's azimuth
-/// coordinate (dielectric_side_grid::azimuth_warp, crowded toward the smoother axis). R_ss is
-/// computed on the nodes' azimuths and on the azimuths halfway between them, at `samples`
-/// points per cell in mu (the cells' ends among them), each by visit_ggx_cosine_measure on
-/// strata_narrow^2 cells with F_dielectric(c, eta_s) (strata_wide^2 for alpha_max above
-/// narrow_alpha). A read is bilinear between the four nodes of
-/// its cell plus the cell's lift, 1.25 times the most R_ss rises above the bilinear read at
-/// the cell's points (the nodes' azimuths between their ends and the halfway azimuth along
-/// the whole cell), plus `margin` (for the quadrature's error), at most 1: at or above R_ss.
-/// at_or_below() reads the bilinear value less the cell's drop (the same for R_ss below it),
-/// close to R_ss and not above it but for the quadrature's error. Empty (contains() false)
-/// until built; a built window keeps its values in a heap block (about 9.5 KB for float),
-/// copies copy it.
+/// anisotropy) at the side grid's azimuth coordinate (dielectric_side_grid::azimuth_warp,
+/// crowded toward the smoother axis). E_F is computed on the nodes' azimuths and on the
+/// azimuths halfway between them, at `samples` points per cell in mu (the cells' ends among
+/// them), each by visit_ggx_cosine_measure on strata_narrow^2 cells (strata_wide^2 for
+/// alpha_max above narrow_alpha). A read is bilinear between the four nodes of its cell plus
+/// the cell's lift, lift_factor times the most E_F rises above the bilinear read at the
+/// cell's points (the nodes' azimuths between their ends and the halfway azimuth along the
+/// whole cell), plus `margin` (for the quadrature's error), at most 1: at or above E_F.
+/// at_or_below() reads the bilinear value less the cell's drop (the same for E_F below it),
+/// close to E_F and not above it but for the quadrature's error. Per channel. Empty
+/// (contains() false) until built; a built window keeps its values in a heap block (about 10
+/// KB per channel for float), copies copy it.
 template <std::floating_point T>
 class anisotropic_kink_window {
 public:
-    static constexpr std::size_t cells = 48;    ///< cells in mu (even: mu_c a node)
-    static constexpr std::size_t samples = 3;   ///< R_ss's points per cell in mu, one end included
+    static constexpr std::size_t cells = 48;    ///< cells in mu (even: the kink a node)
+    static constexpr std::size_t samples = 3;   ///< E_F's points per cell in mu, one end included
     static constexpr std::size_t azimuths = 9;  ///< azimuth nodes
     /// Azimuth nodes at strong anisotropy (dielectric_side_grid::strong: alpha_max / alpha_min
-    /// >= 20), where R_ss turns within a few degrees of the smoother axis.
+    /// >= 20), where E_F turns within a few degrees of the smoother axis.
     static constexpr std::size_t strong_azimuths = 17;
+    static constexpr std::size_t max_channels = 3; ///< F's channels at most
     /// The quadrature's cells per side at each point for alpha_max <= narrow_alpha.
     static constexpr std::size_t strata_narrow = 32;
-    /// The same for wider lobes (the midpoint rule's error near the critical cosine grows with
+    /// The same for wider lobes (the midpoint rule's error near the kink grows with
     /// alpha_max: at 32^2 down to -3.8e-3 for alpha_max up to 0.02 and -6.4e-3 up to 0.23,
     /// at 48^2 -4.7e-3).
     static constexpr std::size_t strata_wide = 48;
@@ -140,11 +142,16 @@ public:
 
     anisotropic_kink_window() = default;
 
-    /// The window of the interface of alphas alpha_x != alpha_y (both > 0) and index ratio
-    /// eta_s in (0, 1) over [mu_c - below, mu_c + above] (both >= 0, within [0, 1];
-    /// unchecked), its reads at() raised by `margin`.
-    anisotropic_kink_window(double alpha_x, double alpha_y, double eta_s, double below, double above, double margin) {
+    /// The window of the lobe of alphas alpha_x != alpha_y (both > 0) for the Fresnel term
+    /// F (a callable double c -> std::array<double, 3>, of which the first `channels`, 1 to
+    /// max_channels, are read) with its kink at the cosine `kink` in (0, 1), over
+    /// [kink - below, kink + above] (both >= 0; clamped to [0, 1]), its reads at() raised by
+    /// `margin`. Unchecked.
+    template <class Fresnel>
+    anisotropic_kink_window(double alpha_x, double alpha_y, double kink, double below, double above, double margin,
+                            std::size_t channels, const Fresnel& F) {
         azimuths_ = dielectric_side_grid<T>::strong(alpha_x, alpha_y) ? strong_azimuths : azimuths;
+        channels_ = glm::clamp(channels, std::size_t(1), max_channels);
         constexpr std::size_t points = cells * samples + 1;
         const std::size_t lines = 2 * azimuths_ - 1;
         const double q = glm::min(glm::max(alpha_x, alpha_y) / glm::min(alpha_x, alpha_y), 20.0);
@@ -152,17 +159,20 @@ public:
         // place their azimuth nodes alike.
         log_q2_ = T(2 * std::log(q));
         smoother_y_ = alpha_x > alpha_y;
-        mu_c_ = std::sqrt((1.0 - eta_s) * (1.0 + eta_s));
-        below_ = glm::clamp(below, 0.0, mu_c_);
-        above_ = glm::clamp(above, 0.0, 1.0 - mu_c_);
+        kink_ = glm::clamp(kink, 0.0, 1.0);
+        below_ = glm::clamp(below, 0.0, kink_);
+        above_ = glm::clamp(above, 0.0, 1.0 - kink_);
         margin_ = T(margin);
         const std::size_t strata = glm::max(alpha_x, alpha_y) <= narrow_alpha ? strata_narrow : strata_wide;
-        // R_ss on every line (line 2a the node azimuth a, line 2a + 1 halfway to a + 1) at
-        // every point in mu; on the heap while built (about 250 KB).
+        // E_F on every line (line 2a the node azimuth a, line 2a + 1 halfway to a + 1) at
+        // every point in mu, per channel; on the heap while built (up to about 300 KB).
         struct values {
-            double* data = new double[(2 * strong_azimuths - 1) * points];
+            double* data = new double[(2 * strong_azimuths - 1) * points * max_channels];
             ~values() { delete[] data; }
         } e;
+        const auto value = [&e](std::size_t line, std::size_t k, std::size_t ch) -> double& {
+            return e.data[(line * points + k) * max_channels + ch];
+        };
         for (std::size_t line = 0; line < lines; ++line) {
             const double target = double(line) / double(lines - 1);
             const double s = dielectric_side_grid<T>::azimuth_of_warp(target, double(log_q2_));
@@ -171,33 +181,37 @@ public:
             for (std::size_t k = 0; k < points; ++k) {
                 const double mu = glm::clamp(point_mu(k, points), 1e-4, 1.0);
                 const double st = std::sqrt((1.0 - mu) * (1.0 + mu));
-                double r = 0;
+                std::array<double, max_channels> sum{};
                 visit_ggx_cosine_measure(vec3<double>(st * cx, st * cy, mu), alpha_x, alpha_y, strata,
-                                         [&r, eta_s](double c, double weight) { r += weight * F_dielectric(c, eta_s); });
-                e.data[line * points + k] = r;
+                                         [&sum, &F, this](double c, double weight) {
+                                             const std::array<double, max_channels> f = F(c);
+                                             for (std::size_t ch = 0; ch < channels_; ++ch) sum[ch] += weight * f[ch];
+                                         });
+                for (std::size_t ch = 0; ch < channels_; ++ch) value(line, k, ch) = sum[ch];
             }
         }
         table& out = table_.emplace();
-        for (std::size_t a = 0; a < azimuths_; ++a)
-            for (std::size_t j = 0; j <= cells; ++j) out.nodes[j * azimuths_ + a] = T(e.data[2 * a * points + j * samples]);
-        for (std::size_t j = 0; j < cells; ++j) {
-            for (std::size_t a = 0; a + 1 < azimuths_; ++a) {
-                const double n00 = e.data[2 * a * points + j * samples], n01 = e.data[2 * a * points + (j + 1) * samples];
-                const double n10 = e.data[(2 * a + 2) * points + j * samples];
-                const double n11 = e.data[(2 * a + 2) * points + (j + 1) * samples];
-                double rise = 0, fall = 0;
-                for (std::size_t side = 0; side <= 2; ++side) {
-                    const double b = 0.5 * double(side);
-                    for (std::size_t k = 0; k <= samples; ++k) {
-                        const double t = double(k) / double(samples);
-                        const double bilinear = (1 - b) * ((1 - t) * n00 + t * n01) + b * ((1 - t) * n10 + t * n11);
-                        const double d = e.data[(2 * a + side) * points + j * samples + k] - bilinear;
-                        rise = glm::max(rise, d);
-                        fall = glm::max(fall, -d);
+        for (std::size_t ch = 0; ch < channels_; ++ch) {
+            for (std::size_t a = 0; a < azimuths_; ++a)
+                for (std::size_t j = 0; j <= cells; ++j) out.nodes[node(j, a, ch)] = T(value(2 * a, j * samples, ch));
+            for (std::size_t j = 0; j < cells; ++j) {
+                for (std::size_t a = 0; a + 1 < azimuths_; ++a) {
+                    const double n00 = value(2 * a, j * samples, ch), n01 = value(2 * a, (j + 1) * samples, ch);
+                    const double n10 = value(2 * a + 2, j * samples, ch), n11 = value(2 * a + 2, (j + 1) * samples, ch);
+                    double rise = 0, fall = 0;
+                    for (std::size_t side = 0; side <= 2; ++side) {
+                        const double b = 0.5 * double(side);
+                        for (std::size_t k = 0; k <= samples; ++k) {
+                            const double t = double(k) / double(samples);
+                            const double bilinear = (1 - b) * ((1 - t) * n00 + t * n01) + b * ((1 - t) * n10 + t * n11);
+                            const double d = value(2 * a + side, j * samples + k, ch) - bilinear;
+                            rise = glm::max(rise, d);
+                            fall = glm::max(fall, -d);
+                        }
                     }
+                    out.lift[cell_index(j, a, ch)] = T(lift_factor * rise);
+                    out.drop[cell_index(j, a, ch)] = T(lift_factor * fall);
                 }
-                out.lift[j * (azimuths_ - 1) + a] = T(lift_factor * rise);
-                out.drop[j * (azimuths_ - 1) + a] = T(lift_factor * fall);
             }
         }
     }
@@ -207,28 +221,38 @@ public:
 
     /// Whether the cosine |w.z| of a view lies in the window (false when empty or NaN).
     [[nodiscard]] bool contains(T mu) const noexcept {
-        return table_.has_value() && double(mu) >= mu_c_ - below_ && double(mu) <= mu_c_ + above_;
+        return table_.has_value() && double(mu) >= kink_ - below_ && double(mu) <= kink_ + above_;
     }
 
-    /// R_ss at the local direction w (contains(|w.z|); only |w.z| and w's azimuth are read):
-    /// the bilinear read plus the cell's lift and the margin, in [0, 1].
-    [[nodiscard]] T at(const vec3<T>& w) const noexcept {
+    /// E_F of channel ch (< the constructor's channels) at the local direction w
+    /// (contains(|w.z|); only |w.z| and w's azimuth are read): the bilinear read plus the
+    /// cell's lift and the margin, in [0, 1].
+    [[nodiscard]] T at(const vec3<T>& w, std::size_t ch = 0) const noexcept {
         const cell c = cell_of(w);
-        return glm::clamp(bilinear(c) + table_->lift[c.j * (azimuths_ - 1) + c.a] + margin_, T(0), T(1));
+        return glm::clamp(bilinear(c, ch) + table_->lift[cell_index(c.j, c.a, ch)] + margin_, T(0), T(1));
     }
 
-    /// R_ss at w (as at()) read at or below it up to the quadrature's error: the bilinear read
-    /// less the cell's drop, in [0, 1].
-    [[nodiscard]] T at_or_below(const vec3<T>& w) const noexcept {
+    /// E_F of channel ch at w (as at()) read at or below it up to the quadrature's error: the
+    /// bilinear read less the cell's drop, in [0, 1].
+    [[nodiscard]] T at_or_below(const vec3<T>& w, std::size_t ch = 0) const noexcept {
         const cell c = cell_of(w);
-        return glm::clamp(bilinear(c) - table_->drop[c.j * (azimuths_ - 1) + c.a], T(0), T(1));
+        return glm::clamp(bilinear(c, ch) - table_->drop[cell_index(c.j, c.a, ch)], T(0), T(1));
     }
 
 private:
-    // mu of point k of `points` along a line: x = -1 + 2 k / (points - 1), mu_c + d x |x|.
+    // mu of point k of `points` along a line: x = -1 + 2 k / (points - 1), kink + d x |x|.
     [[nodiscard]] double point_mu(std::size_t k, std::size_t points) const noexcept {
         const double x = -1.0 + 2.0 * double(k) / double(points - 1);
-        return mu_c_ + (x < 0 ? below_ : above_) * x * std::abs(x);
+        return kink_ + (x < 0 ? below_ : above_) * x * std::abs(x);
+    }
+
+    // Where node (j in mu, a in azimuth) of channel ch, and cell (j, a)'s lift and drop, are
+    // kept.
+    [[nodiscard]] std::size_t node(std::size_t j, std::size_t a, std::size_t ch) const noexcept {
+        return (ch * (cells + 1) + j) * azimuths_ + a;
+    }
+    [[nodiscard]] std::size_t cell_index(std::size_t j, std::size_t a, std::size_t ch) const noexcept {
+        return (ch * cells + j) * (azimuths_ - 1) + a;
     }
 
     // The cell (j in mu, a in azimuth) holding w and the weights t of node j + 1 and b of
@@ -240,7 +264,7 @@ private:
     [[nodiscard]] cell cell_of(const vec3<T>& w) const noexcept {
         const T mu_t = std::abs(w.z);
         const double mu = mu_t <= T(1) ? double(mu_t) : 1.0;
-        const double offset = mu - mu_c_;
+        const double offset = mu - kink_;
         const double side = offset < 0 ? below_ : above_;
         const double x = side > 0 ? (offset < 0 ? -1.0 : 1.0) * std::sqrt(glm::min(std::abs(offset) / side, 1.0)) : 0.0;
         const double u = (x + 1.0) * 0.5 * double(cells);
@@ -250,25 +274,25 @@ private:
         return {j, a, T(glm::clamp(u - double(j), 0.0, 1.0)), T(glm::clamp(p - double(a), 0.0, 1.0))};
     }
 
-    [[nodiscard]] T bilinear(const cell& c) const noexcept {
-        const table& w = *table_;
-        const T* row = w.nodes.data() + c.j * azimuths_ + c.a;
+    [[nodiscard]] T bilinear(const cell& c, std::size_t ch) const noexcept {
+        const T* row = table_->nodes.data() + node(c.j, c.a, ch);
         const T low = (T(1) - c.b) * row[0] + c.b * row[1];
         const T high = (T(1) - c.b) * row[azimuths_] + c.b * row[azimuths_ + 1];
         return (T(1) - c.t) * low + c.t * high;
     }
 
-    // The nodes' R_ss (cell row j: azimuths_ values), and each cell's lift and drop (cell row
-    // j: azimuths_ - 1 values).
+    // The nodes' E_F (channel by channel, row j of azimuths_ values), and each cell's lift and
+    // drop (channel by channel, row j of azimuths_ - 1 values).
     struct table {
-        std::array<T, (cells + 1) * strong_azimuths> nodes{};
-        std::array<T, cells * (strong_azimuths - 1)> lift{}, drop{};
+        std::array<T, max_channels * (cells + 1) * strong_azimuths> nodes{};
+        std::array<T, max_channels * cells * (strong_azimuths - 1)> lift{}, drop{};
     };
 
-    double mu_c_ = 0, below_ = 0, above_ = 0;
+    double kink_ = 0, below_ = 0, above_ = 0;
     T log_q2_ = 0;
     T margin_ = 0;
     std::size_t azimuths_ = azimuths; // azimuth nodes (strong_azimuths at strong anisotropy)
+    std::size_t channels_ = 1;
     bool smoother_y_ = false;
     heap_value<table> table_{}; // empty: not built
 };
@@ -380,8 +404,14 @@ public:
     /// grid's rows are then dense above 1 too (dielectric_side_grid's dense_at_critical).
     /// With `other` every anisotropic interface integrates (R_ss too, also where integrates()
     /// is false: above 1 below strong anisotropy, and at eta_s = 1, where R_ss = 0).
+    /// `other_kink`, in (0, 1), is the cosine under which F' reflects totally (a thin film
+    /// over a base of index below 1), or 0 for none: with alpha_min <= window_alpha_max the
+    /// reflection albedo with F' is then also integrated on an anisotropic_kink_window
+    /// around it (its three channels; over the grid's rows within window_rows of it), and
+    /// difference() reads D_k there as that albedo less at().
     template <class Other>
-    anisotropic_reflection_albedo_grid(T alpha_x, T alpha_y, T eta_s, bool with_total, const Other& other)
+    anisotropic_reflection_albedo_grid(T alpha_x, T alpha_y, T eta_s, bool with_total, const Other& other,
+                                       double other_kink = 0)
         : table_(alpha_x, alpha_y, eta_s), alpha_x_(alpha_x), alpha_y_(alpha_y), eta_s_(eta_s) {
         const bool anisotropic_interface = alpha_x != alpha_y && alpha_x > T(0) && alpha_y > T(0);
         const bool with_other = !std::is_same_v<Other, no_other_fresnel_t> && anisotropic_interface;
@@ -418,6 +448,16 @@ public:
                 if (total) albedo_.emplace(grids[1]);
                 difference_.emplace(differences{grids[2], grids[3], grids[4]});
                 build_window();
+                if (other_kink > 0 && other_kink < 1 && glm::min(alpha_x, alpha_y) <= T(window_alpha_max)) {
+                    // The rows around the kink: the cell holding it and window_rows - 1 more
+                    // below, window_rows above.
+                    int i = 0;
+                    while (i + 2 < grid_->rows() && grid_->row_cosine(i + 1) <= other_kink) ++i;
+                    const double low = grid_->row_cosine(glm::max(i - (window_rows - 1), 0));
+                    const double high = grid_->row_cosine(glm::min(i + window_rows, grid_->rows() - 1));
+                    other_window_ = anisotropic_kink_window<T>(ax, ay, other_kink, other_kink - low, high - other_kink,
+                                                               window_margin, 3, other);
+                }
                 return;
             }
             if (below && with_total) {
@@ -479,14 +519,28 @@ public:
     /// read as at() reads R_ss, margin included: dimensionless, in [-1, 1]. 0 without `other`
     /// (has_difference() false).
     [[nodiscard]] T difference(std::size_t k, const vec3<T>& w) const noexcept {
+        if (other_window_.contains(std::abs(w.z))) return glm::clamp(other_window_.at(w, k) - at(w), T(-1), T(1));
         return difference_.has_value() ? (*difference_)[k].at_signed(w) : T(0);
     }
 
     /// difference(k, w) for the three channels k at once (w located once on the grid).
     [[nodiscard]] std::array<T, 3> differences_at(const vec3<T>& w) const noexcept {
+        if (other_window_.contains(std::abs(w.z))) {
+            const T r = at(w);
+            std::array<T, 3> out;
+            for (std::size_t k = 0; k < 3; ++k) out[k] = glm::clamp(other_window_.at(w, k) - r, T(-1), T(1));
+            return out;
+        }
         if (!difference_.has_value()) return {};
         return dielectric_side_grid<T>::at_signed_all(*difference_, w);
     }
+
+    /// Whether at(w) reads the window around the critical cosine (windowed() and |w.z| in it).
+    [[nodiscard]] bool windowed_at(const vec3<T>& w) const noexcept { return window_.contains(std::abs(w.z)); }
+
+    /// Whether the reflection albedo with the other Fresnel term is read from a window around
+    /// its kink (the constructor's other_kink).
+    [[nodiscard]] bool other_windowed() const noexcept { return !other_window_.empty(); }
 
     /// Whether the grid holds the differences D_k (the constructor with `other`).
     [[nodiscard]] bool has_difference() const noexcept { return difference_.has_value(); }
@@ -526,9 +580,11 @@ private:
         if (!(eta_s_ < T(1)) || !grid_.has_value() || !(glm::min(alpha_x_, alpha_y_) <= T(window_alpha_max))) return;
         const int critical = dielectric_side_grid<T>::rows_below_critical;
         const double mu_c = grid_->row_cosine(critical);
-        window_ = anisotropic_kink_window<T>(double(alpha_x_), double(alpha_y_), double(eta_s_),
-                                             mu_c - grid_->row_cosine(critical - window_rows),
-                                             grid_->row_cosine(critical + window_rows) - mu_c, window_margin);
+        const double eta = double(eta_s_);
+        window_ = anisotropic_kink_window<T>(
+            double(alpha_x_), double(alpha_y_), mu_c, mu_c - grid_->row_cosine(critical - window_rows),
+            grid_->row_cosine(critical + window_rows) - mu_c, window_margin, 1,
+            [eta](double c) { return std::array<double, 3>{F_dielectric(c, eta), 0.0, 0.0}; });
     }
 
     // The roughness projected on the azimuth of cos^2(phi) from the tangent, at most 1. Not
@@ -550,6 +606,7 @@ private:
     using differences = std::array<dielectric_side_grid<T>, 3>;
     heap_value<differences> difference_{}; // D_k on the same views (the constructor with `other`), or empty
     anisotropic_kink_window<T> window_{}; // R_ss around the critical cosine (build_window), or empty
+    anisotropic_kink_window<T> other_window_{}; // the albedo with F' around other_kink, or empty
 };
 
 } // namespace detail

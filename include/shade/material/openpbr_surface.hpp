@@ -612,6 +612,18 @@ private:
         return rgb<T>(d[0], d[1], d[2]);
     }
 
+    // Whether the transmission lobe of an anisotropic interface reads R_ss without its grid's
+    // margin at the local view w: where E_spec is not that interface's R_ss (another index,
+    // or a film whose share is not on the same grid), and with the film's share on the grid
+    // in the window around the critical cosine, where 1 - R_ss is small and a high read of
+    // R_ss, divided into 1 - R_true, scales the lobe up most (with the share's margins
+    // elsewhere, the grid's margin in R_ss keeps the furnace from falling below 0.99).
+    [[nodiscard]] bool anisotropic_reflection_without_margin(const vec3<T>& w) const noexcept {
+        if (!transmission_reflection_shared_) return true;
+        if (!film_dielectric_) return false;
+        return !film_on_grid_ || transmission_reflection_anisotropic_.windowed_at(w);
+    }
+
     // R_ss of an isotropic rough interface at view cosine mu from its row's value there:
     // below an index ratio of 1 (margin > 0) raised by that margin, and for a narrow lobe
     // read from its window around the critical cosine instead (below_one_reflection).
@@ -726,7 +738,7 @@ private:
                 w.transmission_view = transmission_->prepare(v, at);
                 const T e_s = w.transmission_view.albedo;
                 const T r_ss = transmission_anisotropic_
-                                   ? ((film_dielectric_ && !film_on_grid_) || !transmission_reflection_shared_
+                                   ? (anisotropic_reflection_without_margin(w.v_local)
                                           ? transmission_reflection_anisotropic_.at_without_margin(w.v_local)
                                           : transmission_reflection_anisotropic_.at(w.v_local))
                                : transmission_reflection_is_specular_ ? w.specular_albedo.x
@@ -748,7 +760,7 @@ private:
                 // coat's TIR fix, specular_weight) it is another interface's: the lobe then
                 // carries (1 - R_true) / (1 - R_ss) of what it is given, and an anisotropic
                 // interface reads R_ss without its grid's margin (at_without_margin; where no
-                // grid integrates, the same as at()).
+                // grid integrates, the same as at(); anisotropic_reflection_without_margin).
                 const T lost = T(1) - e_s;
                 const T carried = glm::max(e_s - r_ss, T(0)) +
                                   (interface_draws_ ? lost : transmission_->transmitted_share(false) * lost);
@@ -1399,8 +1411,13 @@ void openpbr_surface<T>::build() {
                     for (std::size_t k = 0; k < 3; ++k) f[k] = film_table[i][k] + t * (film_table[i + 1][k] - film_table[i][k]);
                     return f;
                 };
-                specular_albedo_anisotropic_ =
-                    detail::anisotropic_reflection_albedo_grid<T>(ax, ay, specular_eta_, total, film_fresnel);
+                // Over a base of specular_ior below 1 F_film reflects totally under the base's
+                // critical cosine (by Snell's invariant): the grid integrates the film's
+                // albedo on a window around it too, for a narrow lobe.
+                const double n_b = double(glm::clamp(p.specular_ior, T(1e-4), T(1e4)));
+                const double film_kink = n_b < 1 ? std::sqrt((1.0 - n_b) * (1.0 + n_b)) : 0.0;
+                specular_albedo_anisotropic_ = detail::anisotropic_reflection_albedo_grid<T>(
+                    ax, ay, specular_eta_, total, film_fresnel, film_kink);
                 film_on_grid_ = true;
             } else {
                 specular_albedo_anisotropic_ = detail::anisotropic_reflection_albedo_grid<T>(ax, ay, specular_eta_, total);
