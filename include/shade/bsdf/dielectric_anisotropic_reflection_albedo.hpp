@@ -362,6 +362,9 @@ public:
     static constexpr double window_alpha_max = 0.1;
     /// The grid's rows the window spans on either side of the critical cosine's row.
     static constexpr int window_rows = 3;
+    /// How far (in the projected cosine sqrt(mu^2 + (1 - mu^2) s)) from the critical cosine
+    /// the grid's cells get lifts below 1 (build_window).
+    static constexpr double kink_band = 0.03;
     /// What the window's reads add for its quadrature's error.
     static constexpr double window_margin = 4e-3;
     /// below_margin at strong anisotropy (alpha_max / alpha_min >= 20).
@@ -577,7 +580,28 @@ private:
     // Below an index ratio of 1 with alpha_min <= window_alpha_max: the window of R_ss over
     // the grid's rows within window_rows of the critical cosine's row on either side.
     void build_window() {
-        if (!(eta_s_ < T(1)) || !grid_.has_value() || !(glm::min(alpha_x_, alpha_y_) <= T(window_alpha_max))) return;
+        if (!(eta_s_ < T(1)) || !grid_.has_value()) return;
+        {
+            // Away from the pole the side reflects totally where even the facets tilted most
+            // toward the view along the rougher axis see it beyond the critical angle: for a
+            // surface nearly smooth along the other axis, where mu^2 + (1 - mu^2) s = mu_c^2
+            // (s the squared cosine of the view's azimuth from the rougher axis), a kink of
+            // R_ss that runs diagonally across the grid's cells (their bilinear reads fell
+            // up to 0.018 below R_ss there, beyond the margin). The cells within kink_band of
+            // that curve get lift_cells' lifts.
+            const double mu_c = std::sqrt((1.0 - double(eta_s_)) * (1.0 + double(eta_s_)));
+            const double eta = double(eta_s_);
+            const ggx<double> d(unchecked, double(alpha_x_), double(alpha_y_));
+            const auto projected = [](double mu, double s) { return std::sqrt(mu * mu + (1.0 - mu * mu) * s); };
+            grid_->lift_cells(
+                [&projected, mu_c](double mu0, double mu1, double s0, double s1) {
+                    return projected(mu0, s0) <= mu_c + kink_band && projected(mu1, s1) >= mu_c - kink_band;
+                },
+                [&d, eta](const vec3<double>& v) {
+                    return dielectric_visible_albedo(d, v, eta, below_columns, below_rows, false);
+                });
+        }
+        if (!(glm::min(alpha_x_, alpha_y_) <= T(window_alpha_max))) return;
         const int critical = dielectric_side_grid<T>::rows_below_critical;
         const double mu_c = grid_->row_cosine(critical);
         const double eta = double(eta_s_);

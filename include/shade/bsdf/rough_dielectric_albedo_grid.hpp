@@ -16,6 +16,7 @@
 #include <shade/brdf/microfacet/ggx.hpp>
 #include <shade/bsdf/refract.hpp>
 #include <shade/core/error.hpp>
+#include <shade/core/heap_value.hpp>
 #include <shade/core/math.hpp>
 #include <shade/core/types.hpp>
 
@@ -194,19 +195,7 @@ public:
                 e_[i * azimuths_ + j] = float(glm::min(e, 1.0));
             }
         }
-        // The average = (2 / pi) int_0^{pi/2} int_0^1 value mu dmu dphi over a quarter of the
-        // azimuths (the values are even in both axes): midpoint rule on 512 x 90 reads.
-        constexpr int mu_steps = 512, phi_steps = 90;
-        double sum = 0.0;
-        for (int a = 0; a < phi_steps; ++a) {
-            const double phi = (double(a) + 0.5) * (0.5 * pi<double> / phi_steps);
-            for (int k = 0; k < mu_steps; ++k) {
-                const double mu = (double(k) + 0.5) / mu_steps;
-                const double st = std::sqrt((1.0 - mu) * (1.0 + mu));
-                sum += mu * double(at(vec3<T>(T(st * std::cos(phi)), T(st * std::sin(phi)), T(mu))));
-            }
-        }
-        average_ = T(glm::clamp(2.0 * sum / (double(mu_steps) * phi_steps), 0.0, 1.0));
+        average_ = average_of_reads();
     }
 
     /// N grids of the same side and layout from one pass over the nodes: values(v) returns a
@@ -251,7 +240,8 @@ public:
     /// azimuth are read, so w may point either way. Bilinear between the nodes, in [0, 1].
     [[nodiscard]] T at(const vec3<T>& w) const noexcept {
         const cell c = cell_of(w);
-        const T e = (T(1) - c.t) * row_at(c, c.i) + c.t * row_at(c, c.i + 1);
+        T e = (T(1) - c.t) * row_at(c, c.i) + c.t * row_at(c, c.i + 1);
+        if (lift_.has_value()) e += T((*lift_)[std::size_t(c.i) * std::size_t(strong_azimuths - 1) + std::size_t(c.j)]);
         return glm::clamp(e, T(0), T(1));
     }
 
@@ -338,6 +328,53 @@ public:
         return T(azimuth_warp(double(s_unit), double(log_q2)));
     }
 
+    /// Lifts the reads of the cells that select(mu0, mu1, s0, s1) picks (the cell's rows'
+    /// cosines mu0 < mu1 and its azimuth nodes' s0 < s1, s the squared cosine of the azimuth
+    /// from the rougher axis) over a value with a sharp feature inside them: at 3 x 3 points
+    /// of each such cell (a quarter, half and three quarters of the way in both coordinates)
+    /// value(v) (vec3<double> v, the quantity the nodes hold, without the margin) plus the
+    /// margin is compared with at(), and the cell's reads by at() rise by cell_lift_factor
+    /// times the largest excess. The average is recomputed from the lifted reads. For a
+    /// value whose kink runs across the grid's cells (the reflection albedo of a strongly
+    /// anisotropic side with total internal reflection: anisotropic_reflection_albedo_grid).
+    template <class Select, class Value>
+    void lift_cells(const Select& select, const Value& value) {
+        auto& lift = lift_.emplace();
+        lift.fill(0.0f);
+        bool any = false;
+        for (int i = 0; i + 1 < rows_; ++i) {
+            const double mu0 = row_mu(i), mu1 = row_mu(i + 1);
+            for (int j = 0; j + 1 < azimuths_; ++j) {
+                const double s0 = azimuth_of_warp(double(j) / double(azimuths_ - 1), double(log_q2_));
+                const double s1 = azimuth_of_warp(double(j + 1) / double(azimuths_ - 1), double(log_q2_));
+                if (!select(mu0, mu1, s0, s1)) continue;
+                double excess = 0.0;
+                for (const double t : {0.25, 0.5, 0.75}) {
+                    const double mu = glm::clamp(row_mu(double(i) + t), 1e-4, 1.0);
+                    const double st = std::sqrt((1.0 - mu) * (1.0 + mu));
+                    for (const double a : {0.25, 0.5, 0.75}) {
+                        const double s = azimuth_of_warp((double(j) + a) / double(azimuths_ - 1), double(log_q2_));
+                        const double cos2 = smoother_y_ ? s : 1.0 - s;
+                        const vec3<double> v(st * std::sqrt(cos2), st * std::sqrt(glm::max(0.0, 1.0 - cos2)), mu);
+                        const double read = double(at(vec3<T>(v)));
+                        excess = glm::max(excess, glm::min(double(value(v)) + double(added_), 1.0) - read);
+                    }
+                }
+                lift[std::size_t(i) * std::size_t(strong_azimuths - 1) + std::size_t(j)] = float(cell_lift_factor * excess);
+                any = any || excess > 0.0;
+            }
+        }
+        if (!any) {
+            lift_ = {};
+            return;
+        }
+        average_ = average_of_reads();
+    }
+
+    /// What lift_cells multiplies a cell's largest sampled excess by: 1, the excess over the
+    /// value plus the margin, so that between the samples the margin absorbs what they miss.
+    static constexpr double cell_lift_factor = 1.0;
+
     /// The cosine-weighted hemispherical average of at(): 2 int at(w) mu dw / (2 pi).
     [[nodiscard]] T average() const noexcept { return average_; }
 
@@ -385,18 +422,22 @@ private:
     }
 
     /// mu of row i.
-    [[nodiscard]] double row_mu(int i) const noexcept {
+    [[nodiscard]] double row_mu(int i) const noexcept { return row_mu(double(i)); }
+
+    /// mu at the row coordinate r (0 to rows_ - 1; between the rows the same spacing
+    /// function, the inverse of mu_coordinate).
+    [[nodiscard]] double row_mu(double r) const noexcept {
         if (!(mu_c_ > T(0))) {
-            const double x = double(i) / double(plain_rows_ - 1);
+            const double x = r / double(plain_rows_ - 1);
             return x * std::sqrt(x);
         }
         const double mu_c = double(mu_c_);
-        if (i <= rows_below_critical) {
-            const double x = double(i) / double(rows_below_critical);
+        if (r <= double(rows_below_critical)) {
+            const double x = r / double(rows_below_critical);
             if (dense_at_critical_) return mu_c * x * x * (3.0 - 2.0 * x);
             return mu_c * x * std::sqrt(x);
         }
-        const double y = double(i - rows_below_critical) / double(rows_above_);
+        const double y = (r - double(rows_below_critical)) / double(rows_above_);
         return mu_c + (1.0 - mu_c) * (dense_at_critical_ ? y * std::sqrt(y) : y);
     }
 
@@ -413,9 +454,28 @@ private:
     T log_q2_ = 0;             ///< 2 log q, the azimuth spacing's parameter
     bool smoother_y_ = false;  ///< alpha_x > alpha_y: the smoother axis is y
     bool dense_at_critical_ = false; ///< rows dense toward mu_c from both sides (constructor)
+    // The average of the class comment's definition from at()'s reads: (2 / pi)
+    // int_0^{pi/2} int_0^1 at mu dmu dphi over a quarter of the azimuths (the values are even
+    // in both axes), midpoint rule on 512 x 90 reads.
+    [[nodiscard]] T average_of_reads() const noexcept {
+        constexpr int mu_steps = 512, phi_steps = 90;
+        double sum = 0.0;
+        for (int a = 0; a < phi_steps; ++a) {
+            const double phi = (double(a) + 0.5) * (0.5 * pi<double> / phi_steps);
+            for (int k = 0; k < mu_steps; ++k) {
+                const double mu = (double(k) + 0.5) / mu_steps;
+                const double st = std::sqrt((1.0 - mu) * (1.0 + mu));
+                sum += mu * double(at(vec3<T>(T(st * std::cos(phi)), T(st * std::sin(phi)), T(mu))));
+            }
+        }
+        return T(glm::clamp(2.0 * sum / (double(mu_steps) * phi_steps), 0.0, 1.0));
+    }
+
     T average_ = 1;
     T added_ = 0;              ///< the margin every node holds
     float e_[max_rows_dense * strong_azimuths]{}; ///< row by row, azimuths_ values each
+    /// lift_cells' lifts, cell (i, j) at i (strong_azimuths - 1) + j; empty without lifts.
+    heap_value<std::array<float, (max_rows_dense - 1) * (strong_azimuths - 1)>> lift_{};
 };
 
 } // namespace detail
