@@ -101,9 +101,10 @@ private:
 /// `kink` (total internal reflection: F = 1 below it), on the views around that cosine, much
 /// finer in mu than a dielectric_side_grid's rows: a narrow lobe's E_F steps from 1 toward
 /// F(mu) within about alpha sin(theta) of the kink (alpha the roughness projected on the
-/// view's azimuth), which rows a few thousandths apart bridge with chords reading the
-/// reflection albedo R_ss up to 0.085 low below it. F has 1 or 3 channels (R_ss with the
-/// interface's own F_dielectric; a thin film's F per colour channel). The window spans
+/// view's azimuth), which rows a few thousandths of mu apart bridge with chords that read it
+/// low below the kink (where it is concave; docs/conventions.md has the measurements). F has
+/// 1 or 3 channels (R_ss with the interface's own F_dielectric; a thin film's F per colour
+/// channel). The window spans
 /// `below` under the kink and `above` over it on `cells` cells even in x in [-1, 1],
 /// mu = kink + d x |x| (d the side's span): the kink is the middle node and the cells crowd
 /// toward it quadratically. In azimuth it has `azimuths` nodes (strong_azimuths at strong
@@ -132,8 +133,7 @@ public:
     /// The quadrature's cells per side at each point for alpha_max <= narrow_alpha.
     static constexpr std::size_t strata_narrow = 32;
     /// The same for wider lobes (the midpoint rule's error near the kink grows with
-    /// alpha_max: at 32^2 down to -3.8e-3 for alpha_max up to 0.02 and -6.4e-3 up to 0.23,
-    /// at 48^2 -4.7e-3).
+    /// alpha_max, beyond the margin at 32^2; docs/conventions.md).
     static constexpr std::size_t strata_wide = 48;
     static constexpr double narrow_alpha = 0.02; ///< (strata_narrow)
     /// A cell's lift (drop) over its largest sampled rise (fall): the points between the
@@ -586,9 +586,9 @@ private:
             // toward the view along the rougher axis see it beyond the critical angle: for a
             // surface nearly smooth along the other axis, where mu^2 + (1 - mu^2) s = mu_c^2
             // (s the squared cosine of the view's azimuth from the rougher axis), a kink of
-            // R_ss that runs diagonally across the grid's cells (their bilinear reads fell
-            // up to 0.018 below R_ss there, beyond the margin). The cells within kink_band of
-            // that curve get lift_cells' lifts.
+            // R_ss that runs diagonally across the grid's cells, whose bilinear reads fall
+            // below R_ss there by more than the margin. The cells within kink_band of that
+            // curve get lift_cells' lifts.
             const double mu_c = std::sqrt((1.0 - double(eta_s_)) * (1.0 + double(eta_s_)));
             const double eta = double(eta_s_);
             const ggx<double> d(unchecked, double(alpha_x_), double(alpha_y_));

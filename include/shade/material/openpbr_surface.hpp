@@ -616,8 +616,8 @@ private:
     // margin at the local view w: where E_spec is not that interface's R_ss (another index,
     // or a film whose share is not on the same grid), and with the film's share on the grid
     // in the window around the critical cosine, where 1 - R_ss is small and a high read of
-    // R_ss, divided into 1 - R_true, scales the lobe up most (with the share's margins
-    // elsewhere, the grid's margin in R_ss keeps the furnace from falling below 0.99).
+    // R_ss, divided into 1 - R_true, scales the lobe up most (elsewhere the grid's margin
+    // in R_ss offsets the share's margins, which read E_spec high).
     [[nodiscard]] bool anisotropic_reflection_without_margin(const vec3<T>& w) const noexcept {
         if (!transmission_reflection_shared_) return true;
         if (!film_dielectric_) return false;
