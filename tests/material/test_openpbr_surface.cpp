@@ -1515,7 +1515,10 @@ TEST_CASE("openpbr_surface: white furnace of a thin film over an anisotropic die
     // read E_spec low: measured 1.118 (opaque, n_b 0.5196, roughness 0.0344, anisotropy
     // 0.255, film 0.175 um, specular_weight 0.74, mu at the kink - 0.0008), 1.116 as glass
     // (1.051 before the R_ss window), 1.041 as glass at n_b 0.6146, roughness 0.101,
-    // anisotropy 0.351, film 0.308 um, specular_weight 0.611. The grid now integrates the
+    // anisotropy 0.351, film 0.308 um, specular_weight 0.611. Around the lobe's own critical
+    // cosine (at its modulated index) R_ss is read from its window but D was the grid's,
+    // relative to the grid's R_ss: 1.007 (opaque, n_b 0.5977, roughness 0.0503, anisotropy
+    // 0.423, film 0.639 um, specular_weight 0.524). The grid now integrates the
     // film's albedo on a window around that kink (anisotropic_reflection_albedo_grid's
     // other_kink): the band [0.99, 1.001] (4 standard errors, 48^2 u strata), with and
     // without specular_weight (measured 0.9926-1.0010; 0.856-1.119 and 89 of 324 assertions
@@ -1529,7 +1532,8 @@ TEST_CASE("openpbr_surface: white furnace of a thin film over an anisotropic die
     furnace_band band;
     for (const filmed f : {filmed{T(0.5196), T(0.0344), T(0.255), T(0.175), T(0.74)},
                            filmed{T(0.5196), T(0.0344), T(0.255), T(0.175), T(1)},
-                           filmed{T(0.6146), T(0.101), T(0.351), T(0.308), T(0.611)}})
+                           filmed{T(0.6146), T(0.101), T(0.351), T(0.308), T(0.611)},
+                           filmed{T(0.5977), T(0.0503), T(0.423), T(0.639), T(0.524)}})
         for (const bool glass : {false, true}) {
             params<T> p = white<T>();
             p.specular_ior = f.ior;
@@ -1540,10 +1544,15 @@ TEST_CASE("openpbr_surface: white furnace of a thin film over an anisotropic die
             p.thin_film_thickness = f.thickness;
             if (glass) p.transmission_weight = T(1);
             const surface<T> m(p);
+            // The film's kink, and the specular lobe's critical cosine at its modulated index.
             const double kink = std::sqrt(1 - double(f.ior) * double(f.ior));
-            for (const double offset : {-0.003, -0.0008, -0.0002, 0.0003, 0.001, 0.003})
+            const double eta_lobe = double(shade::openpbr::modulated_ior_ratio(f.ior, f.specular_weight));
+            const double lobe_kink = std::sqrt(1 - eta_lobe * eta_lobe);
+            for (const double offset : {-0.003, -0.0008, -0.0002, 0.0003, 0.001, 0.003, 10.0, 9.9997, 10.0003, 10.004})
                 for (const double phi : {0.8, 3.8, 5.3}) {
-                    const double mu = kink + offset;
+                    // Offsets from 10 on: around the lobe's critical cosine instead.
+                    const double mu = offset < 5 ? kink + offset : lobe_kink + (offset - 10.0);
+                    if (offset > 5 && f.specular_weight == T(1)) continue;
                     const auto reading = furnace_stratified(m, view_at_cosine(at, mu, phi), at,
                                                             glass ? double(f.ior) : 1.0, 48, 32, 4);
                     INFO((glass ? "glass" : "opaque"), " ior ", double(f.ior), " roughness ", double(f.roughness),

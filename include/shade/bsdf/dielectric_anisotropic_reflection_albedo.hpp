@@ -521,21 +521,29 @@ public:
     /// D_k(w) (the constructor with `other`) for channel k at the unit local direction w,
     /// read as at() reads R_ss, margin included: dimensionless, in [-1, 1]. 0 without `other`
     /// (has_difference() false).
-    [[nodiscard]] T difference(std::size_t k, const vec3<T>& w) const noexcept {
-        if (other_window_.contains(std::abs(w.z))) return glm::clamp(other_window_.at(w, k) - at(w), T(-1), T(1));
-        return difference_.has_value() ? (*difference_)[k].at_signed(w) : T(0);
-    }
+    [[nodiscard]] T difference(std::size_t k, const vec3<T>& w) const noexcept { return differences_at(w)[k]; }
 
-    /// difference(k, w) for the three channels k at once (w located once on the grid).
+    /// difference(k, w) for the three channels k at once (w located once on the grid). D_k
+    /// is read so that at(w) + D_k is the albedo with F'_k as read: in the window around
+    /// other_kink that window's albedo less at(w); in the window around the critical cosine
+    /// (where at() reads that window, not the grid's rows) the grid's D_k plus the grid's R_ss
+    /// less at(w), the grid's albedo with F'_k, smooth there unless its kink is near too;
+    /// elsewhere the grid's D_k.
     [[nodiscard]] std::array<T, 3> differences_at(const vec3<T>& w) const noexcept {
-        if (other_window_.contains(std::abs(w.z))) {
+        if (!difference_.has_value()) return {};
+        const T mu = std::abs(w.z);
+        std::array<T, 3> out;
+        if (other_window_.contains(mu)) {
             const T r = at(w);
-            std::array<T, 3> out;
             for (std::size_t k = 0; k < 3; ++k) out[k] = glm::clamp(other_window_.at(w, k) - r, T(-1), T(1));
             return out;
         }
-        if (!difference_.has_value()) return {};
-        return dielectric_side_grid<T>::at_signed_all(*difference_, w);
+        out = dielectric_side_grid<T>::at_signed_all(*difference_, w);
+        if (window_.contains(mu)) {
+            const T shift = grid_->at(w) - window_.at(w);
+            for (std::size_t k = 0; k < 3; ++k) out[k] = glm::clamp(out[k] + shift, T(-1), T(1));
+        }
+        return out;
     }
 
     /// Whether at(w) reads the window around the critical cosine (windowed() and |w.z| in it).
