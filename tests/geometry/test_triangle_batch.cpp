@@ -96,6 +96,13 @@ void check_against_scalar(const shade::ray<T>& r, const shade::triangle_batch<T,
     CHECK(shade::detail::intersect_batch_any<shade::detail::default_lanes<T, N>>(r, batch, cull) == any_hit);
     CHECK(shade::detail::intersect_batch_any<shade::detail::scalar_lanes<T>>(r, vertices, cull) == any_hit);
     CHECK(shade::detail::intersect_batch_any<shade::detail::default_lanes<T, N>>(r, vertices, cull) == any_hit);
+    // Without its own test of t_min (for the walks that test the ray): the same decision
+    // for the rays that have t_min >= 0.
+    if (r.t_min >= T(0)) {
+        CHECK(shade::detail::intersect_batch_any<shade::detail::scalar_lanes<T>, true>(r, vertices, cull) == any_hit);
+        CHECK(shade::detail::intersect_batch_any<shade::detail::default_lanes<T, N>, true>(r, vertices, cull) ==
+              any_hit);
+    }
     std::optional<std::size_t> nearest;
     std::optional<shade::triangle_hit<T>> nearest_hit;
     for (std::size_t i = 0; i < N; ++i) {

@@ -338,12 +338,13 @@ private:
 
     /// test(r, batch, cull, avx).hit_bits != 0, for any(): in the walk compiled for AVX the
     /// kernel's any-hit form (detail::intersect_batch_any: the same decision, without the
-    /// hit record, stopping at the first step with a hit), elsewhere test() itself.
+    /// hit record, stopping at the first step with a hit; r.t_min >= 0 not tested again, as
+    /// the walk has turned away rays that are not valid()), elsewhere test() itself.
     template <bool Avx>
     [[nodiscard]] SHADE_DETAIL_LEAF_INLINE static bool test_any(const ray<T>& r, const leaf_vertices& batch, culling cull,
                                                                 std::bool_constant<Avx> avx) noexcept {
 #if defined(__GNUC__) && defined(__x86_64__)
-        if constexpr (Avx) return detail::intersect_batch_any<detail::vector_lanes<T, 32>>(r, batch, cull);
+        if constexpr (Avx) return detail::intersect_batch_any<detail::vector_lanes<T, 32>, true>(r, batch, cull);
 #endif
         return test(r, batch, cull, avx).hit_bits != 0;
     }

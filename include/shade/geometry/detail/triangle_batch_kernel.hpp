@@ -272,14 +272,18 @@ intersect_batch(const ray<T>& r, const Batch<T, N>& batch, culling cull) noexcep
 /// with a hit. Each step makes one decision: t is divided out on every lane and tested
 /// together with the candidate mask, where intersect_batch first branches on whether any
 /// lane is a candidate: in a hierarchy's any-hit walk, one data-dependent branch a leaf
-/// instead of two.
-template <class L, template <class, std::size_t> class Batch, std::floating_point T, std::size_t N>
+/// instead of two. TMinChecked: the caller has made sure that r.t_min >= 0 (a hierarchy's
+/// walk that turns away rays that are not valid()), so the kernel does not test it again
+/// (for each leaf).
+template <class L, bool TMinChecked = false, template <class, std::size_t> class Batch, std::floating_point T,
+          std::size_t N>
 [[nodiscard]] SHADE_DETAIL_BATCH_INLINE bool intersect_batch_any(const ray<T>& r, const Batch<T, N>& batch,
                                                                  culling cull) noexcept {
     static_assert(N % L::width == 0, "the lane step must divide the batch width");
     using vec = typename L::vec;
     using mask = typename L::mask;
-    if (!(r.t_min >= T(0))) return false;
+    if constexpr (!TMinChecked)
+        if (!(r.t_min >= T(0))) return false;
     vec o_x, o_y, o_z, d_x, d_y, d_z, zero, largest, t_lo, t_hi;
     L::splat(o_x, r.origin.x);
     L::splat(o_y, r.origin.y);
