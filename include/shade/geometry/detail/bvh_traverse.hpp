@@ -221,14 +221,6 @@ using bvh_i8 [[gnu::vector_size(32)]] = std::int32_t;
 }
 #endif
 
-/// out = x in every lane of Lanes (bvh_f4, bvh_f8): for an x in memory one broadcast load,
-/// where Lanes{} + x would load it, add the zero (0 + x is not x for x = -0) and then
-/// broadcast. Written to out, not returned: see scalar_lanes on returning 32-byte vectors.
-template <class Lanes>
-[[gnu::always_inline]] inline void bvh_splat(Lanes& out, float x) noexcept {
-    if constexpr (sizeof(Lanes) == 32) out = Lanes{x, x, x, x, x, x, x, x}; else out = Lanes{x, x, x, x};
-}
-
 /// a = the lane-wise maximum (Max) or minimum of t and a, keeping a where t is NaN: maxps or
 /// minps for four lanes (not always formed from a selection), a selection for eight.
 template <bool Max, class Lanes>
@@ -258,55 +250,48 @@ struct bvh_ray_lanes {
     [[gnu::always_inline]] explicit bvh_ray_lanes(const ray<T>& r, const bvh_ray_scale<T>& scale) noexcept
         : t_min(Lanes{} + scale.t_down(r.t_min)) {
         constexpr float enlarge = 1.0f + 2.0f * rounding_gamma<float>(sizeof(T) == sizeof(float) ? 3 : 4);
-        // A float ray's origin is exact in float, so the same against the near and the far
-        // planes: its lanes are broadcast from the ray itself. (The direction is read
-        // component by component, not as one 16-byte load: a ray the caller has just
-        // copied or written would make that load wait for the stores it spans.)
-        constexpr bool float_ray = std::is_same_v<T, float>;
+        const vec3<T> d = !scale.scaled ? r.direction
+                                        : vec3<T>(scale.direction(r.direction.x), scale.direction(r.direction.y),
+                                                  scale.direction(r.direction.z));
         const vec3<T>& o = r.origin;
-        bvh_f4 d3{static_cast<float>(r.direction.x), static_cast<float>(r.direction.y),
-                  static_cast<float>(r.direction.z), 1.0f};
-        if (scale.scaled) [[unlikely]]
-            d3 = bvh_f4{static_cast<float>(scale.direction(r.direction.x)),
-                        static_cast<float>(scale.direction(r.direction.y)),
-                        static_cast<float>(scale.direction(r.direction.z)), 1.0f};
-        // 1 / d per axis, rounded to float: for a float ray one division of the four lanes,
-        // for a double ray in double, then rounded.
+        const bvh_f4 d3{static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z), 1.0f};
+        // 1 / d per axis, rounded to float: for a float ray one division of the four lanes
+        // (lane 3 divides by 1), for a double ray in double, then rounded.
         bvh_f4 inv3;
-        if constexpr (sizeof(T) == sizeof(float)) {
+        if constexpr (sizeof(T) == sizeof(float))
             inv3 = 1.0f / d3;
-        } else {
-            const vec3<T> d = !scale.scaled ? r.direction
-                                            : vec3<T>(scale.direction(r.direction.x), scale.direction(r.direction.y),
-                                                      scale.direction(r.direction.z));
+        else
             inv3 = bvh_f4{static_cast<float>(T(1) / d.x), static_cast<float>(T(1) / d.y),
                           static_cast<float>(T(1) / d.z), 1.0f};
-        }
         // All ones where the direction's sign bit is set (rounding to float keeps the
         // sign, also of a zero or of a component that underflows).
         bvh_i4 negative = reinterpret_cast<bvh_i4>(d3) >> 31;
-        bvh_f4 near3, far3;
-        if constexpr (!float_ray) {
-            const bvh_f4 o3{static_cast<float>(o.x), static_cast<float>(o.y), static_cast<float>(o.z), 0.0f};
-            bvh_f4 up = o3;
-            bvh_f4 down = o3;
-            if constexpr (sizeof(T) != sizeof(float)) {
-                up = bvh_next_up(o3);
-                down = -bvh_next_up(-o3);
-            }
-            const auto select = [&](const bvh_f4& if_negative, const bvh_f4& otherwise) {
-                return reinterpret_cast<bvh_f4>((reinterpret_cast<bvh_i4>(if_negative) & negative) |
-                                                (reinterpret_cast<bvh_i4>(otherwise) & ~negative));
-            };
-            near3 = select(down, up);
-            far3 = select(up, down);
+        const bvh_f4 o3{static_cast<float>(o.x), static_cast<float>(o.y), static_cast<float>(o.z), 0.0f};
+        bvh_f4 up = o3;
+        bvh_f4 down = o3;
+        if constexpr (sizeof(T) != sizeof(float)) {
+            up = bvh_next_up(o3);
+            down = -bvh_next_up(-o3);
+        }
+        const auto select = [&](const bvh_f4& if_negative, const bvh_f4& otherwise) {
+            return reinterpret_cast<bvh_f4>((reinterpret_cast<bvh_i4>(if_negative) & negative) |
+                                            (reinterpret_cast<bvh_i4>(otherwise) & ~negative));
+        };
+        bvh_f4 near3 = select(down, up);
+        bvh_f4 far3 = select(up, down);
+        // Axes along which the scaled direction is below the smallest normal float: only
+        // a scaled ray has them (an unscaled one may have a zero component, which the
+        // reciprocal +-inf handles as bvh_parallel_axis would).
+        for (int k = 0; scale.scaled && k < 3; ++k) {
+            if (std::abs(d[k]) >= T(bvh_min_normal)) continue;
+            const bvh_parallel_axis axis(o[k], r.direction[k], r.t_max);
+            inv3[k] = infinity<float>;
+            negative[k] = 0;
+            near3[k] = axis.origin_near;
+            far3[k] = axis.origin_far;
         }
         const bvh_f4 inv_far3 = inv3 * enlarge; // +-inf stays +-inf
         for (std::size_t k = 0; k < 3; ++k) {
-            if constexpr (float_ray) {
-                bvh_splat(origin_near[k], o[int(k)]);
-                origin_far[k] = origin_near[k];
-            }
 #if defined(__x86_64__)
             if constexpr (sizeof(Lanes) == 32) {
                 // Lane k of each four-lane vector into eight lanes, register to register:
@@ -314,33 +299,16 @@ struct bvh_ray_lanes {
                 // test, where a store and a broadcast load would add their latency.
                 bvh_lane8(inv[k], inv3, k);
                 bvh_lane8(inv_far[k], inv_far3, k);
-                if constexpr (!float_ray) {
-                    bvh_lane8(origin_near[k], near3, k);
-                    bvh_lane8(origin_far[k], far3, k);
-                }
+                bvh_lane8(origin_near[k], near3, k);
+                bvh_lane8(origin_far[k], far3, k);
             } else
 #endif
             {
                 inv[k] = Lanes{} + inv3[k];
                 inv_far[k] = Lanes{} + inv_far3[k];
-                if constexpr (!float_ray) {
-                    origin_near[k] = Lanes{} + near3[k];
-                    origin_far[k] = Lanes{} + far3[k];
-                }
+                origin_near[k] = Lanes{} + near3[k];
+                origin_far[k] = Lanes{} + far3[k];
             }
-        }
-        // Axes along which the scaled direction is below the smallest normal float: only
-        // a scaled ray has them (an unscaled one may have a zero component, which the
-        // reciprocal +-inf handles as bvh_parallel_axis would).
-        for (int k = 0; scale.scaled && k < 3; ++k) {
-            if (std::abs(scale.direction(r.direction[k])) >= T(bvh_min_normal)) continue;
-            const bvh_parallel_axis axis(o[k], r.direction[k], r.t_max);
-            const auto axis_k = static_cast<std::size_t>(k);
-            bvh_splat(inv[axis_k], infinity<float>);
-            inv_far[axis_k] = inv[axis_k];
-            negative[k] = 0;
-            bvh_splat(origin_near[axis_k], axis.origin_near);
-            bvh_splat(origin_far[axis_k], axis.origin_far);
         }
         octant = bvh_bits(negative) & 7u;
         // Plane 2 k + 1 (hi) is near where the direction is negative, else plane 2 k.
