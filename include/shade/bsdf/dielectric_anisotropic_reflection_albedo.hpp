@@ -523,26 +523,32 @@ public:
     /// (has_difference() false).
     [[nodiscard]] T difference(std::size_t k, const vec3<T>& w) const noexcept { return differences_at(w)[k]; }
 
-    /// difference(k, w) for the three channels k at once (w located once on the grid). D_k
-    /// is read so that at(w) + D_k is the albedo with F'_k as read: in the window around
-    /// other_kink that window's albedo less at(w); in the window around the critical cosine
-    /// (where at() reads that window, not the grid's rows) the grid's D_k plus the grid's R_ss
-    /// less at(w), the grid's albedo with F'_k, smooth there unless its kink is near too;
-    /// elsewhere the grid's D_k.
+    /// difference(k, w) for the three channels k at once (w located once on the grid): in
+    /// the window around other_kink that window's albedo with F'_k less at(w); elsewhere the
+    /// grid's D_k.
     [[nodiscard]] std::array<T, 3> differences_at(const vec3<T>& w) const noexcept {
         if (!difference_.has_value()) return {};
-        const T mu = std::abs(w.z);
-        std::array<T, 3> out;
-        if (other_window_.contains(mu)) {
+        if (other_window_.contains(std::abs(w.z))) {
             const T r = at(w);
+            std::array<T, 3> out;
             for (std::size_t k = 0; k < 3; ++k) out[k] = glm::clamp(other_window_.at(w, k) - r, T(-1), T(1));
             return out;
         }
-        out = dielectric_side_grid<T>::at_signed_all(*difference_, w);
-        if (window_.contains(mu)) {
-            const T shift = grid_->at(w) - window_.at(w);
-            for (std::size_t k = 0; k < 3; ++k) out[k] = glm::clamp(out[k] + shift, T(-1), T(1));
-        }
+        return dielectric_side_grid<T>::at_signed_all(*difference_, w);
+    }
+
+    /// differences_at(w) for a caller that adds them to at(w) (the albedo with F'_k as
+    /// at(w) + D_k): inside the window around the critical cosine, where at() reads that
+    /// window rather than the grid's rows, the grid's D_k are relative to the grid's R_ss,
+    /// and are shifted by the grid's R_ss less at(w), so that the sum is the grid's albedo
+    /// with F'_k there (smooth unless F''s own kink is near as well); elsewhere the same as
+    /// differences_at(w).
+    [[nodiscard]] std::array<T, 3> differences_against_at(const vec3<T>& w) const noexcept {
+        std::array<T, 3> out = differences_at(w);
+        const T mu = std::abs(w.z);
+        if (!difference_.has_value() || other_window_.contains(mu) || !window_.contains(mu)) return out;
+        const T shift = grid_->at(w) - window_.at(w);
+        for (std::size_t k = 0; k < 3; ++k) out[k] = glm::clamp(out[k] + shift, T(-1), T(1));
         return out;
     }
 

@@ -608,7 +608,7 @@ private:
     // The film's share D(v) per channel at the local view w where it is integrated with R_ss
     // (film_on_grid_).
     [[nodiscard]] rgb<T> film_grid_difference(const vec3<T>& w) const noexcept {
-        const std::array<T, 3> d = specular_albedo_anisotropic_.differences_at(w);
+        const std::array<T, 3> d = specular_albedo_anisotropic_.differences_against_at(w);
         return rgb<T>(d[0], d[1], d[2]);
     }
 
