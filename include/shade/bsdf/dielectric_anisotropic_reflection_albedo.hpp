@@ -555,10 +555,6 @@ public:
     /// Whether at(w) reads the window around the critical cosine (windowed() and |w.z| in it).
     [[nodiscard]] bool windowed_at(const vec3<T>& w) const noexcept { return window_.contains(std::abs(w.z)); }
 
-    /// Whether the reflection albedo with the other Fresnel term is read from a window around
-    /// its kink (the constructor's other_kink).
-    [[nodiscard]] bool other_windowed() const noexcept { return !other_window_.empty(); }
-
     /// Whether the grid holds the differences D_k (the constructor with `other`).
     [[nodiscard]] bool has_difference() const noexcept { return difference_.has_value(); }
 
