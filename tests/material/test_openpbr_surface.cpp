@@ -2009,12 +2009,9 @@ TEST_CASE_TEMPLATE("openpbr_surface: an anisotropic lobe's thin film over a base
     // critical cosine from both sides, where D steps; 0 in the cone of total reflection).
     // E_R read - true >= -1e-3 at the critical cosine, beside it and away from it, at
     // azimuths from the rougher axis to the smoother, anisotropy 0.5 to 1; high by at most
-    // 4e-2: the grid's margins (5e-3, 1e-2 at strong anisotropy; D's 2e-3), at anisotropy 1
-    // just below the critical cosine R_ss's step between two rows, and at anisotropy 1 on
-    // the total-reflection curve mu^2 + (1 - mu^2) cos^2 = mu_c^2 (mu 0.1, 1.2 rad from the
-    // rougher axis) the grid's lifted cell (dielectric_side_grid::lift_cells, which keeps
-    // R_ss's read from falling below it there: 3.8e-2; 2.8e-2 before the lift, when the
-    // bound was 3e-2) (measured -6e-4 to 3.8e-2, 1.5e-2 below anisotropy 1. The share read from the isotropic
+    // 3e-2: the grid's margins (5e-3, 1e-2 at strong anisotropy; D's 2e-3) and, at
+    // anisotropy 1 just below the critical cosine, R_ss's step between two rows (measured
+    // -6e-4 to 2.5e-2, 1.5e-2 below anisotropy 1. The share read from the isotropic
     // reference at alpha_v plus its anisotropic correction, lifted around the kink, read up
     // to 0.12 high here and 0.19 over 180 random films, and 0.13 low before the lift).
     const double tol = std::is_same_v<T, float> ? 2e-5 : 0.0;
@@ -2038,7 +2035,7 @@ TEST_CASE_TEMPLATE("openpbr_surface: an anisotropic lobe's thin film over a base
                                  " anisotropy ", double(a), " mu ", mu, " (mu_c ", mu_c, ") phi ", phi, " channel ", k,
                                  ": E_R read - true ", error[k]);
                             CHECK(error[k] >= -1e-3 - tol);
-                            CHECK(error[k] <= 4e-2 + tol);
+                            CHECK(error[k] <= 3e-2 + tol);
                             lowest = std::min(lowest, error[k]);
                             highest = std::max(highest, error[k]);
                         }

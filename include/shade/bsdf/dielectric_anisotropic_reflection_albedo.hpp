@@ -538,16 +538,16 @@ public:
     }
 
     /// differences_at(w) for a caller that adds them to at(w) (the albedo with F'_k as
-    /// at(w) + D_k): inside the window around the critical cosine, where at() reads that
-    /// window rather than the grid's rows, the grid's D_k are relative to the grid's R_ss,
-    /// and are shifted by the grid's R_ss less at(w), so that the sum is the grid's albedo
-    /// with F'_k there (smooth unless F''s own kink is near as well); elsewhere the same as
-    /// differences_at(w).
+    /// at(w) + D_k). The grid's D_k are relative to the grid's nodes' R_ss, which at() does
+    /// not read as they are inside the window around the critical cosine (that window) nor in
+    /// lifted cells (lift_cells): there they are shifted by the nodes' bilinear R_ss less
+    /// at(w), so that the sum is the grid's albedo with F'_k, which steps where F' does, not
+    /// where F does; in the window around other_kink, differences_at(w) as it is.
     [[nodiscard]] std::array<T, 3> differences_against_at(const vec3<T>& w) const noexcept {
         std::array<T, 3> out = differences_at(w);
-        const T mu = std::abs(w.z);
-        if (!difference_.has_value() || other_window_.contains(mu) || !window_.contains(mu)) return out;
-        const T shift = grid_->at(w) - window_.at(w);
+        if (!difference_.has_value() || other_window_.contains(std::abs(w.z))) return out;
+        const T shift = grid_->at_without_lift(w) - at(w);
+        if (shift == T(0)) return out;
         for (std::size_t k = 0; k < 3; ++k) out[k] = glm::clamp(out[k] + shift, T(-1), T(1));
         return out;
     }

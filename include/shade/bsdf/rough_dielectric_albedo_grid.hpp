@@ -245,6 +245,13 @@ public:
         return glm::clamp(e, T(0), T(1));
     }
 
+    /// at(w) without lift_cells' lifts: the nodes' bilinear read, in [0, 1] (what a value
+    /// integrated on the same nodes, less this one, is relative to).
+    [[nodiscard]] T at_without_lift(const vec3<T>& w) const noexcept {
+        const cell c = cell_of(w);
+        return glm::clamp((T(1) - c.t) * row_at(c, c.i) + c.t * row_at(c, c.i + 1), T(0), T(1));
+    }
+
     /// at(w) for a value that may be negative (a difference of two albedos): the same bilinear
     /// read, clamped to [-1, 1] instead.
     [[nodiscard]] T at_signed(const vec3<T>& w) const noexcept {
