@@ -1336,8 +1336,14 @@ void openpbr_surface<T>::build() {
     // ambient medium (index 1).
     const T thickness_nm = glm::min(p.thin_film_thickness * T(1000), T(1e5));
     const T film_ior = glm::clamp(p.thin_film_ior, T(1e-4), T(1e4));
+    // The film's base index over the ambient medium; below 1 the film/base interface reflects
+    // totally under the base's critical cosine (by Snell's invariant, at the angle of the
+    // bare interface): F_film's kink, 0 for none.
+    const T film_base_ior = glm::clamp(p.specular_ior, T(1e-4), T(1e4));
+    const double film_kink =
+        film_base_ior < T(1) ? std::sqrt((1.0 - double(film_base_ior)) * (1.0 + double(film_base_ior))) : 0.0;
     const thin_film_fresnel<T> film_over_dielectric =
-        thin_film_fresnel<T>::over_dielectric(glm::clamp(p.specular_ior, T(1e-4), T(1e4)), film_ior, thickness_nm);
+        thin_film_fresnel<T>::over_dielectric(film_base_ior, film_ior, thickness_nm);
     const T film_weight = p.thin_film_weight;
     if (film_weight > T(0)) film_dielectric_.emplace(film_over_dielectric);
 
@@ -1411,11 +1417,8 @@ void openpbr_surface<T>::build() {
                     for (std::size_t k = 0; k < 3; ++k) f[k] = film_table[i][k] + t * (film_table[i + 1][k] - film_table[i][k]);
                     return f;
                 };
-                // Over a base of specular_ior below 1 F_film reflects totally under the base's
-                // critical cosine (by Snell's invariant): the grid integrates the film's
-                // albedo on a window around it too, for a narrow lobe.
-                const double n_b = double(glm::clamp(p.specular_ior, T(1e-4), T(1e4)));
-                const double film_kink = n_b < 1 ? std::sqrt((1.0 - n_b) * (1.0 + n_b)) : 0.0;
+                // Around F_film's kink (film_kink) the grid integrates the film's albedo on a
+                // window too, for a narrow lobe.
                 specular_albedo_anisotropic_ = detail::anisotropic_reflection_albedo_grid<T>(
                     ax, ay, specular_eta_, total, film_fresnel, film_kink);
                 film_on_grid_ = true;
@@ -1448,9 +1451,8 @@ void openpbr_surface<T>::build() {
             // (kink_view_shortfall). About 12 ms, only for such films on isotropic lobes: an
             // anisotropic lobe's share is integrated on its grid (film_on_grid_). F's own kink
             // (eta'_s < 1) is not in the nodes: below 1 they hold F_film alone.
-            const T n_b = glm::clamp(p.specular_ior, T(1e-4), T(1e4));
-            if (n_b < T(1) && !specular_anisotropic_) {
-                const double kink = std::sqrt((1.0 - double(n_b)) * (1.0 + double(n_b)));
+            if (film_kink > 0 && !specular_anisotropic_) {
+                const double kink = film_kink;
                 film_albedo_.add(
                     detail::kink_cell_correction(specular_alpha_, film_nodes_, film_difference, kink, film_kink_columns,
                                                  film_kink_rows));
